@@ -1,0 +1,6 @@
+"""`python -m mcc` runs the command line."""
+
+from mcc.cli.main import main
+
+if __name__ == "__main__":
+    main()

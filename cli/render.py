@@ -1,0 +1,72 @@
+"""Rendering diagnostics for people (text with the source line and a caret) and for tools (JSON)."""
+
+from __future__ import annotations
+
+import json
+
+from mcc.compiler.diagnostics import Diagnostic, Severity
+from mcc.compiler.span import SourceFile
+
+STYLE = {Severity.ERROR: "bold red", Severity.WARNING: "bold yellow", Severity.INFO: "bold cyan"}
+
+
+def format_diagnostic(diag: Diagnostic, source: SourceFile | None) -> list[tuple[str, str]]:
+    """The lines of one diagnostic as (text, rich style) pairs."""
+    span = diag.span
+    head = f"{span.file}:{span.line}:{span.column}: {diag.severity.value}[{diag.code}] {diag.message}"
+    lines = [(head, STYLE[diag.severity])]
+    text = source.line_text(span.line) if source is not None else ""
+    if text.strip():
+        gutter = f"{span.line:>5} | "
+        shown = text.expandtabs(1)
+        lines.append((gutter + shown, ""))
+        width = span.end_column - span.column if span.end_line == span.line else len(shown) - span.column + 1
+        caret = " " * (len(gutter) - 2) + "| " + " " * (span.column - 1) + "^" * max(1, width)
+        lines.append((caret, STYLE[diag.severity]))
+    for note in diag.notes:
+        lines.append((f"      = note: {note}", "dim"))
+    if diag.fix is not None:
+        lines.append((f"      = fix{'' if diag.fix.safe else ' (unsafe)'}: {diag.fix.description}", "green"))
+    return lines
+
+
+def summary_line(diags: list[Diagnostic], files: int) -> str:
+    errors = sum(d.severity is Severity.ERROR for d in diags)
+    warnings = sum(d.severity is Severity.WARNING for d in diags)
+    infos = len(diags) - errors - warnings
+    if not diags:
+        return f"No problems found in {files} file{'s' if files != 1 else ''}."
+    parts = [f"{errors} error{'s' if errors != 1 else ''}", f"{warnings} warning{'s' if warnings != 1 else ''}"]
+    if infos:
+        parts.append(f"{infos} note{'s' if infos != 1 else ''}")
+    return f"Found {', '.join(parts)} in {files} file{'s' if files != 1 else ''}."
+
+
+class TextWriter:
+    """Writes styled lines: through rich on a terminal, as plain text otherwise."""
+
+    def __init__(self, stream, color: bool):
+        self.stream = stream
+        self.console = None
+        if color:
+            from rich.console import Console  # only a terminal pays for importing rich
+
+            self.console = Console(file=stream, highlight=False, soft_wrap=True)
+
+    def line(self, text: str, style: str = "") -> None:
+        if self.console is not None:
+            from rich.text import Text
+
+            self.console.print(Text(text, style=style or None))
+        else:
+            self.stream.write(text + "\n")
+
+
+def write_text(writer: TextWriter, diags: list[Diagnostic], sources: dict[str, SourceFile]) -> None:
+    for diag in diags:
+        for text, style in format_diagnostic(diag, sources.get(diag.span.file)):
+            writer.line(text, style)
+
+
+def dump_json(payload: dict) -> str:
+    return json.dumps(payload, indent=2, ensure_ascii=False)

@@ -1,0 +1,113 @@
+"""Diagnostics: what every check, linter rule and backend reports.
+
+A diagnostic has a stable code (see `mcc.compiler.codes`), a severity, a kind, a message that
+tells the user what to do, and a span. Severity and kind default to the code's registry entry, so
+a check only states what is specific to the finding.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+from mcc.compiler.span import Span
+
+
+class Severity(str, Enum):
+    ERROR = "error"
+    WARNING = "warning"
+    INFO = "info"
+
+    @property
+    def rank(self) -> int:
+        return {"error": 2, "warning": 1, "info": 0}[self.value]
+
+
+class Kind(str, Enum):
+    SYNTAX = "syntax"
+    SEMANTIC = "semantic"
+    LINT = "lint"
+    INTERNAL = "internal"
+
+
+@dataclass(frozen=True, slots=True)
+class Edit:
+    """Replace the text of `span` with `text` (an empty span inserts)."""
+
+    span: Span
+    text: str
+
+
+@dataclass(frozen=True, slots=True)
+class Fix:
+    description: str
+    edits: tuple[Edit, ...]
+    safe: bool = True
+
+
+@dataclass(slots=True)
+class Diagnostic:
+    code: str
+    severity: Severity
+    kind: Kind
+    message: str
+    span: Span
+    notes: tuple[str, ...] = ()
+    fix: Fix | None = None
+
+    def sort_key(self) -> tuple:
+        return (self.span.file, self.span.line, self.span.column, self.code)
+
+    def to_json(self) -> dict:
+        return {
+            "code": self.code,
+            "severity": self.severity.value,
+            "kind": self.kind.value,
+            "message": self.message,
+            "line": self.span.line,
+            "column": self.span.column,
+            "end_line": self.span.end_line,
+            "end_column": self.span.end_column,
+            **({"notes": list(self.notes)} if self.notes else {}),
+            **({"fix": self.fix.description} if self.fix else {}),
+        }
+
+
+@dataclass
+class Diagnostics:
+    """A collector that fills severity and kind from the code registry."""
+
+    items: list[Diagnostic] = field(default_factory=list)
+
+    def add(self, code: str, span: Span, message: str, *, notes: tuple[str, ...] | list[str] = (),
+            fix: Fix | None = None, severity: Severity | None = None) -> Diagnostic:
+        from mcc.compiler.codes import registry
+
+        info = registry().get(code)
+        diag = Diagnostic(
+            code=code,
+            severity=severity or (info.severity if info else Severity.ERROR),
+            kind=info.kind if info else Kind.INTERNAL,
+            message=message,
+            span=span,
+            notes=tuple(notes),
+            fix=fix,
+        )
+        self.items.append(diag)
+        return diag
+
+    def extend(self, other: "Diagnostics | list[Diagnostic]") -> None:
+        self.items.extend(other.items if isinstance(other, Diagnostics) else other)
+
+    def __iter__(self):
+        return iter(self.items)
+
+    def __len__(self) -> int:
+        return len(self.items)
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.severity is Severity.ERROR for d in self.items)
+
+    def sorted(self) -> list[Diagnostic]:
+        return sorted(self.items, key=Diagnostic.sort_key)

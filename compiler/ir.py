@@ -1,0 +1,533 @@
+"""The shared intermediate representation.
+
+One IR for all three dialects: every check, optimisation and backend works on it, whatever the
+source. The shapes follow docs/ARCHITECTURE.md:
+
+- a `Module` holds the declared variables and the routines, in source order;
+- a `Routine` is a named control-flow graph of `Block`s (main program, subroutine, event handler,
+  power-up entry, or the immediate stream of commands sent outside any program);
+- a `Block` holds dialect-neutral `Op`s and ends in exactly one terminator;
+- expressions and conditions are small trees; numbers carry units;
+- what has no neutral meaning is a `Native` operation that keeps dialect, mnemonic and arguments.
+
+Every operation keeps the `Span` of the source text it came from.
+
+Axes are logical names: "X" "Y" "Z" "U" for Arcus, the device address ("1".."32") for X150, the
+party device name or "1" for MCode; "*" means every axis (a broadcast or a global setting).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Union
+
+from mcc.compiler.span import Span
+
+ALL_AXES = "*"
+
+
+class Unit(str, Enum):
+    NONE = ""
+    STEPS = "steps"
+    COUNTS = "counts"
+    REVS = "revs"
+    STEPS_PER_S = "steps/s"
+    REVS_PER_S = "revs/s"
+    STEPS_PER_S2 = "steps/s^2"
+    REVS_PER_S2 = "revs/s^2"
+    MS = "ms"
+    S = "s"
+    PERCENT = "%"
+    MILLIDEGREES = "mdeg"
+
+
+class VarType(str, Enum):
+    INT32 = "int32"
+    FLOAT64 = "float64"
+    DECIMAL = "decimal"
+
+
+# ---------------------------------------------------------------------------------------------
+# Expressions
+
+
+@dataclass(frozen=True, slots=True)
+class Const:
+    value: int | float
+    unit: Unit = Unit.NONE
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Var:
+    """A program variable: a user variable or a general-purpose register (R1, F1, V10, VAR3)."""
+
+    name: str
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class DeviceRef:
+    """A device register or status read (MCode `P`, Arcus `MSTX`, X150 `POS`).
+
+    `meaning` is the neutral reading when there is one (position, velocity, input, moving, ...),
+    `name` the dialect's own spelling, `axis` the logical axis and `index` a bit or channel number.
+    """
+
+    dialect: str
+    name: str
+    meaning: str = ""
+    axis: str = ""
+    index: int | None = None
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class LabelRef:
+    """A reference to a code location by name or address (MCode `BR K1`, `TP=100,K2`, `EX 100`)."""
+
+    name: str
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Text:
+    value: str
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class BinOp:
+    op: str  # + - * / % & | ^ << >>
+    left: "Expr"
+    right: "Expr"
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class UnOp:
+    op: str  # - (negate)  ! or ~ (bitwise not)
+    operand: "Expr"
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Func:
+    name: str  # abs cos sin tan acos asin atan sqrt log log10 pi (neutral names)
+    args: tuple["Expr", ...]
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Pattern:
+    """An input/output bit pattern over 0, 1 and X (don't care), most significant last."""
+
+    bits: str
+    span: Span | None = None
+
+
+Expr = Union[Const, Var, DeviceRef, LabelRef, Text, BinOp, UnOp, Func, Pattern]
+
+
+@dataclass(frozen=True, slots=True)
+class Compare:
+    op: str  # = != < <= > >=
+    left: Expr
+    right: Expr
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Logic:
+    op: str  # and | or
+    left: "Cond"
+    right: "Cond"
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Truth:
+    """An expression used as a condition: true when non-zero (MCode `BR Q1, AF&2`)."""
+
+    expr: Expr
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class InputMatch:
+    """Inputs match a pattern (X150 `IN_XX1`)."""
+
+    pattern: Pattern
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Not:
+    cond: "Cond"
+    span: Span | None = None
+
+
+Cond = Union[Compare, Logic, Truth, InputMatch, Not]
+
+
+# ---------------------------------------------------------------------------------------------
+# Operations
+
+
+class MotionParam(str, Enum):
+    INITIAL_SPEED = "initial_speed"
+    MAX_SPEED = "max_speed"
+    ACCEL = "accel"
+    DECEL = "decel"
+    PROFILE = "profile"
+    RESOLUTION = "resolution"
+
+
+class MoveMode(str, Enum):
+    ABSOLUTE = "absolute"
+    RELATIVE = "relative"
+    MODAL = "modal"  # Arcus X1000: absolute or incremental per the last ABS/INC
+
+
+@dataclass(slots=True)
+class Assign:
+    target: Var
+    value: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class SetMotion:
+    param: MotionParam
+    axis: str
+    value: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Move:
+    """A move to targets on one or more axes (several axes: linear interpolation)."""
+
+    mode: MoveMode
+    targets: tuple[tuple[str, Expr], ...]
+    options: tuple[tuple[str, Expr], ...] = ()  # dialect options (MCode MA p2/p3)
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Arc:
+    """Circular (angle None: full circle) or arc interpolation around a centre."""
+
+    axes: tuple[str, str]
+    center: tuple[Expr, Expr]
+    clockwise: bool
+    angle: Expr | None = None  # millidegrees
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Slew:
+    """Run at a constant signed velocity (MCode SL) or in a direction at max speed (jog)."""
+
+    axis: str
+    velocity: Expr | None = None
+    direction: int = 0  # +1 / -1 for a jog without an explicit velocity
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Home:
+    axis: str
+    method: str  # switch | index | switch+index | offset
+    direction: int = 0
+    mode: Expr | None = None  # dialect homing type (MCode HM 1..4)
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Stop:
+    axis: str
+    ramp: bool = True  # False: abort without deceleration
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class SetPosition:
+    axis: str
+    value: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class WaitMotion:
+    axis: str
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Delay:
+    duration: Expr  # carries its unit (ms or s)
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class SetOutput:
+    index: int | None  # None: every output, value is a bit mask or a Pattern
+    value: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class WaitInput:
+    cond: Cond
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Print:
+    items: tuple[Expr, ...]
+    newline: bool = True
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class DriveEnable:
+    axis: str
+    on: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Call:
+    routine: str
+    cond: Cond | None = None  # MCode `CL K1, I2=1` is a predicated call
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class SetHandler:
+    """Install an event handler: MCode trips and OE, X150 XWHEN/XFK.
+
+    `event` is a neutral name (input, position, capture, time, relative, hmt, power, error, fault,
+    when); `args` are the event's parameters.
+    """
+
+    event: str
+    routine: str | None
+    args: tuple[Expr, ...] = ()
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Save:
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Native:
+    """A construct with no neutral meaning, kept verbatim for its own backend."""
+
+    dialect: str
+    mnemonic: str
+    args: tuple[Expr, ...] = ()
+    form: str = ""  # how it was written, when the dialect cares: "=", " ", "" ...
+    axis: str = ""
+    span: Span | None = None
+
+
+Op = Union[Assign, SetMotion, Move, Arc, Slew, Home, Stop, SetPosition, WaitMotion, Delay,
+           SetOutput, WaitInput, Print, DriveEnable, Call, SetHandler, Save, Native]
+
+
+# ---------------------------------------------------------------------------------------------
+# Terminators
+
+
+@dataclass(slots=True)
+class Jump:
+    target: str  # block label (module-unique)
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Branch:
+    cond: Cond
+    then: str
+    otherwise: str
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Return:
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class End:
+    """End of the program: execution stops (MCode E, Arcus END)."""
+
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class GotoRoutine:
+    """Transfer to another routine without return (X150 XG/GOTO)."""
+
+    routine: str
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class FallOff:
+    """Control runs past the last statement of the region with no explicit end."""
+
+    span: Span | None = None
+
+
+Terminator = Union[Jump, Branch, Return, End, GotoRoutine, FallOff]
+
+
+# ---------------------------------------------------------------------------------------------
+# Structure
+
+
+class RoutineKind(str, Enum):
+    MAIN = "main"
+    SUBROUTINE = "subroutine"
+    HANDLER = "handler"
+    POWERUP = "powerup"
+    IMMEDIATE = "immediate"
+
+
+@dataclass(slots=True)
+class Block:
+    label: str
+    ops: list[Op] = field(default_factory=list)
+    terminator: Terminator | None = None
+    span: Span | None = None
+    named: bool = False  # the label was written in the source (not generated)
+
+
+@dataclass(slots=True)
+class Routine:
+    name: str
+    kind: RoutineKind
+    blocks: list[Block] = field(default_factory=list)
+    span: Span | None = None
+    number: int | None = None  # Arcus SUB n, X150 sequence n
+    origin: int | None = None  # MCode: PG address where this routine's program region starts
+
+    @property
+    def entry(self) -> Block | None:
+        return self.blocks[0] if self.blocks else None
+
+    def block(self, label: str) -> Block | None:
+        for block in self.blocks:
+            if block.label == label:
+                return block
+        return None
+
+
+@dataclass(slots=True)
+class Variable:
+    name: str
+    type: VarType = VarType.INT32
+    init: Expr | None = None
+    scope: str = "global"  # global | local
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Module:
+    dialect: str
+    profile: str
+    variables: dict[str, Variable] = field(default_factory=dict)
+    routines: list[Routine] = field(default_factory=list)
+    path: str = ""
+
+    def routine(self, name: str) -> Routine | None:
+        for routine in self.routines:
+            if routine.name == name:
+                return routine
+        return None
+
+    def blocks(self):
+        """Every (routine, block) pair in module order."""
+        for routine in self.routines:
+            for block in routine.blocks:
+                yield routine, block
+
+    def find_block(self, label: str) -> tuple[Routine, Block] | None:
+        for routine, block in self.blocks():
+            if block.label == label:
+                return routine, block
+        return None
+
+
+def successors(term: Terminator | None) -> tuple[str, ...]:
+    """Block labels a terminator can transfer to (within the module)."""
+    if isinstance(term, Jump):
+        return (term.target,)
+    if isinstance(term, Branch):
+        return (term.then, term.otherwise)
+    return ()
+
+
+def walk_expr(expr):
+    """Yield an expression or condition and all of its sub-expressions, depth first."""
+    stack = [expr]
+    while stack:
+        node = stack.pop()
+        if node is None:
+            continue
+        yield node
+        if isinstance(node, (BinOp, Compare, Logic)):
+            stack.extend((node.right, node.left))
+        elif isinstance(node, UnOp):
+            stack.append(node.operand)
+        elif isinstance(node, Func):
+            stack.extend(reversed(node.args))
+        elif isinstance(node, (Truth,)):
+            stack.append(node.expr)
+        elif isinstance(node, InputMatch):
+            stack.append(node.pattern)
+        elif isinstance(node, Not):
+            stack.append(node.cond)
+
+
+def op_exprs(op: Op) -> tuple:
+    """The expressions and conditions an operation reads."""
+    if isinstance(op, Assign):
+        return (op.value,)
+    if isinstance(op, (SetMotion, SetPosition)):
+        return (op.value,)
+    if isinstance(op, Move):
+        return tuple(e for _, e in op.targets) + tuple(e for _, e in op.options)
+    if isinstance(op, Arc):
+        return op.center + ((op.angle,) if op.angle is not None else ())
+    if isinstance(op, Slew):
+        return (op.velocity,) if op.velocity is not None else ()
+    if isinstance(op, Home):
+        return (op.mode,) if op.mode is not None else ()
+    if isinstance(op, Delay):
+        return (op.duration,)
+    if isinstance(op, SetOutput):
+        return (op.value,)
+    if isinstance(op, WaitInput):
+        return (op.cond,)
+    if isinstance(op, Print):
+        return op.items
+    if isinstance(op, DriveEnable):
+        return (op.on,)
+    if isinstance(op, Call):
+        return (op.cond,) if op.cond is not None else ()
+    if isinstance(op, (SetHandler, Native)):
+        return op.args
+    return ()
+
+
+def term_exprs(term: Terminator | None) -> tuple:
+    if isinstance(term, Branch):
+        return (term.cond,)
+    return ()

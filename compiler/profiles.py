@@ -1,0 +1,101 @@
+"""Target profiles: what a program is compiled and checked for.
+
+A profile is a small TOML file: dialect, product, firmware, logical axes, steps per revolution,
+limits (line length, memory budgets) and dialect-specific settings such as the Arcus cost model.
+Built-in profiles live in `compiler/profiles/`; a user may pass a path to their own file, which
+may `extends = "<built-in name>"` and override any key.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from mcc.compiler import toml
+
+PROFILE_DIR = Path(__file__).parent / "profiles"
+
+
+class ProfileError(Exception):
+    """A profile that does not exist or cannot be read; the CLI reports it as a usage error."""
+
+
+@dataclass(frozen=True)
+class Profile:
+    name: str
+    dialect: str
+    product: str
+    title: str = ""
+    firmware: str = ""
+    axes: tuple[str, ...] = ()
+    steps_per_rev: int = 0
+    data: dict = field(default_factory=dict, compare=False, hash=False)
+
+    def get(self, dotted: str, default: Any = None) -> Any:
+        """Look up a key such as "limits.line_length" in the profile's data."""
+        node: Any = self.data
+        for part in dotted.split("."):
+            if not isinstance(node, dict) or part not in node:
+                return default
+            node = node[part]
+        return node
+
+
+def _merge(base: dict, over: dict) -> dict:
+    out = dict(base)
+    for key, value in over.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = _merge(out[key], value)
+        else:
+            out[key] = value
+    return out
+
+
+def _read(path: Path) -> dict:
+    try:
+        data = toml.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ProfileError(f"cannot read profile {path}: {exc}") from None
+    except toml.TOMLDecodeError as exc:
+        raise ProfileError(f"{path}: invalid TOML: {exc}") from None
+    parent = data.pop("extends", None)
+    if parent:
+        data = _merge(_read(_builtin_path(parent)), data)
+    return data
+
+
+def _builtin_path(name: str) -> Path:
+    path = PROFILE_DIR / f"{name}.toml"
+    if not path.exists():
+        raise ProfileError(f"unknown profile '{name}' (built-in profiles: {', '.join(builtin_names())})")
+    return path
+
+
+def builtin_names() -> list[str]:
+    return sorted(p.stem for p in PROFILE_DIR.glob("*.toml"))
+
+
+def load(name_or_path: str) -> Profile:
+    path = Path(name_or_path)
+    if path.suffix == ".toml" or path.exists():
+        if not path.is_file():
+            raise ProfileError(f"profile file not found: {name_or_path}")
+        data = _read(path)
+        default_name = path.stem
+    else:
+        data = _read(_builtin_path(name_or_path))
+        default_name = name_or_path
+    for key in ("dialect", "product"):
+        if key not in data:
+            raise ProfileError(f"profile {name_or_path}: missing key '{key}'")
+    return Profile(
+        name=data.get("name", default_name),
+        dialect=data["dialect"],
+        product=data["product"],
+        title=data.get("title", ""),
+        firmware=str(data.get("firmware", "")),
+        axes=tuple(str(a) for a in data.get("axes", ())),
+        steps_per_rev=int(data.get("steps_per_rev", 0)),
+        data=data,
+    )
