@@ -19,7 +19,7 @@ COMMON_KEYS = {"name", "title", "kind", "summary", "syntax", "unit", "range", "d
                "products", "manual", "notes"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Entry:
     name: str
     title: str

@@ -1,0 +1,160 @@
+"""The MCode catalog, indexed for the frontend.
+
+Reads compiler/catalogs/mcode.toml (every Lexium command, variable, flag, keyword and function) and
+mcode-legacy.toml (commands of the older MDrivePlus/MForce family), expands indexed families
+(F1-F8, R1-R4, ...) and answers the lookups the checks need.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+from mcc.compiler import catalog as generic
+from mcc.compiler import toml
+
+INSTRUCTION, VARIABLE, FLAG, KEYWORD = "instruction", "variable", "flag", "keyword"
+FUNCTION, OPERATOR, RESERVED, FACTORY_LABEL = "function", "operator", "reserved", "factory-label"
+
+
+@dataclass(frozen=True)
+class Arg:
+    name: str
+    type: str
+    range: tuple[Any, Any] | None = None
+    values: tuple[Any, ...] | None = None
+    optional: bool = False
+    repeat: bool = False
+    unit: str = ""
+
+    @classmethod
+    def from_dict(cls, raw: dict) -> "Arg":
+        rng = raw.get("range")
+        vals = raw.get("values")
+        return cls(name=raw.get("name", "value"), type=raw.get("type", "int"),
+                   range=tuple(rng) if isinstance(rng, list) and len(rng) == 2 else None,
+                   values=tuple(vals) if isinstance(vals, list) else None,
+                   optional=bool(raw.get("optional", False)), repeat=bool(raw.get("repeat", False)),
+                   unit=raw.get("unit", ""))
+
+
+@dataclass(frozen=True)
+class Form:
+    select: tuple[Any, Any] | None
+    args: tuple[Arg, ...]
+
+
+@dataclass(frozen=True)
+class Command:
+    """One concrete name (F3, not F1-F8) and what the catalog says of it."""
+
+    name: str
+    entry: generic.Entry
+    index: int | None = None
+
+    @property
+    def kind(self) -> str:
+        return self.entry.kind
+
+    @property
+    def access(self) -> str:
+        return self.entry.get("access", "")
+
+    @property
+    def mode(self) -> str:
+        return self.entry.get("mode", "both")
+
+    @property
+    def ir(self) -> str:
+        return self.entry.get("ir", "")
+
+    @property
+    def firmware(self) -> str:
+        return self.entry.get("firmware", "")
+
+    @property
+    def products(self) -> tuple[str, ...]:
+        return tuple(self.entry.products or ())
+
+    @property
+    def values(self) -> tuple[Any, ...] | None:
+        vals = self.entry.get("values")
+        return tuple(vals) if isinstance(vals, list) else None
+
+    @property
+    def writable(self) -> bool:
+        return self.kind in (VARIABLE, FLAG) and self.access in ("rw", "wo", "rc", "")
+
+    @property
+    def readable(self) -> bool:
+        return self.kind in (VARIABLE, FLAG, KEYWORD) and self.access != "wo"
+
+    @property
+    def is_float(self) -> bool:
+        return self.ir == "register" and self.name.startswith("F")
+
+    def forms(self) -> tuple[Form, ...]:
+        return _forms(self.entry)
+
+
+@lru_cache(maxsize=None)
+def _forms(entry: generic.Entry) -> tuple[Form, ...]:
+    if entry.get("forms"):
+        return tuple(Form(tuple(f["select"]) if f.get("select") else None,
+                          tuple(Arg.from_dict(a) for a in f.get("args", ())))
+                     for f in entry.get("forms"))
+    if entry.get("args"):
+        return (Form(None, tuple(Arg.from_dict(a) for a in entry.get("args"))),)
+    return ()
+
+
+@dataclass(frozen=True)
+class Legacy:
+    name: str
+    family: str
+    summary: str
+    lexium: str
+    io_point: int | None = None
+
+
+@dataclass(frozen=True)
+class McodeCatalog:
+    commands: dict[str, Command]
+    legacy: dict[str, Legacy]
+    products: dict[str, str]
+    functions: dict[str, Command]
+
+    def lookup(self, name: str) -> Command | None:
+        return self.commands.get(name.upper())
+
+    def is_reserved(self, name: str) -> bool:
+        upper = name.upper()
+        return upper in self.commands or upper in self.functions
+
+
+@lru_cache(maxsize=1)
+def load() -> McodeCatalog:
+    cat = generic.load("mcode")
+    commands: dict[str, Command] = {}
+    functions: dict[str, Command] = {}
+    for entry in cat.entries:
+        index = entry.get("index")
+        if entry.kind == OPERATOR:
+            continue
+        if isinstance(index, list) and len(index) == 2:
+            for i in range(int(index[0]), int(index[1]) + 1):
+                name = f"{entry.name.upper()}{i}"
+                commands[name] = Command(name, entry, i)
+        else:
+            name = entry.name.upper()
+            command = Command(name, entry)
+            if entry.kind == FUNCTION:
+                functions[name] = command
+            else:
+                commands.setdefault(name, command)
+    legacy_raw = toml.loads((generic.CATALOG_DIR / "mcode-legacy.toml").read_text(encoding="utf-8"))
+    legacy = {raw["name"].upper(): Legacy(raw["name"].upper(), raw["family"], raw["summary"], raw["lexium"],
+                                          raw.get("io_point"))
+              for raw in legacy_raw.get("legacy", [])}
+    return McodeCatalog(commands, legacy, dict(cat.table("products")), functions)

@@ -1,0 +1,22 @@
+"""The MCode frontend: text → syntax tree → IR, with every MCode check."""
+
+from __future__ import annotations
+
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.driver import Analysis
+from mcc.compiler.mcode import checks, parser
+from mcc.compiler.mcode.lower import Lowering
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import SourceFile
+
+
+def analyze(source: SourceFile, profile: Profile) -> Analysis:
+    diags = Diagnostics()
+    tree = parser.parse(source, diags)
+    lowering = Lowering(tree, profile, diags)
+    module = lowering.run()
+    checks.check_labels(lowering, diags)
+    checks.check_user_names(lowering, diags)
+    checks.check_speeds(lowering, diags)
+    checks.check_line_lengths(source, tree, lowering, diags)
+    return Analysis(source, tree, module, diags)

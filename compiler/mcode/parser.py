@@ -1,0 +1,234 @@
+"""Parsing MCode text into the syntax tree, with recovery at line ends.
+
+The common case (a file without syntax errors) is one LALR pass with the tree built directly by
+the parser's callbacks. When that pass fails, the file is parsed again line by line with the
+`line` start symbol, so a file with three bad lines gets three diagnostics and every other line is
+still checked.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from pathlib import Path
+
+from lark import Lark, Token, Transformer
+from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.mcode import syntax as st
+from mcc.compiler.span import SourceFile, Span
+
+GRAMMAR = Path(__file__).resolve().parent.parent.parent / "grammars" / "mcode.lark"
+
+TOKEN_NAMES = {
+    "WORD": "a name", "NUMBER": "a number", "STRING": "a string", "COMMENT": "a comment",
+    "_NL": "the end of the line", "$END": "the end of the file", "COMMA": "','", "EQUAL": "'='",
+    "BINOP": "an operator", "RELOP": "a comparison", "MINUS": "'-'", "FUNC": "a function",
+    "PARTY_ALL": "'*'", "PARTY_QUEUED": "'^'", "PARTY_DEFAULT": "'!'",
+}
+
+
+class Builder(Transformer):
+    """Builds `syntax` nodes from the parser's callbacks. Offsets shift positions when one line is
+    parsed on its own (recovery mode)."""
+
+    def __init__(self) -> None:
+        super().__init__(visit_tokens=False)
+        self.path = ""
+        self.line_delta = 0
+        self.offset_delta = 0
+
+    def span(self, tok: Token) -> Span:
+        return Span(self.path, tok.line + self.line_delta, tok.column, tok.end_line + self.line_delta,
+                    tok.end_column, tok.start_pos + self.offset_delta, tok.end_pos + self.offset_delta)
+
+    # lines and statements -------------------------------------------------------------------
+    def start(self, children):
+        return children
+
+    def line(self, children):
+        line = st.Line(0)
+        for child in children:
+            if isinstance(child, st.Statement):
+                line.statement = child
+            elif isinstance(child, Token) and child.type == "COMMENT":
+                line.comment = st.Comment(str(child), self.span(child))
+        return line
+
+    def _statement(self, children, form):
+        party = ""
+        if isinstance(children[0], str) and not isinstance(children[0], Token):
+            party = children[0]
+            children = children[1:]
+        head_tok = children[0]
+        head = st.Name(str(head_tok), self.span(head_tok))
+        args = children[1] if len(children) > 1 else []
+        end = args[-1].span if args else head.span
+        return st.Statement(head, form, args, head.span.to(end), party)
+
+    def bare(self, children):
+        return self._statement(children, "bare")
+
+    def assign(self, children):
+        return self._statement(children, "assign")
+
+    def command(self, children):
+        return self._statement(children, "command")
+
+    def command_nonl(self, children):
+        stmt = self._statement(children, "command")
+        stmt.suffix = ";"
+        return stmt
+
+    def number(self, children):
+        return self._number_statement(children, negative=False)
+
+    def neg_number(self, children):
+        return self._number_statement(children, negative=True)
+
+    def _number_statement(self, children, negative):
+        party = ""
+        if isinstance(children[0], str) and not isinstance(children[0], Token):
+            party, children = children[0], children[1:]
+        first = children[0]
+        tok = children[-1]
+        span = self.span(first).to(self.span(tok))
+        head = st.Name("", span)
+        value: st.Node = st.Number(str(tok), self.span(tok))
+        if negative:
+            value = st.Unary("-", value, span)
+        return st.Statement(head, "number", [value], span, party)
+
+    def party(self, children):
+        return str(children[0])
+
+    def args(self, children):
+        return [self._value(child) for child in children]
+
+    # values ------------------------------------------------------------------------------------
+    def juxt(self, children):
+        first = st.String(str(children[0])[1:-1], self.span(children[0]))
+        second = self._value(children[1])
+        return st.Juxtaposed(first, second, first.span.to(second.span))
+
+    def _value(self, child):
+        if isinstance(child, Token):  # a STRING standing alone as an item
+            return st.String(str(child)[1:-1], self.span(child))
+        return child
+
+    def __default_token__(self, token):  # pragma: no cover - visit_tokens is off
+        return token
+
+    def compare(self, children):
+        left, op, right = children
+        return st.Comparison(str(op), self._value(left), self._value(right), left.span.to(right.span))
+
+    def compare_eq(self, children):
+        left, right = children
+        return st.Comparison("=", left, right, left.span.to(right.span))
+
+    def _binary(self, children):
+        left, op, right = children
+        return st.Binary(str(op), left, right, left.span.to(right.span))
+
+    binary = minus = xor = times = bang = _binary
+
+    def neg(self, children):
+        op, operand = children
+        return st.Unary("-", operand, self.span(op).to(operand.span))
+
+    def not_(self, children):
+        op, operand = children
+        return st.Unary("!", operand, self.span(op).to(operand.span))
+
+    def func(self, children):
+        name, operand = children
+        return st.FuncCall(str(name).upper(), operand, self.span(name).to(operand.span))
+
+    def num(self, children):
+        return st.Number(str(children[0]), self.span(children[0]))
+
+    def name(self, children):
+        return st.Name(str(children[0]), self.span(children[0]))
+
+
+@lru_cache(maxsize=1)
+def _parser() -> tuple[Lark, Builder]:
+    builder = Builder()
+    parser = Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
+                  start=["start", "line"], transformer=builder, maybe_placeholders=False,
+                  cache=False)
+    return parser, builder
+
+
+def bare_parser() -> Lark:
+    """The same grammar with no callbacks: the baseline the benchmark compares against."""
+    return Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual")
+
+
+def describe_error(exc: UnexpectedInput) -> str:
+    if isinstance(exc, UnexpectedCharacters):
+        char = exc.char
+        if char == '"':
+            return "unterminated string: add the closing '\"' on the same line"
+        shown = repr(char) if not char.isprintable() or char == " " else f"'{char}'"
+        return f"unexpected character {shown}"
+    if isinstance(exc, (UnexpectedToken, UnexpectedEOF)):
+        tok = getattr(exc, "token", None)
+        if tok is None or tok.type in ("$END", "_NL"):
+            return "this statement is incomplete: a value or name is missing at the end of the line"
+        expected = sorted({TOKEN_NAMES.get(t, f"'{t}'") for t in getattr(exc, "expected", ()) if t != "COMMENT"})
+        found = f"'{tok}'" if tok.type not in TOKEN_NAMES else f"{TOKEN_NAMES[tok.type]} '{tok}'"
+        hint = f" (expected {', '.join(expected[:6])})" if expected else ""
+        return f"unexpected {found}{hint}"
+    return str(exc).splitlines()[0]
+
+
+def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
+    parser, builder = _parser()
+    text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
+    builder.path = source.path
+    builder.line_delta = builder.offset_delta = 0
+    try:
+        lines = parser.parse(text, start="start")
+    except LarkError:
+        lines = None
+    tree = st.SyntaxTree(source.path)
+    if lines is not None:
+        # Each parsed line node matches one physical line, in order.
+        for number, line in enumerate(lines, 1):
+            line.number = number
+        tree.lines = lines
+        return tree
+    tree.lines = _parse_by_line(source, parser, builder, diags)
+    return tree
+
+
+def _parse_by_line(source: SourceFile, parser: Lark, builder: Builder, diags: Diagnostics) -> list[st.Line]:
+    lines = []
+    starts = source.line_starts
+    for number in range(1, source.line_count + 1):
+        text = source.line_text(number)
+        if number == source.line_count and not text:
+            break  # the empty remainder after the final newline
+        builder.line_delta = number - 1
+        builder.offset_delta = starts[number - 1]
+        try:
+            line = parser.parse(text + "\n", start="line")
+        except UnexpectedInput as exc:
+            column = getattr(exc, "column", 1) or 1
+            if isinstance(exc, UnexpectedToken) and exc.token.type in ("_NL", "$END"):
+                column = len(text.rstrip()) + 1
+            column = max(1, min(column, len(text) + 1))
+            start = starts[number - 1] + column - 1
+            end_col = column + (1 if column <= len(text) else 0)
+            span = Span(source.path, number, column, number, end_col, start, start + (end_col - column))
+            diags.add("M001", span, describe_error(exc))
+            line = st.Line(number, error=True)
+        except LarkError as exc:  # pragma: no cover - other parser failures are still syntax errors
+            diags.add("M001", source.line_span(number), str(exc).splitlines()[0])
+            line = st.Line(number, error=True)
+        line.number = number
+        lines.append(line)
+    builder.line_delta = builder.offset_delta = 0
+    return lines
