@@ -85,6 +85,7 @@ class Lowering:
         self.generated = 0
         self.region_origin: int | None = None
         self.region_routines: list[ir.Routine] = []
+        self.region_span = None
 
     # pass 1: meanings, names, label references -----------------------------------------------
     def collect(self) -> None:
@@ -123,7 +124,7 @@ class Lowering:
                 target = res.args[0] if res.args else None
                 if name == "CP" and len(res.args) > 1:
                     target = res.args[1]
-                if isinstance(target, (st.Name, st.Number)):
+                if isinstance(target, st.Name) or isinstance(target, st.Number) and isinstance(target.value, int):
                     self.label_refs.append((first_node_key(target), target, name))
                     if ir_kind == "call" and isinstance(target, st.Name):
                         self.callees.add(target.key)
@@ -161,6 +162,7 @@ class Lowering:
                     self.close_region()
                 origin = first_arg_name(res)
                 self.region_origin = int(origin) if origin.isdigit() else 0
+                self.region_span = res.stmt.span
                 self.region_routines = []
                 self.routine = None
             elif self.region_origin is None and not self.region_routines:
@@ -211,6 +213,7 @@ class Lowering:
         routine = ir.Routine(name, kind, span=span)
         if not self.region_routines:
             routine.origin = self.region_origin if self.region_origin is not None else 0
+            routine.span = self.region_span or span  # the PG line opens the region
         self.region_routines.append(routine)
         self.module.routines.append(routine)
         self.routine = routine

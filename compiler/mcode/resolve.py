@@ -150,6 +150,8 @@ class Resolver:
         if res.user not in self.names.variables:
             if stmt.form == "bare":
                 self.unknown(stmt.head, also=f" (to name this place in the program write `LB {word}`)")
+            elif stmt.form == "command":  # `MX 2000` reads as a mistyped command
+                self.unknown(stmt.head)
             else:
                 self.diags.add("M117", stmt.head.span,
                                f"{word} is not declared: declare it with `VA {word}` before use")
@@ -166,7 +168,9 @@ class Resolver:
 
     def unknown(self, head: st.Name, also: str = "") -> None:
         choices = list(self.cat.commands) + list(self.names.variables)
-        near = difflib.get_close_matches(head.text.upper(), choices, n=3, cutoff=0.6)
+        word = head.text.upper()
+        near = difflib.get_close_matches(word, choices, n=12, cutoff=0.5)
+        near = sorted(near, key=lambda c: (c[:1] != word[:1], near.index(c)))[:3]  # same first letter first
         hint = f"; did you mean {' or '.join(near)}?" if near else ""
         self.diags.add("M101", head.span, f"unknown command '{head.text}'{also}{hint}")
 
@@ -235,6 +239,8 @@ class Resolver:
     def check_args(self, res: Resolved) -> bool:
         command, stmt = res.command, res.stmt
         form = self.select_form(res)
+        if form is None and command.forms():
+            return False  # the selecting value was out of range, already reported
         args = res.args
         specs = form.args if form else ()
         if not specs:

@@ -1,0 +1,16 @@
+VA Q1
+OE K9
+PG 1
+LB G1
+  TI 1,X9
+  TP=51200,K1
+  CL K2
+  BR G3,I1=1
+  BR Q1
+LB G1
+  E
+LB K1
+  RT
+PG
+EX G7
+EX G1

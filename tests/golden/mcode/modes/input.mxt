@@ -1,0 +1,8 @@
+LB G1
+H 100
+PG 1
+LB G2
+FD
+CP
+E
+PG

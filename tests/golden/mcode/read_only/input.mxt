@@ -1,0 +1,5 @@
+MV=0
+PN=3
+VA Q1
+Q1=V
+PR MV

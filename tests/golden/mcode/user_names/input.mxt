@@ -1,0 +1,11 @@
+VA Count
+VA MS
+VA Q1
+VA Q2=10
+PG 1
+LB 1A
+LB PR
+LB G1
+Q1=Q2
+E
+PG
