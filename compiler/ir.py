@@ -400,7 +400,7 @@ class RoutineKind(str, Enum):
     IMMEDIATE = "immediate"
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)
 class Block:
     label: str
     ops: list[Op] = field(default_factory=list)
@@ -409,7 +409,7 @@ class Block:
     named: bool = False  # the label was written in the source (not generated)
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)
 class Routine:
     name: str
     kind: RoutineKind
@@ -438,7 +438,7 @@ class Variable:
     span: Span | None = None
 
 
-@dataclass(slots=True)
+@dataclass(slots=True, eq=False)
 class Module:
     dialect: str
     profile: str

@@ -224,9 +224,9 @@ class Lowering:
             label in self.callees or label in self.handlers or label == "SU") and self.routine_has_code()
         block = ir.Block(label, span=span, named=True)
         if self.block is not None and self.block.terminator is None:
-            if not self.block.ops and not self.block.named and self.routine and self.block in self.routine.blocks \
-                    and self.block is not self.routine.entry:
-                self.routine.blocks.remove(self.block)  # an empty unnamed block: nothing to keep
+            if not self.block.ops and not self.block.named and self.routine and self.routine.blocks \
+                    and self.routine.blocks[-1] is self.block and self.block is not self.routine.entry:
+                self.routine.blocks.pop()  # an empty unnamed block: nothing to keep
                 self.retarget(self.block.label, label)
             else:
                 self.block.terminator = ir.Jump(label, span)
@@ -264,7 +264,8 @@ class Lowering:
         if self.routine is None:
             origin = self.region_origin if self.region_origin is not None else 0
             self.new_routine(f"@{origin}", ir.RoutineKind.MAIN, span)
-        if self.block is None or self.block.terminator is not None or self.block not in self.routine.blocks:
+        current = self.routine.blocks[-1] if self.routine.blocks else None
+        if self.block is None or self.block.terminator is not None or self.block is not current:
             block = ir.Block(self.fresh_label(), span=span)
             self.routine.blocks.append(block)
             self.block = block
