@@ -330,6 +330,16 @@ class Lowering:
         return res.party
 
     def op(self, res: Resolved, in_program: bool):
+        op = self.neutral_op(res, in_program)
+        if res.party and op is not None and not hasattr(op, "axis") and res.command is not None:
+            # A party prefix addresses the statement to one device; an operation without an axis
+            # would lose it, so the statement stays native with the prefix as its axis.
+            return ir.Native(DIALECT, res.command.name, tuple(self.native_arg(res.command, a) for a in res.args),
+                             form="=" if res.stmt.form == "assign" else (" " if res.args else ""),
+                             axis=res.party, span=res.stmt.span)
+        return op
+
+    def neutral_op(self, res: Resolved, in_program: bool):
         stmt = res.stmt
         span = stmt.span
         if stmt.form == "number":

@@ -1,0 +1,62 @@
+"""The MCode backend on IR built by hand: generated labels follow the naming rules and never collide."""
+
+from __future__ import annotations
+
+import re
+
+from mcc.backends import mcode as backend
+from mcc.compiler import driver, ir
+from mcc.compiler import profiles
+from mcc.compiler.mcode import catalog
+from mcc.compiler.span import Span
+
+PROFILE = profiles.load("lmd-c")
+
+
+def loop_module(user_names: list[str]) -> ir.Module:
+    """main: %1 counts Z0 up; a branch back to the unnamed loop head needs a generated label."""
+    module = ir.Module("mcode", "lmd-c")
+    for name in user_names:
+        module.variables[name] = ir.Variable(name)
+    counter = ir.Var(user_names[0])
+    head = ir.Block("%1", [ir.Assign(counter, ir.BinOp("+", counter, ir.Const(1)))],
+                    ir.Branch(ir.Compare("<", counter, ir.Const(10)), "%1", "%2"))
+    tail = ir.Block("%2", [ir.Move(ir.MoveMode.RELATIVE, (("", ir.Const(100)),))], ir.Jump("%3"))
+    after = ir.Block("%3", [ir.WaitMotion("")], ir.End())
+    main = ir.Routine("@1", ir.RoutineKind.MAIN, [head, tail, after], origin=1)
+    sub = ir.Routine("%sub", ir.RoutineKind.SUBROUTINE, [ir.Block("%4", [], ir.Return())])
+    head.ops.append(ir.Call("%sub"))
+    module.routines += [main, sub]
+    return module
+
+
+def test_generated_labels_are_valid_and_fresh():
+    listing = backend.emit(loop_module(["Z0", "Z2", "Q1"]), PROFILE)
+    text = listing.text
+    labels = re.findall(r"^LB (\w+)$", text, re.M)
+    assert len(labels) == 2  # the loop head and the subroutine; %2/%3 follow in order
+    cat = catalog.load()
+    for label in labels:
+        assert re.fullmatch(r"[A-Z][A-Z0-9]", label)
+        assert label not in cat.commands and label not in cat.functions
+        assert label not in ("Z0", "Z2", "Q1")
+    assert "IC Z0" in text and "BR " + labels[0] + ",Z0<10" in text
+    assert f"CL {labels[1]}" in text
+
+
+def test_generated_program_checks_clean_and_is_stable():
+    text = backend.emit(loop_module(["Z0"]), PROFILE).text
+    first = driver.compile_file("gen.mxt", "mcode", text=text)
+    assert not first.has_errors, [(d.code, d.message) for d in first.diagnostics]
+    assert first.listing.text == text
+
+
+def test_unsupported_constructs_are_reported_not_raised():
+    module = ir.Module("arcus", "pmx-4ex-sa")
+    span = Span("x.prg", 3, 1, 3, 10, 0, 9)
+    block = ir.Block("%1", [ir.Move(ir.MoveMode.MODAL, (("X", ir.Const(1)), ("Y", ir.Const(2))), span=span),
+                            ir.Native("arcus", "SYNXO", span=span)], ir.End())
+    module.routines.append(ir.Routine("MAIN", ir.RoutineKind.MAIN, [block], origin=1))
+    listing = backend.emit(module, PROFILE)
+    assert [d.code for d in listing.diagnostics] == ["G003", "G003"]
+    assert all(d.span.line == 3 for d in listing.diagnostics)
