@@ -211,3 +211,6 @@ def profiles() -> None:
     for name in profiles_mod.builtin_names():
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
+
+# `mcc lint` and `mcc fmt` register themselves on `cli` (cli/lint.py).
+from mcc.cli import lint as _lint  # noqa: E402,F401  (imported last: it uses `cli`)

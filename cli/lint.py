@@ -1,0 +1,248 @@
+"""`mcc lint` and `mcc fmt`: the linter and the formatter, with the habits ruff users know.
+
+Both take files and directories (directories are searched for the dialects' extensions), read the
+nearest `[tool.mcc]` / mcc.toml, and work on many files in parallel. See docs/LINT.md.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from mcc.cli.commands import DIALECT_NAMES, cli, use_color
+from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
+
+LINT_FORMATS = ["text", "json", "sarif", "github"]
+SEVERITY_NAMES = ["error", "warning", "info"]
+PROGRESS_MIN_FILES = 20
+
+
+def jobs_default() -> int:
+    return os.cpu_count() or 1
+
+
+def make_resolver(config: str | None, isolated: bool, select, extend_select, ignore, profile, fail_on):
+    from mcc.compiler import config as config_mod
+
+    try:
+        overrides = config_mod.overrides(select, extend_select, ignore, profile, fail_on)
+    except config_mod.ConfigError as exc:
+        raise click.UsageError(str(exc)) from None
+    return config_mod.Resolver(overrides, config, isolated)
+
+
+def progress_starter(total: int, label: str):
+    """A rich progress bar on stderr for long runs on a terminal; nothing otherwise."""
+    if total < PROGRESS_MIN_FILES or not sys.stderr.isatty():
+        return None
+
+    def start():
+        from rich.console import Console
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+        bar = Progress(TextColumn(label), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn(),
+                       console=Console(file=sys.stderr), transient=True)
+        bar.start()
+        task = bar.add_task(label, total=total)
+        state = {"done": 0}
+
+        def advance(n: int) -> None:
+            state["done"] += n
+            bar.advance(task, n)
+            if state["done"] >= total:
+                bar.stop()
+
+        return advance
+
+    return start
+
+
+def config_outcomes(resolver):
+    from mcc.compiler.lint.engine import Outcome
+
+    return [Outcome(path, "config", list(diags), source.text if source else None)
+            for path, diags, source in resolver.diagnostics()]
+
+
+def common_options(func):
+    options = [
+        click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every file (default: from the extension)."),
+        click.option("--config", "config", type=click.Path(exists=True, dir_okay=False),
+                     help="Use this configuration file for every file instead of the nearest pyproject.toml/mcc.toml."),
+        click.option("--isolated", is_flag=True, help="Ignore every configuration file."),
+        click.option("--profile", help="Target profile (a built-in name or a TOML file); overrides `target`."),
+        click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
+                     help="Worker processes (default: the number of CPUs; 1 runs in this process)."),
+    ]
+    for option in reversed(options):
+        func = option(func)
+    return func
+
+
+@cli.command()
+@click.argument("paths", nargs=-1, type=click.Path(exists=True))
+@click.option("--format", "fmt", type=click.Choice(LINT_FORMATS), default="text", show_default=True,
+              help="text: findings with the source line; json: as `mcc check`; sarif: SARIF 2.1.0 for code "
+                   "scanning; github: workflow annotations.")
+@click.option("--select", multiple=True, metavar="CODES", help="Check only these codes or prefixes (e.g. M3,G101); replaces `select`.")
+@click.option("--extend-select", multiple=True, metavar="CODES", help="Also check these codes or prefixes.")
+@click.option("--ignore", multiple=True, metavar="CODES", help="Do not report these codes or prefixes.")
+@click.option("--fix", is_flag=True, help="Apply the safe fixes and report what remains.")
+@click.option("--unsafe-fixes", is_flag=True, help="Also apply (or show) fixes that may change behaviour.")
+@click.option("--diff", is_flag=True, help="Show the fixes as a unified diff; write nothing.")
+@click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
+@click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
+              help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
+@click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
+@common_options
+def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, statistics, fail_on, exit_zero,
+         dialect, config, isolated, profile, jobs) -> None:
+    """Check PATHS (files or directories; default: the current directory) with every check and lint rule.
+
+    \b
+    Examples:
+      mcc lint .                                  every .mxt .ixt .mcode .prg .x150 below here
+      mcc lint --select M3 --ignore M305 src/     only the MCode lint rules, without M305
+      mcc lint --fix programs/                    apply the safe fixes
+      mcc lint --format sarif . > mcc.sarif       for GitHub code scanning
+      mcc lint --statistics .                     how often each code occurs
+
+    Suppress a finding with a comment on its line: MCode `' noqa: M301`, Arcus and X150
+    `; noqa: A301`. Exit codes: 0 no errors, 1 errors (or findings at --fail-on), 2 usage error.
+    """
+    from mcc.compiler.lint import engine
+
+    resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
+    targets = engine.expand(paths or ["."], resolver)
+    work = [(path, resolver.for_path(path)) for path in targets]
+    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect)
+    outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
+    outcomes = config_outcomes(resolver) + sorted(outcomes, key=lambda o: o.path)
+    if diff:
+        report_diff(outcomes)
+        sys.exit(EXIT_ERRORS if any(o.diff for o in outcomes) and not exit_zero else EXIT_OK)
+    report(outcomes, fmt, statistics, fix, unsafe_fixes, len(work))
+    failing = {path: settings.fail_on for path, settings in work}
+    sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, failing, fail_on))
+
+
+def exit_code(outcomes, failing: dict[str, str], override: str | None) -> int:
+    from mcc.compiler.diagnostics import Severity
+
+    for outcome in outcomes:
+        threshold = Severity(override or failing.get(outcome.path, "error")).rank
+        if any(d.severity.rank >= threshold for d in outcome.diagnostics):
+            return EXIT_ERRORS
+    return EXIT_OK
+
+
+def report_diff(outcomes) -> None:
+    changed = [o for o in outcomes if o.diff]
+    for outcome in changed:
+        sys.stdout.write(outcome.diff)
+    fixes = sum(o.fixed for o in changed)
+    if changed:
+        click.echo(f"Would fix {fixes} problem{'s' if fixes != 1 else ''} in {len(changed)} "
+                   f"file{'s' if len(changed) != 1 else ''}.", err=True)
+    else:
+        click.echo("No fixes available.", err=True)
+
+
+def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, files: int) -> None:
+    from mcc.cli import render
+    from mcc.compiler.lint import output
+
+    if statistics:
+        rows = output.statistics(outcomes)
+        if fmt == "json":
+            click.echo(render.dump_json({"statistics": rows}))
+            return
+        for row in rows:
+            mark = "[*]" if row["fixable"] else "   "
+            click.echo(f"{row['count']:>6}  {row['code']:<5} {mark} {row['name']}")
+        return
+    if fmt == "json":
+        click.echo(render.dump_json(output.to_json(outcomes)))
+        return
+    if fmt == "sarif":
+        click.echo(render.dump_json(output.to_sarif(outcomes)))
+        return
+    if fmt == "github":
+        for line in output.to_github(outcomes):
+            click.echo(line)
+        return
+    writer = render.TextWriter(sys.stdout, use_color(fmt))
+    every = []
+    for outcome in outcomes:
+        diags = sorted(outcome.diagnostics, key=lambda d: d.sort_key())
+        every += diags
+        source = outcome.source
+        render.write_text(writer, diags, {outcome.path: source} if source else {})
+    fixed = sum(o.fixed for o in outcomes)
+    if fixed_run and fixed:
+        writer.line(f"Fixed {fixed} problem{'s' if fixed != 1 else ''} in {sum(1 for o in outcomes if o.written)} "
+                    f"file{'s' if sum(1 for o in outcomes if o.written) != 1 else ''}.", "bold green")
+    writer.line(render.summary_line(every, files), "bold")
+    safe = sum(1 for d in every if d.fix is not None and d.fix.safe)
+    hidden = sum(1 for d in every if d.fix is not None and not d.fix.safe)
+    if safe:
+        writer.line(f"[*] {safe} fixable with `mcc lint --fix`.", "")
+    if hidden and not unsafe:
+        writer.line(f"({hidden} more fix{'es' if hidden != 1 else ''} available with `--fix --unsafe-fixes`.)", "dim")
+
+
+@cli.command()
+@click.argument("paths", nargs=-1, type=click.Path(exists=True))
+@click.option("--check", is_flag=True, help="Write nothing; exit 1 and list the files that would change.")
+@click.option("--diff", is_flag=True, help="Write nothing; print the changes as a unified diff (exit 1 if any).")
+@common_options
+def fmt(paths, check, diff, dialect, config, isolated, profile, jobs) -> None:
+    """Rewrite PATHS (files or directories; default: the current directory) in the canonical style
+    of their dialect.
+
+    \b
+    Examples:
+      mcc fmt .                        format every program below here
+      mcc fmt --check .                in CI: exit 1 if a file is not formatted
+      mcc fmt --diff program.mxt       show what would change
+
+    Formatting keeps every comment and never changes what a program does: mcc compares the program
+    before and after and leaves a file alone if they differ. Exit codes: 0 done (or nothing to
+    change), 1 files would change (--check, --diff) or could not be formatted, 2 usage error.
+    """
+    from mcc.compiler.lint import engine, formatting
+
+    resolver = make_resolver(config, isolated, (), (), (), profile, None)
+    targets = engine.expand(paths or ["."], resolver)
+    work = [(path, resolver.for_path(path)) for path in targets]
+    options = formatting.Options(check=check, diff=diff, dialect=dialect)
+    outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "formatting"),
+                          func=formatting.format_file)
+    outcomes.sort(key=lambda o: o.path)
+    for outcome in outcomes:
+        if outcome.error:
+            click.echo(f"error: {outcome.path}: {outcome.error}", err=True)
+        elif diff and outcome.diff:
+            sys.stdout.write(outcome.diff)
+        elif check and outcome.changed:
+            click.echo(f"Would reformat: {outcome.path}")
+    skipped: dict[str, int] = {}
+    for outcome in outcomes:
+        if outcome.skipped:
+            skipped[outcome.dialect] = skipped.get(outcome.dialect, 0) + 1
+    for name, count in sorted(skipped.items()):
+        click.echo(f"note: mcc has no {name} formatter yet; {count} file{'s' if count != 1 else ''} left as "
+                   "they are", err=True)
+    changed = sum(1 for o in outcomes if o.changed)
+    same = sum(1 for o in outcomes if not o.changed and not o.error and not o.skipped)
+    verb = "would be reformatted" if check or diff else "reformatted"
+    summary = f"{changed} file{'s' if changed != 1 else ''} {verb}, {same} file{'s' if same != 1 else ''} " \
+              "left unchanged"
+    click.echo(summary, err=diff)
+    failed = any(o.error for o in outcomes)
+    sys.exit(EXIT_ERRORS if failed or (check or diff) and changed else EXIT_OK)
+
+
+__all__ = ["lint", "fmt", "EXIT_USAGE"]

@@ -1,0 +1,208 @@
+"""The lint engine: checks + rules + configuration + suppression + fixes, for files and trees.
+
+For one file: the frontend's diagnostics (`driver.check_file`, the work of `mcc check`), then the
+selected lint rules of its dialect over the same analysis, then the configuration (selection,
+per-file ignores, severities), then `noqa` comments. With `--fix` the safe fixes are applied and
+the file is checked again, up to MAX_PASSES times.
+
+Many files are linted in parallel with a process pool (Lark parsing is CPU-bound, so threads would
+not help). Work is sent in batches to keep the pickling overhead small, and each worker returns
+only what the report needs: diagnostics and the final text.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from typing import Callable, Iterable
+
+from mcc.compiler import dialects, driver
+from mcc.compiler.config import Resolver, Settings
+from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Kind
+from mcc.compiler.lint import files, fixes, suppress
+from mcc.compiler.lint.rules import Context, rules_for
+from mcc.compiler.span import SourceFile
+
+MAX_PASSES = 10
+SKIP_DIRS = {"__pycache__", "node_modules", "venv"}
+
+
+@dataclass(frozen=True)
+class Options:
+    fix: bool = False
+    diff: bool = False
+    unsafe_fixes: bool = False
+    dialect: str | None = None
+
+
+@dataclass
+class Outcome:
+    """What linting one file produced (sent back from a worker process, so kept small)."""
+
+    path: str
+    dialect: str
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    text: str | None = None  # the text the diagnostics refer to (after fixes)
+    fixed: int = 0  # fixes applied (or that --diff would apply)
+    diff: str = ""
+    written: bool = False
+
+    @property
+    def source(self) -> SourceFile | None:
+        return SourceFile(self.path, self.text) if self.text is not None else None
+
+
+# one file ------------------------------------------------------------------------------------------
+
+def lint_text(path: str, text: str, settings: Settings, dialect: str | None = None) -> tuple[str, list[Diagnostic]]:
+    """Lint one text: (dialect, diagnostics in file order)."""
+    found = driver.resolve_dialect(path, dialect)
+    profile = settings.profile(found.name) if found is not None else None
+    result = driver.check_file(path, dialect, profile, text)
+    diags = Diagnostics(list(result.diagnostics))
+    analysis = result.analysis
+    syntax_ok = not any(d.kind is Kind.SYNTAX for d in result.diagnostics)
+    if analysis is not None and analysis.module is not None and syntax_ok and found is not None:
+        run_rules(analysis, profile, found.name, settings, path, diags)
+    kept = []
+    for diag in diags.items:
+        if not settings.enabled(diag.code, path):
+            continue
+        diag.severity = settings.severity_of(diag.code, diag.severity) if diag.kind is not Kind.SYNTAX \
+            and diag.kind is not Kind.INTERNAL else diag.severity
+        kept.append(diag)
+    source = analysis.source if analysis is not None else SourceFile(path, text)
+    kept = suppress.apply(kept, source, result.dialect, lambda code: settings.enabled(code, path))
+    for diag in kept:
+        if diag.code in ("G101", "G104"):
+            diag.severity = settings.severity_of(diag.code, diag.severity)
+    return result.dialect, sorted(kept, key=Diagnostic.sort_key)
+
+
+def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, diags: Diagnostics) -> None:
+    ctx = Context(analysis, driver.profile_for(dialects.get(dialect), profile), dialect, diags)
+    for rule in rules_for(dialect):
+        if not settings.enabled(rule.code, path):
+            continue
+        ctx.code = rule.code
+        try:
+            rule.check(ctx)
+        except Exception as exc:  # noqa: BLE001 - a broken rule must not hide the others
+            driver.internal_error(diags, path, exc, f"running lint rule {rule.code}")
+
+
+def lint_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
+    try:
+        original = files.read(path)
+    except OSError as exc:
+        diags = Diagnostics()
+        diags.add("G002", driver.file_span(path), f"cannot read {path}: {exc.strerror or exc}")
+        found = driver.resolve_dialect(path, options.dialect)
+        return Outcome(path, found.name if found else "unknown", diags.items)
+    text = original.text
+    dialect, diags = lint_text(path, text, settings, options.dialect)
+    fixed = 0
+    if options.fix or options.diff:
+        for _ in range(MAX_PASSES):
+            todo = fixes.applicable(diags, options.unsafe_fixes)
+            if not todo:
+                break
+            new_text, count = fixes.apply(text, todo)
+            if new_text == text or count == 0:
+                break
+            text, fixed = new_text, fixed + count
+            dialect, diags = lint_text(path, text, settings, options.dialect)
+    outcome = Outcome(path, dialect, diags, text, fixed)
+    if text != original.text:
+        if options.diff:
+            outcome.diff = fixes.unified_diff(path, original.text, text)
+        elif options.fix:
+            files.write_atomic(path, text, original)
+            outcome.written = True
+    return outcome
+
+
+# many files ----------------------------------------------------------------------------------------
+
+def expand(paths: Iterable[str], resolver: Resolver | None = None) -> list[str]:
+    """Files to lint: the files given, and the files with a known extension under the directories
+    given (hidden directories and the configuration's `exclude` patterns are skipped)."""
+    extensions = dialects.all_extensions()
+    found: list[str] = []
+    seen: set[str] = set()
+    for path in paths:
+        if os.path.isdir(path):
+            for folder, subdirs, names in os.walk(path):
+                subdirs[:] = sorted(d for d in subdirs if not d.startswith(".") and d not in SKIP_DIRS
+                                    and not excluded(os.path.join(folder, d), resolver))
+                for name in sorted(names):
+                    full = os.path.join(folder, name)
+                    if name.lower().endswith(extensions) and not excluded(full, resolver):
+                        add(found, seen, full)
+        else:
+            add(found, seen, path)
+    return found
+
+
+def add(found: list[str], seen: set[str], path: str) -> None:
+    path = os.path.normpath(path)
+    if path not in seen:
+        seen.add(path)
+        found.append(path)
+
+
+def excluded(path: str, resolver: Resolver | None) -> bool:
+    return resolver is not None and resolver.for_path(path).excluded(path)
+
+
+def _batch(func: Callable, work: list[tuple[str, Settings]], options) -> list:
+    return [func(path, settings, options) for path, settings in work]
+
+
+def warm_up(work: list[tuple[str, Settings]], options) -> None:
+    """Build each needed parser once before forking, so the workers inherit it."""
+    done = set()
+    for path, _ in work:
+        found = driver.resolve_dialect(path, options.dialect)
+        if found is not None and found.name not in done:
+            done.add(found.name)
+            driver.check_file(f"warm-up{found.extensions[0]}", found.name, text="")
+            rules_for(found.name)
+
+
+def run(work: list[tuple[str, Settings]], options, jobs: int,
+        start_progress: Callable[[], Callable[[int], None]] | None = None,
+        func: Callable = lint_file) -> list:
+    """Run `func(path, settings, options)` (default: lint) over (path, settings) pairs: sequential
+    for one file or one job, else in a process pool. `func` must be a module-level function.
+
+    `start_progress` is called once the work is under way (after the workers are forked, so no
+    progress-bar thread exists at fork time) and returns the function that advances the bar.
+    """
+    if jobs <= 1 or len(work) <= 1:
+        progress = start_progress() if start_progress else None
+        outcomes = []
+        for item in work:
+            outcomes.append(_batch(func, [item], options)[0])
+            if progress:
+                progress(1)
+        return outcomes
+    jobs = min(jobs, len(work))
+    size = max(1, min(64, len(work) // (jobs * 4)))
+    batches = [work[i:i + size] for i in range(0, len(work), size)]
+    methods = multiprocessing.get_all_start_methods()
+    context = multiprocessing.get_context("fork" if "fork" in methods else None)
+    if context.get_start_method() == "fork":
+        warm_up(work, options)
+    outcomes = []
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+        futures = [pool.submit(_batch, func, batch, options) for batch in batches]  # all workers fork here
+        progress = start_progress() if start_progress else None
+        for future in as_completed(futures):
+            done = future.result()
+            outcomes.extend(done)
+            if progress:
+                progress(len(done))
+    return outcomes

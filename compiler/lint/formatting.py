@@ -1,0 +1,97 @@
+"""`mcc fmt` for any dialect: find the dialect's formatter, format, verify, write.
+
+Each dialect's formatter is `mcc.compiler.<dialect>.format.format_text(text, path, profile)`. As a
+safety net (black and ruff do the same) the IR of the formatted text is compared with the IR of
+the original, ignoring positions: when they differ, or the formatter fails, the file is left
+alone and the failure is reported as an internal error (a bug in mcc).
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+from types import ModuleType
+
+from mcc.compiler import driver
+from mcc.compiler.config import Settings
+from mcc.compiler.ir_compare import differences
+from mcc.compiler.lint import files
+from mcc.compiler.lint.fixes import unified_diff
+
+
+@dataclass(frozen=True)
+class Options:
+    check: bool = False  # report files that would change, write nothing
+    diff: bool = False  # print the change, write nothing
+    dialect: str | None = None
+
+
+@dataclass
+class Outcome:
+    path: str
+    dialect: str
+    changed: bool = False
+    written: bool = False
+    diff: str = ""
+    error: str = ""  # why the file was not formatted
+    skipped: bool = False  # no formatter for this dialect (yet)
+
+
+def formatter(dialect: str) -> ModuleType | None:
+    try:
+        return importlib.import_module(f"mcc.compiler.{dialect}.format")
+    except ModuleNotFoundError as exc:
+        if exc.name in (f"mcc.compiler.{dialect}.format", f"mcc.compiler.{dialect}"):
+            return None
+        raise
+
+
+def format_text(text: str, path: str, dialect: str, settings: Settings = Settings()) -> str:
+    module = formatter(dialect)
+    if module is None:
+        return text
+    return module.format_text(text, path, settings.profile(dialect))
+
+
+def verify(path: str, dialect: str, before: str, after: str, settings: Settings) -> str:
+    """Empty when `after` means the same as `before`; otherwise the first differences."""
+    profile = settings.profile(dialect)
+    old = driver.check_file(path, dialect, profile, before).analysis
+    new = driver.check_file(path, dialect, profile, after).analysis
+    if old is None or new is None:
+        return "the file could not be analysed"
+    return "; ".join(differences(old.module, new.module, limit=3))
+
+
+def format_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
+    found = driver.resolve_dialect(path, options.dialect)
+    if found is None:
+        return Outcome(path, "unknown", error="cannot tell the dialect from the extension; pass --dialect")
+    outcome = Outcome(path, found.name)
+    if formatter(found.name) is None:
+        outcome.skipped = True
+        return outcome
+    try:
+        original = files.read(path)
+        text = format_text(original.text, path, found.name, settings)
+        if text != original.text:
+            problem = verify(path, found.name, original.text, text, settings)
+            if problem:
+                outcome.error = (f"internal error: formatting would change the program ({problem}). This is a bug "
+                                 "in mcc; the file was left unchanged, please report it")
+                return outcome
+    except OSError as exc:
+        outcome.error = f"cannot read {path}: {exc.strerror or exc}"
+        return outcome
+    except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
+        outcome.error = f"internal error while formatting: {type(exc).__name__}: {exc}. This is a bug in mcc; " \
+                        "please report it with this file"
+        return outcome
+    outcome.changed = text != original.text
+    if outcome.changed:
+        if options.diff:
+            outcome.diff = unified_diff(path, original.text, text)
+        elif not options.check:
+            files.write_atomic(path, text, original)
+            outcome.written = True
+    return outcome
