@@ -1,0 +1,427 @@
+"""The X150 checks: per command (policy, addresses, products, values, text) and whole program
+(definitions, transfers, nesting through the call graph, sequence memory).
+
+The syntax problems are reported while reading (parser.py, tokens.py) and the structural ones
+(XD/XT, unbalanced constructs, local nesting) while lowering (structure.py, lower.py). Everything
+here only produces diagnostics.
+"""
+
+from __future__ import annotations
+
+import re
+
+from mcc.compiler import ir
+from mcc.compiler.diagnostics import Diagnostics, Edit, Fix, Severity
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import Span
+from mcc.compiler.x150 import catalog as cat
+from mcc.compiler.x150 import naming
+from mcc.compiler.x150 import syntax as st
+from mcc.compiler.x150.lower import OPENERS, Lowering, Site
+from mcc.compiler.x150.structure import Unit, sequence_number
+from mcc.compiler.x150.writer import write_routine
+
+PRODUCT_NAMES = {"bdhxe": "BDHX-E", "pdhxe": "PDHX-E", "blhx": "BLHX", "pdhx": "PDHX", "x150ds": "X150DS"}
+QUOTED = re.compile(r'"[^"]*"?')
+QUOTE_ASCII = (33, 126)  # the quote command sends ASCII 33-126 only (L5593)
+UNMARKED = {
+    "unstated": "is buffered, but the manual does not say whether it can be saved in a sequence",
+    "conflict": "has contradictory attributes in the manual",
+    "unknown": "has no documented attributes",
+}
+
+
+def version(text: str) -> tuple[int, ...]:
+    return tuple(int(part) for part in re.findall(r"[0-9]+", str(text)))
+
+
+def insert_at(span: Span) -> Span:
+    return Span(span.file, span.line, span.column, span.line, span.column, span.start, span.start)
+
+
+class Checker:
+    def __init__(self, lowering: Lowering, profile: Profile, diags: Diagnostics):
+        self.lowering = lowering
+        self.profile = profile
+        self.diags = diags
+        self.cat = cat.load()
+        low, high = profile.get("limits.addresses", [1, 16])
+        self.addresses = (int(low), int(high))
+        self.nesting = lowering.nesting
+
+    def run(self) -> None:
+        for unit in self.lowering.units:
+            self.check_unit(unit)
+        self.check_saved()
+        self.check_transfers()
+        self.check_call_nesting()
+        self.check_memory()
+
+    # -- per command -------------------------------------------------------------------------------
+    def check_unit(self, unit: Unit) -> None:
+        device = unit.device()
+        outside = [c for c in (unit.erase, unit.start) if c is not None]
+        body = unit.commands + ([unit.end] if unit.end is not None else [])
+        for command in outside + body:
+            if command.info is None and not command.host:
+                continue
+            self.check_case(command)
+            self.check_address(command, device)
+            self.check_product(command)
+            self.check_values(command)
+        if not unit.is_sequence:
+            return
+        if unit.erase is None and unit.number is not None:
+            self.missing_erase(unit)
+        for command in body:
+            if command.info is not None or command.host:
+                self.check_device(command, unit)
+        for command in unit.commands:
+            if command.info is not None or command.host:
+                self.check_policy(command, unit)
+
+    def check_case(self, command: st.Command) -> None:
+        policy = self.profile.get("x150.case", "warn")
+        if policy == "ignore" or command.host:
+            return
+        unquoted = QUOTED.sub("", command.text)
+        if unquoted == unquoted.upper():
+            return
+        severity = Severity.ERROR if policy == "error" else None
+        fixed = upper_outside_quotes(command.text)
+        self.diags.add("X102", command.span, f"'{command.text}' is not upper case: the manual writes every command in "
+                                             "upper case (L116, L126) and never says the controller accepts lower "
+                                             f"case; write {fixed}",
+                       severity=severity,
+                       fix=Fix("write in upper case", (Edit(command.span, fixed),))
+                       if not command.rejoined else None)
+
+    def check_address(self, command: st.Command, device: int | None) -> None:
+        info = command.info
+        if command.host:
+            return
+        if command.address is not None:
+            low, high = self.addresses
+            if info.address == "none":
+                self.diags.add("X118", command.address_span,
+                               f"{command.mnemonic} cannot take a device address: it always resets every device "
+                               "(L181, L5519); remove the address")
+            elif not low <= command.address <= high:
+                self.diags.add("X116", command.address_span,
+                               f"device address {command.address} does not exist on the {self.product_name()}: "
+                               f"addresses are {low}-{high} (X150: 1-16, X150E: 1-32, L124)")
+        elif info.address == "D" and device is None:
+            self.diags.add("X117", command.span,
+                           f"{command.mnemonic} is device specific (it needs an address, L181): without one every "
+                           f"device on the chain answers or acts; write 1{command.text} for device 1")
+
+    def product_name(self) -> str:
+        name = PRODUCT_NAMES.get(self.profile.product, self.profile.product)
+        return f"{name} (software {self.profile.firmware})" if self.profile.firmware else name
+
+    def check_product(self, command: st.Command) -> None:
+        info = command.info
+        if info is None:
+            return
+        products = info.products
+        key = self.profile.product
+        if products is None or key not in PRODUCT_NAMES:
+            return
+        span = command.mnemonic_span or command.span
+        if key not in products:
+            have = ", ".join(f"{PRODUCT_NAMES[k]} v{v}" for k, v in products.items())
+            self.diags.add("X121", span, f"{info.name} is not available on the {PRODUCT_NAMES[key]} (the manual lists it "
+                                         f"for {have}); remove it or select another profile")
+        elif self.profile.firmware and version(products[key]) > version(self.profile.firmware):
+            self.diags.add("X121", span, f"{info.name} needs software v{products[key]} on the {PRODUCT_NAMES[key]}; the "
+                                         f"profile targets v{self.profile.firmware}")
+
+    def check_values(self, command: st.Command) -> None:
+        info = command.info
+        arg = command.arg
+        if arg is None or info is None:
+            return
+        if isinstance(arg, st.Number) and info.arg == "sequence":
+            self.check_sequence_number(command, arg)
+        elif isinstance(arg, st.Number) and info.arg in ("number", "int") and not info.in_range(arg.value):
+            self.diags.add("X122", arg.span, f"{info.name}{arg.text} is out of range: {self.describe_range(info)}"
+                                             + (f" ({info.manual})" if info.manual else ""))
+        elif isinstance(arg, st.Fields):
+            for spec, value, span in zip(info.fields, arg.values, arg.spans):
+                if not spec.low <= value <= spec.high:
+                    self.diags.add("X122", span, f"{info.name}: the {spec.name} {value} is outside {spec.low}-{spec.high}")
+        elif isinstance(arg, st.Text):
+            self.check_text(command, arg)
+        elif isinstance(arg, st.Condition):
+            self.check_condition(arg)
+        for var in variables(arg):
+            limit = int(self.cat.limit("variables", "max", 50))
+            if not 1 <= var.number <= limit:
+                self.diags.add("X130", var.span, f"VAR{var.number} does not exist: the variables are VAR1-VAR{limit} "
+                                                 "(L4573)")
+
+    def describe_range(self, info: cat.Command) -> str:
+        if info.values is not None:
+            return "one of " + ", ".join(str(v) for v in info.values)
+        low, high = info.range
+        special = f" (or {', '.join(str(s) for s in info.special)})" if info.special else ""
+        return f"{low} to {high}" + (f" {info.entry.unit}" if info.entry.unit else "") + special
+
+    def check_sequence_number(self, command: st.Command, arg: st.Number) -> None:
+        info = command.info
+        low, high = info.range or (1, 64)
+        if not low <= arg.value <= high:
+            zero = "; 0 selects none" if low == 0 else ""
+            self.diags.add("X104", arg.span, f"sequence {arg.value} does not exist: {info.name} takes {low}-{high}{zero} "
+                                             "(sequences are numbered 1-64, L4899)")
+
+    def check_text(self, command: st.Command, arg: st.Text) -> None:
+        text = arg.text
+        lexical = self.cat.data.table("lexical")
+        if command.mnemonic == '"':
+            limit = int(self.cat.limit("quote_chars", default=50))
+            low, high = QUOTE_ASCII
+            bad = sorted({ch for ch in text if not low <= ord(ch) <= high})
+            rule = "ASCII 33-126, no spaces; write _ for a space (L5593)"
+        else:
+            limit = int(self.cat.limit("dtxt_chars", default=42))
+            illegal = set(lexical.get("dtxt_illegal", "; \\ ~").split())
+            bad = sorted({ch for ch in text if ch in illegal or not (32 <= ord(ch) <= 126)})
+            rule = "no ; \\ ~ and only printable ASCII (L1278-L1282)"
+        if len(text) > limit:
+            self.diags.add("X125", arg.span, f"{command.mnemonic} text is {len(text)} characters; the controller takes "
+                                             f"{limit}: shorten it")
+        if bad:
+            shown = " ".join(repr(ch) for ch in bad)
+            self.diags.add("X125", arg.span, f"{command.mnemonic} text contains {shown}: {rule}")
+
+    def check_condition(self, cond: st.Condition) -> None:
+        limit = self.cat.max_terms
+        if len(cond.terms) > limit:
+            self.diags.add("X111", cond.span, f"the condition has {len(cond.terms)} terms; the controller evaluates at "
+                                              f"most {limit} joined by AND or OR (L2009): split it over nested IFs or "
+                                              "a variable")
+        for term in cond.terms:
+            if isinstance(term, st.InputTerm) and not term.underscore:
+                self.diags.add("X131", term.span,
+                               f"IN{term.pattern.bits} has no '_', so it tests the dedicated inputs (LMT+ LMT- HOME "
+                               f"AUX_IN STOP ENERGISE INDEX, L3778); for user inputs write IN_{term.pattern.bits}")
+
+    # -- inside sequences ----------------------------------------------------------------------------
+    def missing_erase(self, unit: Unit) -> None:
+        start = unit.start
+        prefix = start.address_text()
+        erase = f"{prefix}XE{unit.number}"
+        self.diags.add("X126", start.span,
+                       f"XD{unit.number} without {erase} first: the controller does not store a sequence whose "
+                       f"number is already in use (L4904); send {erase} before it",
+                       fix=Fix(f"insert {erase}", (Edit(insert_at(start.span), erase + " "),)))
+
+    def check_device(self, command: st.Command, unit: Unit) -> None:
+        if unit.address is None or command.host:
+            return
+        if command.address is None:
+            self.diags.add("X120", command.span,
+                           f"{command.text} has no address inside a sequence for device {unit.address}: while device "
+                           f"{unit.address} stores it, every other device on the chain executes it; write "
+                           f"{unit.address}{command.text}",
+                           fix=Fix(f"address it to device {unit.address}",
+                                   (Edit(insert_at(command.span), str(unit.address)),)))
+        elif command.address != unit.address:
+            self.diags.add("X119", command.address_span,
+                           f"{command.text} is for device {command.address}, inside the definition of sequence "
+                           f"{unit.number} for device {unit.address}: define it in its own sequence for device "
+                           f"{command.address}")
+
+    def check_policy(self, command: st.Command, unit: Unit) -> None:
+        where = f"sequence {unit.number}"
+        if command.host:
+            self.diags.add("X113", command.span, f"{command.text} is host data answering VARn=RSIN (L3604); it cannot be "
+                                                 f"stored in {where}: send it while the sequence runs")
+            return
+        if command.buffered:
+            return
+        info = command.info
+        policy = info.policy
+        if policy in ("reject", "edit"):
+            why = "never saved" if info.entry.get("seq") == "N" else "immediate"
+            self.diags.add("X113", command.mnemonic_span or command.span,
+                           f"{info.name} is {why}: between XD and XT it runs at download time instead of being "
+                           f"stored in {where} (L171-L181); send it outside the sequence")
+        elif policy == "b-prefix":
+            at = insert_at(command.mnemonic_span or command.span)
+            fixed = command.address_text() + "B" + command.text[len(command.address_text()):]
+            self.diags.add("X114", command.mnemonic_span or command.span,
+                           f"{info.name} is immediate: inside {where} only its buffered form is stored; write {fixed} "
+                           "(the B prefix, L185)",
+                           fix=Fix(f"write {fixed}", (Edit(at, "B"),)))
+        elif policy in UNMARKED:
+            self.diags.add("X115", command.mnemonic_span or command.span,
+                           f"{info.name} {UNMARKED[policy]} ({info.manual}): check on the controller that {where} "
+                           "keeps it, or send it before the sequence")
+
+    # -- whole program ---------------------------------------------------------------------------------
+    def check_saved(self) -> None:
+        units = self.lowering.units
+        last_definition = None
+        for unit in units:
+            if unit.is_sequence:
+                last_definition = unit
+        selections = [site for site in self.lowering.sites if site.kind == "handler" and site.number
+                      and site.command.info.ir == "powerup"]
+        anchor = None
+        if last_definition is not None:
+            anchor = (last_definition.start, f"sequence {last_definition.number} stays in volatile memory until SV "
+                                             "(L4904)")
+        if selections:
+            site = selections[-1]
+            anchor = (site.command, f"the power-up sequence selected by {site.command.text} is used after a power cycle "
+                                    "only once saved with SV (L5117)")
+        if anchor is None:
+            return
+        command, why = anchor
+        after = False
+        for other in self.lowering.tree.commands():
+            if other is command:
+                after = True
+            elif after and other.info is not None and other.info.ir == "save":
+                return
+        self.diags.add("X128", command.span, f"{why}: add SV (addressed, e.g. 1SV) after the definitions if the "
+                                             "program must survive a power cycle")
+
+    def check_transfers(self) -> None:
+        for site in self.lowering.sites:
+            number = site.number
+            if not number or not 1 <= number <= 64:
+                continue
+            command = site.command
+            if not site.targets:
+                self.diags.add("X127", command.span,
+                               f"sequence {number} is not defined in this file: {command.text} uses whatever sequence "
+                               f"{number} is stored on the controller (define it here, or check it is downloaded)")
+                continue
+            if site.kind == "goto" and site.depth.get("IF", 0):
+                self.check_goto_out_of_if(site)
+
+    def check_goto_out_of_if(self, site: Site) -> None:
+        depth = site.depth["IF"]
+        for target in site.targets:
+            nifs = self.lowering.leading_nifs.get(target, 0)
+            if nifs < depth:
+                needed = "NIF" if depth == 1 else f"{depth} NIFs"
+                self.diags.add("X112", site.command.span,
+                               f"{site.command.text} leaves {depth} open IF(...) behind; the controller keeps it open, "
+                               f"so sequence {site.number} must begin with {needed} (L1794, L2024, L5079); add "
+                               f"{needed} as its first command, or close the IF before jumping")
+
+    def check_call_nesting(self) -> None:
+        """The device's construct and call stacks are shared by a sequence and those it calls (L1750, L5140)."""
+        limit = self.nesting
+        kinds = tuple(OPENERS.values())
+        local = self.lowering.max_depth
+        entry: dict[str, dict[str, int]] = {}
+        calls = [s for s in self.lowering.sites if s.kind == "call" and s.targets]
+        by_routine: dict[str, list[Site]] = {}
+        for site in calls:
+            by_routine.setdefault(site.routine, []).append(site)
+        called = {t for s in calls for t in s.targets}
+        work = [r.name for r in self.lowering.module.routines if r.name not in called]
+        for name in work:
+            entry[name] = {k: 0 for k in kinds + ("call",)}
+        reported: set[tuple[str, str]] = set()
+        while work:
+            name = work.pop()
+            here = entry[name]
+            for site in by_routine.get(name, ()):
+                for target in site.targets:
+                    nested = {k: min(limit + 1, here[k] + site.depth.get(k, 0)) for k in kinds}
+                    nested["call"] = min(limit + 1, here["call"] + 1)
+                    old = entry.get(target)
+                    if old is not None and all(nested[k] <= old[k] for k in nested):
+                        continue
+                    merged = {k: max(nested[k], old[k]) if old else nested[k] for k in nested}
+                    entry[target] = merged
+                    work.append(target)
+                    self.report_nesting(site, target, merged, local.get(target, {}), reported)
+
+    def report_nesting(self, site: Site, target: str, context: dict[str, int], inside: dict[str, int],
+                       reported: set[tuple[str, str]]) -> None:
+        limit = self.nesting
+        if context["call"] > limit and (target, "call") not in reported:
+            reported.add((target, "call"))
+            self.diags.add("X110", site.command.span,
+                           f"{site.command.text} nests sequence calls more than {limit} deep (through the calls of "
+                           "this file; a sequence that calls itself never stops): the controller allows "
+                           f"{limit} (L1750, L5140)")
+        for kind, depth in inside.items():
+            total = context.get(kind, 0) + depth
+            if total > limit and (target, kind) not in reported:
+                reported.add((target, kind))
+                self.diags.add("X110", site.command.span,
+                               f"{site.command.text} runs sequence {site.number}, which opens {kind} {depth} deep, "
+                               f"while {context[kind]} are already open: {min(total, limit + 1 + depth)} > {limit} "
+                               "(the controller's nesting is shared across XR calls)")
+
+    def check_memory(self) -> None:
+        lowering = self.lowering
+        store = int(self.profile.get("limits.sequence_store_bytes", self.cat.limit("sequence_store_bytes", default=8000)))
+        buffer = int(self.profile.get("limits.command_buffer_bytes", self.cat.limit("command_buffer_bytes", default=2000)))
+        ratio = float(self.profile.get("x150.buffer_warn_ratio", 0.9))
+        latest: dict[tuple[int, int | None], tuple[Unit, int]] = {}
+        for unit, routine in zip(lowering.units, lowering.module.routines):
+            if not unit.is_sequence or unit.start is None:
+                continue
+            written = write_routine(lowering.module, self.profile, routine)
+            size = written.sequence_bytes.get(routine.name, 0)
+            latest[(unit.number or 0, unit.address)] = (unit, size)
+            if size >= ratio * buffer:
+                over = "more than" if size > buffer else "close to"
+                self.diags.add("X124", unit.start.span,
+                               f"sequence {unit.number} is {size} bytes, {over} the {buffer}-byte command buffer it is "
+                               "downloaded through (L241, L4904): split it into sequences that call each other")
+        devices = sorted({address for _, address in latest if address is not None})
+        for device in devices or [None]:
+            total = 0
+            for (number, address), (unit, size) in sorted(latest.items(), key=lambda kv: kv[1][0].start.span.start):
+                if address is not None and address != device:
+                    continue
+                total += size
+                if total > store:
+                    who = f"device {device}" if device is not None else "each device"
+                    self.diags.add("X123", unit.start.span,
+                                   f"with sequence {number} the sequences for {who} need {total} bytes; the sequence "
+                                   f"store holds {store} (L4871, 1 byte per character and delimiter, L241): shorten "
+                                   "or remove sequences")
+                    break
+
+
+def upper_outside_quotes(text: str) -> str:
+    out = []
+    last = 0
+    for match in QUOTED.finditer(text):
+        out.append(text[last:match.start()].upper())
+        out.append(match.group())
+        last = match.end()
+    out.append(text[last:].upper())
+    return "".join(out)
+
+
+def variables(arg) -> list[st.VarRef]:
+    """Every VARn an argument names."""
+    if isinstance(arg, st.VarRef):
+        return [arg]
+    if isinstance(arg, st.VarStatement):
+        return [arg.var] + (variables(arg.value) if arg.value is not None else [])
+    if isinstance(arg, st.Chain):
+        return [o for o in [arg.first] + [op for _, op in arg.rest] if isinstance(o, st.VarRef)]
+    if isinstance(arg, st.Condition):
+        out = []
+        for term in arg.terms:
+            if isinstance(term, st.Comparison):
+                out += [o for o in (term.left, term.right) if isinstance(o, st.VarRef)]
+        return out
+    return []
+
+
+def run(lowering: Lowering, profile: Profile, diags: Diagnostics) -> None:
+    Checker(lowering, profile, diags).run()

@@ -1,0 +1,19 @@
+"""The X150 frontend: text → syntax tree → IR, with every X150 check (docs/dialects/x150.md)."""
+
+from __future__ import annotations
+
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.driver import Analysis
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import SourceFile
+from mcc.compiler.x150 import checks, parser
+from mcc.compiler.x150.lower import Lowering
+
+
+def analyze(source: SourceFile, profile: Profile) -> Analysis:
+    diags = Diagnostics()
+    tree = parser.parse(source, diags)
+    lowering = Lowering(tree, profile, diags)
+    module = lowering.run()
+    checks.run(lowering, profile, diags)
+    return Analysis(source, tree, module, diags)

@@ -1,0 +1,581 @@
+"""Lowering an X150 syntax tree to the shared IR.
+
+- Each unit (structure.py) becomes a routine, in stream order: a sequence `XDn ... XT` a routine
+  named SEQn (SEQn@a when defined for device a, see naming.py) with `number = n`; each stretch of
+  commands outside sequences an IMMEDIATE routine. A sequence selected by XP is the POWERUP
+  routine, by XFK or XWHEN a HANDLER, one run by XR/GOSUB a SUBROUTINE, any other MAIN.
+- The structured constructs become blocks (docs/dialects/x150.md, "IR mapping"):
+  `IF(c) .. ELSE .. NIF` a Branch to then/else blocks that jump to a join block;
+  `WHILE(c) .. NWHILE` a head block holding only the Branch, the body jumping back to it;
+  `REPEAT .. UNTIL(c)` a body whose last block branches back while c is false;
+  `Ln .. N` a hidden counter `%Lk` (a declared int32 variable): `%Lk = n` before the body, and at
+  N `%Lk = %Lk - 1` then a Branch back while `%Lk != 0`, so `L`/`L0` (infinite, L2328) never
+  reaches zero. The blocks are laid out in source order; the backend rebuilds the constructs from
+  these shapes.
+- XR/GOSUB → Call, XG/GOTO → GotoRoutine, XRT → Return, XT → FallOff (the executable end),
+  XP/XFK/XWHEN → SetHandler("powerup"/"fault"/"when", SEQn), WHEN(c) → SetHandler("when", args=(c,)).
+- Motion: A/V → SetMotion (rev/s², rev/s), `D` directly followed by `G` → one Move (RELATIVE after
+  MPI, ABSOLUTE after MPA in the same routine, MODAL when not known), a G alone → Move to the
+  distance in force (DeviceRef x150 D), a G in MC mode stays Native; T → Delay (s);
+  TRE/TRN → WaitInput(InputMatch) / WaitInput(Not(...)); VARn= → Assign (left to right); SV → Save.
+  Everything else is Native("x150", mnemonic, args, form="B" when B-prefixed, axis=address).
+- Device addresses are axes "1".."32", "*" for none. Operations without an axis field (Assign,
+  Delay, WaitInput, Save, Call, ...) take the routine's device; where a command's address differs
+  from its routine's (a stream mixing devices), it stays Native so the address is kept.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from mcc.compiler import ir
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.profiles import Profile
+from mcc.compiler.x150 import catalog as cat
+from mcc.compiler.x150 import naming
+from mcc.compiler.x150 import syntax as st
+from mcc.compiler.x150.structure import Unit, sequence_number, split_units
+
+DIALECT = "x150"
+UNITS = {"rev/s^2": ir.Unit.REVS_PER_S2, "rev/s": ir.Unit.REVS_PER_S, "user steps": ir.Unit.STEPS,
+         "motor steps": ir.Unit.STEPS, "steps": ir.Unit.STEPS, "s": ir.Unit.S, "ms": ir.Unit.MS,
+         "%": ir.Unit.PERCENT}
+MOTION = {"accel": ir.MotionParam.ACCEL, "max_speed": ir.MotionParam.MAX_SPEED}
+HANDLERS = {"powerup": "powerup", "fault_handler": "fault", "event_handler": "when"}
+KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKind.SUBROUTINE: 1,
+             ir.RoutineKind.MAIN: 0}
+OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
+CLOSERS = {"loop_end": "L", "endif": "IF", "endwhile": "WHILE", "until": "REPEAT", "else": "IF"}
+CLOSER_NAMES = {"L": "N", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL(...)"}
+LOOP_VAR = "%L"
+MOVE_MODES = ("mode_normal", "mode_continuous", "mode_queued")  # MN MC MQ
+CONTINUOUS = "mode_continuous"  # in MC a G runs at V until stopped: no Move (L2498)
+
+
+@dataclass
+class Frame:
+    """An open construct while lowering: its kind, opener, and the blocks it must wire up."""
+
+    kind: str  # L IF WHILE REPEAT
+    opener: st.Command
+    head: str = ""  # L/WHILE/REPEAT: the block to go back to
+    exit: str = ""  # WHILE: the block after the loop
+    counter: str = ""  # L: the hidden counter variable
+    branch: ir.Branch | None = None  # IF: the conditional branch, its `otherwise` patched by ELSE/NIF
+    ends: list[ir.Jump] = field(default_factory=list)  # IF: jumps to the join, patched at NIF
+    else_seen: bool = False
+
+
+@dataclass
+class Site:
+    """Where a sequence is named (a call, goto or handler selection), for the whole-program checks."""
+
+    command: st.Command
+    kind: str  # call | goto | handler
+    number: int | None  # None: through a variable
+    targets: tuple[str, ...]  # routines the command may run (defined in this file)
+    routine: str  # the routine it is written in
+    depth: dict[str, int]  # open constructs at the site, by kind
+    unit: Unit
+
+
+class Lowering:
+    def __init__(self, tree: st.SyntaxTree, profile: Profile, diags: Diagnostics):
+        self.tree = tree
+        self.profile = profile
+        self.diags = diags
+        self.cat = cat.load()
+        self.module = ir.Module(DIALECT, profile.name, path=tree.path)
+        self.units: list[Unit] = []
+        self.sites: list[Site] = []
+        self.leading_nifs: dict[str, int] = {}  # routine -> NIFs before its first other command
+        self.max_depth: dict[str, dict[str, int]] = {}  # routine -> deepest nesting of each construct
+        self.nesting = int(profile.get("limits.nesting", self.cat.limit("nesting", default=16)))
+        self.defined: set[str] = set()
+        self.generated = 0
+        self.counters = 0
+        self.unit: Unit | None = None
+        self.routine: ir.Routine | None = None
+        self.block: ir.Block | None = None
+        self.device: int | None = None
+        self.frames: list[Frame] = []
+        self.pending_d: tuple[st.Command, ir.Native] | None = None
+        self.position_mode: dict[str, ir.MoveMode] = {}
+        self.move_mode: dict[str, str] = {}
+        self.leading = True
+
+    # -- driver ----------------------------------------------------------------------------------
+    def run(self) -> ir.Module:
+        self.units = split_units(self.tree, self.diags)
+        self.name_units()
+        kinds = self.routine_kinds()
+        for unit in self.units:
+            self.lower_unit(unit, kinds)
+        return self.module
+
+    def name_units(self) -> None:
+        copies: dict[tuple[int, int | None], int] = {}
+        streams = 0
+        for unit in self.units:
+            if unit.is_sequence:
+                key = (unit.number if unit.number is not None else 0, unit.address)
+                copies[key] = copies.get(key, 0) + 1
+                if copies[key] == 2:
+                    first = next(u for u in self.units if u.is_sequence and (u.number or 0, u.address) == key)
+                    self.diags.add("X132", unit.start.span,
+                                   f"sequence {unit.number} is defined again (first at line {first.start.span.line}); "
+                                   "the controller keeps one sequence per number: renumber one of them")
+                unit.name = naming.sequence_name(key[0], unit.address, copies[key])
+                self.defined.add(unit.name)
+            else:
+                streams += 1
+                unit.name = naming.immediate_name(streams, unit.device())
+
+    def routine_kinds(self) -> dict[str, ir.RoutineKind]:
+        """Sequences selected by XP are POWERUP, by XFK/XWHEN HANDLERs, run by XR/GOSUB SUBROUTINEs."""
+        kinds: dict[str, ir.RoutineKind] = {}
+        for unit in self.units:
+            device = unit.address if unit.is_sequence else None
+            for command in unit.commands:
+                info = command.info
+                if info is None or not command.ok:
+                    continue
+                kind = {"call": ir.RoutineKind.SUBROUTINE, "powerup": ir.RoutineKind.POWERUP,
+                        "fault_handler": ir.RoutineKind.HANDLER,
+                        "event_handler": ir.RoutineKind.HANDLER}.get(info.ir)
+                number = sequence_number(command)
+                if kind is None or not number:
+                    continue
+                for name in self.resolve(number, command.address if command.address is not None else device):
+                    if KIND_RANK[kind] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:
+                        kinds[name] = kind
+        return kinds
+
+    def resolve(self, number: int, address: int | None) -> tuple[str, ...]:
+        """The routines of this file a command naming sequence `number` may run."""
+        if address is None:
+            exact = naming.sequence_name(number, None)
+            if exact in self.defined:
+                return (exact,)
+            return tuple(n for n in (naming.sequence_name(number, d) for d in self.devices()) if n in self.defined)
+        return tuple(n for n in naming.candidates(number, address) if n in self.defined)[:1]
+
+    def devices(self) -> list[int]:
+        return sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
+
+    # -- units, routines, blocks -----------------------------------------------------------------
+    def lower_unit(self, unit: Unit, kinds: dict[str, ir.RoutineKind]) -> None:
+        span = unit.start.span if unit.start is not None else (unit.commands[0].span if unit.commands else None)
+        if unit.is_sequence:
+            kind = kinds.get(unit.name, ir.RoutineKind.MAIN)
+            number = unit.number
+        else:
+            kind, number = ir.RoutineKind.IMMEDIATE, None
+        self.unit = unit
+        self.routine = ir.Routine(unit.name, kind, span=span, number=number)
+        self.module.routines.append(self.routine)
+        self.device = naming.device_of(unit.name)
+        self.frames = []
+        self.pending_d = None
+        self.position_mode = {}
+        self.move_mode = {}
+        self.leading = unit.is_sequence
+        self.leading_nifs[unit.name] = 0
+        self.block = None
+        self.new_block(span)
+        for command in unit.commands:
+            self.lower_command(command)
+        self.flush()
+        end = unit.end or unit.start
+        self.close_all(end, "XT" if unit.is_sequence else "the end of the stream")
+        if self.block.terminator is None:
+            self.block.terminator = ir.FallOff(unit.end.span if unit.end is not None else self.block.span)
+
+    def label(self) -> str:
+        self.generated += 1
+        return f"%{self.generated}"
+
+    def new_block(self, span, label: str | None = None) -> ir.Block:
+        block = ir.Block(label or self.label(), span=span)
+        self.routine.blocks.append(block)
+        self.block = block
+        return block
+
+    def live_block(self, span) -> ir.Block:
+        """The block to add to; after a terminator (XG, XRT) the code that follows is kept in a new,
+        unreachable block so the backend writes it back."""
+        if self.block.terminator is not None:
+            self.new_block(span)
+        return self.block
+
+    def emit(self, op) -> None:
+        self.live_block(op.span).ops.append(op)
+
+    def terminate(self, term) -> None:
+        self.live_block(term.span).terminator = term
+
+    # -- commands ----------------------------------------------------------------------------------
+    def axis(self, command: st.Command) -> str:
+        if command.address is not None:
+            return str(command.address)
+        return str(self.device) if self.device is not None else ir.ALL_AXES
+
+    def fits(self, command: st.Command) -> bool:
+        """True when the routine's device says the command's address (so an address-less IR
+        operation loses nothing)."""
+        return self.device is not None or command.address is None
+
+    def lower_command(self, command: st.Command) -> None:
+        info = command.info
+        if info is None and not command.host:
+            return
+        token = self.cat.lookup(command.mnemonic) if info is not None else None
+        role = token.ir if token is not None else ""
+        structural = role in OPENERS or role in CLOSERS
+        if command.problems and not structural:
+            return
+        if self.pending_d is not None:
+            if role == "go" and self.fuse(command):
+                return
+            self.flush()
+        if self.leading and not (role == "endif" and not self.frames):
+            self.leading = False
+        if role in OPENERS:
+            self.open(command, OPENERS[role])
+        elif role in CLOSERS:
+            self.close(command, role)
+        elif role in ("call", "goto") or role in HANDLERS:
+            self.transfer(command, role)
+        else:
+            self.simple(command, role)
+
+    def simple(self, command: st.Command, role: str) -> None:
+        info = command.info
+        arg = command.arg
+        span = command.span
+        axis = self.axis(command)
+        if command.host:
+            self.emit(ir.Native(DIALECT, "!", (self.expr(arg),), axis=axis, span=span))
+            return
+        fits = self.fits(command) and not command.buffered
+        if role in MOTION and arg is not None:
+            self.emit(ir.SetMotion(MOTION[role], axis, self.value(arg, info), span))
+        elif role == "distance" and arg is not None:
+            op = self.native(command)
+            self.emit(op)
+            self.pending_d = (command, op)
+        elif role == "go" and arg is None:
+            self.go(command, None)
+        elif role == "delay" and arg is not None and fits:
+            self.emit(ir.Delay(self.value(arg, info), span))
+        elif role == "wait_input" and isinstance(arg, st.Pattern) and fits:
+            cond: ir.Cond = ir.InputMatch(ir.Pattern(arg.bits, arg.span), arg.span)
+            if info.entry.get("negated", False):
+                cond = ir.Not(cond, arg.span)
+            self.emit(ir.WaitInput(cond, span))
+        elif role == "assign" and isinstance(arg, st.VarStatement) and arg.value is not None and fits:
+            self.declare(arg.var)
+            self.emit(ir.Assign(ir.Var(arg.var.name, arg.var.span), self.chain(arg.value, axis), span))
+        elif role == "save" and fits:
+            self.emit(ir.Save(span))
+        elif role == "return" and fits:
+            self.terminate(ir.Return(span))
+        elif role == "when" and isinstance(arg, st.Condition) and fits:
+            self.emit(ir.SetHandler("when", None, (self.cond(arg, axis),), span))
+        else:
+            op = self.native(command)
+            self.emit(op)
+            self.track_modes(command.mnemonic, op.axis)
+
+    def track_modes(self, mnemonic: str, axis: str) -> None:
+        """MPA/MPI and MN/MC/MQ are modal; the lowering follows them in source order per routine."""
+        info = self.cat.lookup(mnemonic)
+        role = info.ir if info is not None else ""
+        if role in ("mode_absolute", "mode_incremental"):
+            mode = ir.MoveMode.ABSOLUTE if role == "mode_absolute" else ir.MoveMode.RELATIVE
+            set_mode(self.position_mode, axis, mode)
+        elif role in MOVE_MODES:
+            set_mode(self.move_mode, axis, role)
+
+    def flush(self) -> None:
+        self.pending_d = None
+
+    def fuse(self, command: st.Command) -> bool:
+        """`D<value>` directly followed by `G` (same address) is one Move."""
+        d_command, d_op = self.pending_d
+        if command.address != d_command.address or command.arg is not None or self.block.terminator is not None \
+                or not self.block.ops or self.block.ops[-1] is not d_op:
+            return False
+        axis = self.axis(command)
+        if get_mode(self.move_mode, axis) == CONTINUOUS:
+            return False
+        self.block.ops.pop()
+        self.pending_d = None
+        target = self.value(d_command.arg, d_command.info)
+        mode = get_mode(self.position_mode, axis) or ir.MoveMode.MODAL
+        self.emit(ir.Move(mode, ((axis, target),), span=d_command.span.to(command.span)))
+        return True
+
+    def go(self, command: st.Command, target) -> None:
+        axis = self.axis(command)
+        if get_mode(self.move_mode, axis) == CONTINUOUS:
+            self.emit(self.native(command))
+            return
+        distance = ir.DeviceRef(DIALECT, "D", "distance", axis, None, command.span)
+        mode = get_mode(self.position_mode, axis) or ir.MoveMode.MODAL
+        self.emit(ir.Move(mode, ((axis, distance),), span=command.span))
+
+    def transfer(self, command: st.Command, role: str) -> None:
+        """XR/GOSUB (call), XG/GOTO (goto), XP/XFK/XWHEN (handler selection)."""
+        number = sequence_number(command)
+        address = command.address if command.address is not None else self.device
+        targets = self.resolve(number, address) if number else ()
+        kind = "call" if role == "call" else "goto" if role == "goto" else "handler"
+        self.sites.append(Site(command, kind, number, targets, self.routine.name, self.depths(), self.unit))
+        span = command.span
+        if number is None:  # through a variable, or a report (XP alone)
+            self.emit(self.native(command))
+        elif number == 0:  # XP0 / XFK0 / XWHEN0: no sequence selected
+            if role in HANDLERS and self.fits(command):
+                self.emit(ir.SetHandler(HANDLERS[role], None, (), span))
+            else:
+                self.emit(self.native(command))
+        else:
+            name = self.target_name(command, number, targets)
+            if name is None:
+                self.emit(self.native(command))
+            elif role == "call":
+                self.emit(ir.Call(name, None, span))
+            elif role == "goto":
+                self.terminate(ir.GotoRoutine(name, span))
+            else:
+                self.emit(ir.SetHandler(HANDLERS[role], name, (), span))
+
+    def target_name(self, command: st.Command, number: int, targets: tuple[str, ...]) -> str | None:
+        """The routine name for a transfer, or None when the IR cannot keep the command's address."""
+        if self.device is not None:
+            return targets[0] if targets else naming.sequence_name(number, self.device)
+        written = command.address
+        if not targets:
+            return naming.sequence_name(number, written)
+        if len(targets) == 1 and naming.device_of(targets[0]) == written:
+            return targets[0]
+        return None
+
+    # -- constructs --------------------------------------------------------------------------------
+    def depths(self) -> dict[str, int]:
+        out = {kind: 0 for kind in OPENERS.values()}
+        for frame in self.frames:
+            out[frame.kind] += 1
+        return out
+
+    def open(self, command: st.Command, kind: str) -> None:
+        depth = sum(1 for f in self.frames if f.kind == kind) + 1
+        deepest = self.max_depth.setdefault(self.routine.name, {})
+        deepest[kind] = max(deepest.get(kind, 0), depth)
+        if depth == self.nesting + 1:
+            self.diags.add("X110", command.span,
+                           f"{kind} is nested {depth} deep; the controller allows {self.nesting} "
+                           f"(L2011, L2332): move the inner part to its own sequence")
+        span = command.span
+        frame = Frame(kind, command)
+        if kind == "L":
+            self.counters += 1
+            counter = f"{LOOP_VAR}{self.counters}"
+            self.module.variables[counter] = ir.Variable(counter, ir.VarType.INT32, ir.Const(0), "local", span)
+            count = self.value(command.arg, command.info) if command.arg is not None else ir.Const(0, ir.Unit.NONE, span)
+            self.emit(ir.Assign(ir.Var(counter, span), count, span))
+            frame.counter = counter
+            head = self.label()
+            self.terminate(ir.Jump(head, span))
+            self.new_block(span, head)
+            frame.head = head
+        elif kind == "IF":
+            then = self.label()
+            frame.branch = ir.Branch(self.cond(command.arg, self.axis(command)), then, "", span)
+            self.terminate(frame.branch)
+            self.new_block(span, then)
+        elif kind == "WHILE":
+            head, body, frame.exit = self.label(), self.label(), self.label()
+            self.terminate(ir.Jump(head, span))
+            self.new_block(span, head).terminator = ir.Branch(self.cond(command.arg, self.axis(command)),
+                                                              body, frame.exit, span)
+            self.new_block(span, body)
+            frame.head = head
+        else:  # REPEAT
+            head = self.label()
+            self.terminate(ir.Jump(head, span))
+            self.new_block(span, head)
+            frame.head = head
+        self.frames.append(frame)
+
+    def close(self, command: st.Command, role: str) -> None:
+        kind = CLOSERS[role]
+        name = command.mnemonic
+        index = next((i for i in range(len(self.frames) - 1, -1, -1) if self.frames[i].kind == kind), None)
+        if index is None:
+            if role == "endif" and self.unit.is_sequence and self.leading_nif(command):
+                return
+            opener = {"L": "L", "IF": "IF(...)", "WHILE": "WHILE(...)", "REPEAT": "REPEAT"}[kind]
+            self.diags.add("X109", command.span,
+                           f"{name} closes {opener}, but none is open here"
+                           + (" in this sequence (a construct must open and close in one sequence, L2332)"
+                              if self.unit.is_sequence else "") + f": remove {name} or add the {opener}")
+            return
+        while len(self.frames) - 1 > index:
+            inner = self.frames[-1]
+            self.unclosed(inner, f"{name} at line {command.span.line}")
+            self.finish(self.frames.pop(), None)
+        frame = self.frames[-1]
+        if role == "else":
+            if frame.else_seen:
+                self.diags.add("X109", command.span, f"a second ELSE for the IF at line {frame.opener.span.line}: "
+                                                     "an IF has at most one ELSE")
+                return
+            frame.ends.append(self.jump_pending(command.span))
+            block = self.new_block(command.span)
+            frame.branch.otherwise = block.label
+            frame.else_seen = True
+            return
+        self.finish(self.frames.pop(), command)
+
+    def leading_nif(self, command: st.Command) -> bool:
+        """NIFs opening a sequence close an IF left open by a GOTO into it (L1794): kept as written."""
+        if not self.leading:
+            return False
+        self.leading_nifs[self.routine.name] += 1
+        self.emit(self.native(command))
+        return True
+
+    def jump_pending(self, span) -> ir.Jump:
+        jump = ir.Jump("", span)
+        self.terminate(jump)
+        return jump
+
+    def finish(self, frame: Frame, command: st.Command | None) -> None:
+        span = command.span if command is not None else frame.opener.span
+        if frame.kind == "L":
+            var = ir.Var(frame.counter, span)
+            self.emit(ir.Assign(var, ir.BinOp("-", var, ir.Const(1)), span))
+            after = self.label()
+            self.terminate(ir.Branch(ir.Compare("!=", var, ir.Const(0)), frame.head, after, span))
+            self.new_block(span, after)
+        elif frame.kind == "IF":
+            frame.ends.append(self.jump_pending(span))
+            join = self.new_block(span)
+            for jump in frame.ends:
+                jump.target = join.label
+            if not frame.else_seen:
+                frame.branch.otherwise = join.label
+        elif frame.kind == "WHILE":
+            self.terminate(ir.Jump(frame.head, span))
+            self.new_block(span, frame.exit)
+        else:  # REPEAT
+            cond = self.cond(command.arg, self.axis(command)) if command is not None and command.arg is not None \
+                else ir.Truth(ir.Const(1))
+            after = self.label()
+            self.terminate(ir.Branch(cond, after, frame.head, span))
+            self.new_block(span, after)
+
+    def unclosed(self, frame: Frame, where: str) -> None:
+        self.diags.add("X108", frame.opener.span,
+                       f"{frame.opener.mnemonic} at line {frame.opener.span.line} is not closed before {where}: add "
+                       f"{CLOSER_NAMES[frame.kind]}"
+                       + (" inside this sequence (L2332)" if self.unit.is_sequence else ""))
+
+    def close_all(self, end: st.Command | None, what: str) -> None:
+        while self.frames:
+            self.unclosed(self.frames[-1], what if end is None or what != "XT" else f"XT at line {end.span.line}")
+            self.finish(self.frames.pop(), None)
+
+    # -- values ------------------------------------------------------------------------------------
+    def declare(self, var: st.VarRef) -> None:
+        name = var.name
+        if name not in self.module.variables:
+            self.module.variables[name] = ir.Variable(name, ir.VarType.DECIMAL, None, "global", var.span)
+
+    def value(self, arg, info: cat.Command | None):
+        unit = UNITS.get(info.entry.unit, ir.Unit.NONE) if info is not None else ir.Unit.NONE
+        if isinstance(arg, st.Number):
+            return ir.Const(arg.value, unit, arg.span)
+        if isinstance(arg, st.VarRef):
+            self.declare(arg)
+            return ir.Var(arg.name, arg.span)
+        return self.expr(arg)
+
+    def operand(self, node: st.Operand, axis: str):
+        if isinstance(node, st.Number):
+            return ir.Const(node.value, ir.Unit.NONE, node.span)
+        if isinstance(node, st.VarRef):
+            self.declare(node)
+            return ir.Var(node.name, node.span)
+        meaning = self.cat.sources.get(node.name, {}).get("ir", "")
+        return ir.DeviceRef(DIALECT, node.name, meaning, axis, None, node.span)
+
+    def chain(self, chain: st.Chain, axis: str):
+        expr = self.operand(chain.first, axis)
+        for op, operand in chain.rest:
+            right = self.operand(operand, axis)
+            expr = ir.BinOp(op, expr, right, chain.first.span.to(operand.span))
+        return expr
+
+    def cond(self, arg, axis: str):
+        if not isinstance(arg, st.Condition):
+            return ir.Truth(ir.Const(1))
+        result = None
+        for join, term in zip([""] + arg.joins, arg.terms):
+            if isinstance(term, st.InputTerm):
+                lowered = ir.InputMatch(ir.Pattern(term.pattern.bits, term.pattern.span), term.span)
+            else:
+                lowered = ir.Compare(term.op, self.operand(term.left, axis), self.operand(term.right, axis), term.span)
+            result = lowered if result is None else ir.Logic(join.lower(), result, lowered, arg.span)
+        return result
+
+    def expr(self, arg):
+        """Native arguments: each syntax argument as IR expressions."""
+        if isinstance(arg, st.Number):
+            return ir.Const(arg.value, ir.Unit.NONE, arg.span)
+        if isinstance(arg, st.VarRef):
+            self.declare(arg)
+            return ir.Var(arg.name, arg.span)
+        if isinstance(arg, st.Pattern):
+            return ir.Pattern(arg.bits, arg.span)
+        if isinstance(arg, st.Text):
+            return ir.Text(arg.text, arg.span)
+        raise TypeError(f"unexpected argument {type(arg).__name__}")
+
+    def native_args(self, command: st.Command) -> tuple:
+        arg = command.arg
+        axis = self.axis(command)
+        if arg is None:
+            return ()
+        if isinstance(arg, st.IoFunction):
+            return (ir.Const(arg.index, ir.Unit.NONE, arg.span), ir.Text(arg.function, arg.span))
+        if isinstance(arg, st.Fields):
+            values = tuple(ir.Const(v, ir.Unit.NONE, s) for v, s in zip(arg.values, arg.spans))
+            return values + ((ir.Text(arg.tail, arg.span),) if arg.tail is not None else ())
+        if isinstance(arg, st.VarStatement):
+            self.declare(arg.var)
+            var = ir.Var(arg.var.name, arg.var.span)
+            return (var,) + ((self.chain(arg.value, axis),) if arg.value is not None else ())
+        if isinstance(arg, st.Condition):
+            return (self.cond(arg, axis),)
+        return (self.value(arg, command.info),)
+
+    def native(self, command: st.Command) -> ir.Native:
+        mnemonic = command.mnemonic if command.info is not None else "!"
+        if isinstance(command.arg, st.VarStatement) and command.info is not None and command.info.name not in \
+                self.cat.commands:  # VARn=FUN etc.: the token's mnemonic is VAR
+            mnemonic = "VAR"
+        return ir.Native(DIALECT, mnemonic, self.native_args(command), form="B" if command.buffered else "",
+                         axis=self.axis(command), span=command.span)
+
+
+def set_mode(table: dict, axis: str, value) -> None:
+    if axis == ir.ALL_AXES:
+        table.clear()
+    table[axis] = value
+
+
+def get_mode(table: dict, axis: str):
+    return table.get(axis, table.get(ir.ALL_AXES))

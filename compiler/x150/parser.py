@@ -1,0 +1,225 @@
+"""Parsing X150 text into the syntax tree, with recovery at line ends.
+
+Two stages (docs/dialects/x150.md, "Tokeniser"):
+
+1. The LALR grammar `grammars/x150.lark` cuts the text into lines of command tokens and comments.
+   The common case (no unterminated quote or parenthesis anywhere) is one pass over the file. When
+   it fails, the file is parsed again line by line with the `line` start symbol, so each bad line
+   costs one X001 diagnostic and every other line is still checked; the commands before the bad
+   token on a bad line are kept.
+2. Each token is read against the catalog (`tokens.CommandReader`). A command whose argument was
+   written after a space (`IF (..)`, `1OUTL XX10X1`, `GOTO 2`, `DTXT "..."`) is re-joined with
+   the next token when that token is not a command of its own, with an X103 warning.
+"""
+
+from __future__ import annotations
+
+import re
+import unicodedata
+from functools import lru_cache
+from pathlib import Path
+
+from lark import Lark, Token, Transformer
+from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedInput
+
+from mcc.compiler.diagnostics import Diagnostics, Edit, Fix
+from mcc.compiler.span import SourceFile, Span
+from mcc.compiler.x150 import catalog as cat
+from mcc.compiler.x150 import syntax as st
+from mcc.compiler.x150.tokens import CommandReader, LineSpans, Piece
+
+GRAMMAR = Path(__file__).resolve().parent.parent.parent / "grammars" / "x150.lark"
+TOKEN = re.compile(r'(?:[^\s;"(]|"[^"\n]*"|\([^)\n]*\))+|;[^\n]*')
+NOT_A_VALUE = ("none", "query")
+
+
+class Collector(Transformer):
+    """Parser callbacks: each line becomes (line number, [CMD tokens], COMMENT token or None)."""
+
+    def __init__(self) -> None:
+        super().__init__(visit_tokens=False)
+        self.line_delta = 0
+
+    def start(self, children):
+        return children
+
+    def line(self, children):
+        newline = children[-1]
+        comment = None
+        tokens = children[:-1]
+        if tokens and tokens[-1].type == "COMMENT":
+            comment = tokens.pop()
+        return newline.line + self.line_delta, tokens, comment
+
+
+@lru_cache(maxsize=1)
+def _parser() -> tuple[Lark, Collector]:
+    collector = Collector()
+    text = GRAMMAR.read_text(encoding="utf-8").replace("_NL", "NL")
+    parser = Lark(text, parser="lalr", lexer="contextual", start=["start", "line"], transformer=collector,
+                  maybe_placeholders=False, cache=False)
+    return parser, collector
+
+
+def bare_parser() -> Lark:
+    """The same grammar with no callbacks: the baseline the benchmark compares against."""
+    return Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual")
+
+
+@lru_cache(maxsize=1)
+def _reader() -> CommandReader:
+    return CommandReader(cat.load())
+
+
+def describe_error(exc: UnexpectedInput, text: str, column: int) -> str:
+    char = text[column - 1] if 0 < column <= len(text) else ""
+    if char == '"':
+        return "unterminated text: add the closing '\"' on the same line (DTXT\"TEXT\")"
+    if char == "(":
+        return "unclosed '(': the condition or (VARn) must end with ')' on the same line"
+    if char:
+        name = unicodedata.name(char, "")
+        shown = f"U+{ord(char):04X}" + (f" ({name.lower()})" if name else "")
+        return f"unexpected character {shown}: X150 commands are separated by spaces or line ends"
+    return str(exc).splitlines()[0]
+
+
+def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
+    parser, collector = _parser()
+    text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
+    collector.line_delta = 0
+    tree = st.SyntaxTree(source.path)
+    try:
+        raw_lines = parser.parse(text, start="start")
+    except LarkError:
+        raw_lines = None
+    if raw_lines is None:
+        raw_lines = _parse_by_line(source, parser, collector, diags)
+    starts = source.line_starts
+    reader = _reader()
+    for number, tokens, comment in raw_lines:
+        if isinstance(tokens, st.Line):  # a line that failed, already built
+            tree.lines.append(tokens)
+            continue
+        spans = LineSpans(source.path, number, starts[number - 1])
+        line = st.Line(number)
+        line.commands = read_commands(reader, spans, [(str(t), t.start_pos) for t in tokens], diags)
+        if comment is not None:
+            line.comment = st.Comment(str(comment), spans.at(comment.start_pos, comment.end_pos))
+        tree.lines.append(line)
+    return tree
+
+
+def _parse_by_line(source: SourceFile, parser: Lark, collector: Collector, diags: Diagnostics) -> list:
+    out: list = []
+    starts = source.line_starts
+    reader = _reader()
+    for number in range(1, source.line_count + 1):
+        text = source.line_text(number)
+        if number == source.line_count and not text:
+            break  # the empty remainder after the final newline
+        collector.line_delta = number - 1
+        try:
+            _, tokens, comment = parser.parse(text + "\n", start="line")
+        except UnexpectedInput as exc:
+            column = max(1, min(getattr(exc, "column", 1) or 1, len(text) + 1))
+            out.append((number, _bad_line(source, reader, number, text, column, exc, diags), None))
+            continue
+        except LarkError as exc:  # pragma: no cover - any other parser failure is still a syntax error
+            diags.add("X001", source.line_span(number), str(exc).splitlines()[0])
+            out.append((number, st.Line(number, error=True), None))
+            continue
+        shift = starts[number - 1]
+        out.append((number, [_shifted(t, shift) for t in tokens],
+                    _shifted(comment, shift) if comment is not None else None))
+    collector.line_delta = 0
+    return out
+
+
+class _Shifted:
+    """A token moved from line-relative to file offsets (recovery mode parses one line at a time)."""
+
+    __slots__ = ("text", "start_pos", "end_pos")
+
+    def __init__(self, token: Token, shift: int):
+        self.text = str(token)
+        self.start_pos = token.start_pos + shift
+        self.end_pos = token.end_pos + shift
+
+    def __str__(self) -> str:
+        return self.text
+
+
+def _shifted(token: Token, shift: int) -> _Shifted:
+    return _Shifted(token, shift)
+
+
+def _bad_line(source: SourceFile, reader: CommandReader, number: int, text: str, column: int,
+              exc: UnexpectedInput, diags: Diagnostics) -> st.Line:
+    """Report the line's first unreadable character and keep the commands before its token."""
+    line_start = source.line_starts[number - 1]
+    spans = LineSpans(source.path, number, line_start)
+    start = line_start + column - 1
+    end = start + (1 if column <= len(text) else 0)
+    diags.add("X001", spans.at(start, end), describe_error(exc, text, column))
+    token_start = column - 1
+    while token_start > 0 and not text[token_start - 1].isspace():
+        token_start -= 1
+    line = st.Line(number, error=True)
+    pieces = []
+    for match in TOKEN.finditer(text, 0, token_start):
+        if match.group().startswith(";"):
+            break
+        pieces.append((match.group(), line_start + match.start()))
+    line.commands = read_commands(reader, spans, pieces, diags)
+    return line
+
+
+def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[str, int]],
+                  diags: Diagnostics) -> list[st.Command]:
+    """Read the command tokens of one line, re-joining an argument written after a space."""
+    commands: list[st.Command] = []
+    index = 0
+    count = len(pieces)
+    while index < count:
+        text, start = pieces[index]
+        command = reader.read(Piece(text, start), spans)
+        if index + 1 < count and _may_take_next(command):
+            following = reader.read(Piece(*pieces[index + 1]), spans)
+            joined = _rejoin(reader, spans, command, following, pieces[index], pieces[index + 1])
+            if joined is not None:
+                gap = spans.at(start + len(text), pieces[index + 1][1])
+                diags.add("X103", gap, f"a space separates {joined.mnemonic} from its argument: the controller "
+                                       f"reads a space as the end of a command (L130); write {joined.text}",
+                          fix=Fix("remove the space", (Edit(gap, ""),)))
+                command = joined
+                index += 1
+        commands.append(command)
+        index += 1
+    for command in commands:
+        for problem in command.problems:
+            diags.add(problem.code, problem.span, problem.message)
+    return commands
+
+
+def _may_take_next(command: st.Command) -> bool:
+    info = command.info
+    return (info is not None and command.arg is None and info.arg not in NOT_A_VALUE
+            and not (command.problems and not info.value_required))
+
+
+def _rejoin(reader: CommandReader, spans: LineSpans, command: st.Command, following: st.Command,
+            first: tuple[str, int], second: tuple[str, int]) -> st.Command | None:
+    if following.ok and not command.problems:
+        return None  # the next token is a command of its own: `1OUTL 1A10` is a report then a setting
+    joined = reader.read(Piece(first[0] + second[0], first[1], len(first[0]), second[1]), spans)
+    if joined.mnemonic != command.mnemonic or joined.arg is None:
+        return None
+    if joined.problems and not command.problems:
+        return None
+    joined.rejoined = True
+    return joined
+
+
+def comment_span(comment: st.Comment) -> Span:
+    return comment.span

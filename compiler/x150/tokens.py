@@ -1,0 +1,492 @@
+"""Reading one X150 command token: `[address][B][MNEMONIC][argument]`, written without separators.
+
+The grammar (grammars/x150.lark) cuts a line into command tokens; this module reads each token:
+
+1. an optional device address (leading digits; its range is a check, not syntax);
+2. the `B` prefix, recognised only when the rest begins with an immediate `*` command (L185), so
+   `B`, `BS` and `BDL` keep their meaning;
+3. the mnemonic, by **longest match against the catalog** (a "longest run of letters" rule would
+   eat pattern arguments: `SKEX1`, `INLXXXX10X_1XX1X0XX`, `DLEDXX1`);
+4. the argument, parsed by the catalog's argument class (number, pattern17, composite, ...).
+
+Findings are attached to the node as `Problem`s and reported by the parser once it knows the
+command is final: a space inside a command is tolerated by re-joining two tokens, which needs a
+silent trial parse first.
+"""
+
+from __future__ import annotations
+
+import difflib
+import re
+from typing import Callable
+
+from mcc.compiler.span import Span
+from mcc.compiler.x150 import syntax as st
+from mcc.compiler.x150.catalog import Command as CatalogCommand
+from mcc.compiler.x150.catalog import X150Catalog
+
+NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[Ee][+-]?[0-9]+)?")
+DIGITS = re.compile(r"[0-9]+")
+VAR_SUBST = re.compile(r"\(\s*[Vv][Aa][Rr]([0-9]+)\s*\)")
+VAR_NAME = re.compile(r"[Vv][Aa][Rr]([0-9]+)")
+WORD = re.compile(r"[A-Za-z]+")
+IO_FUNCTION = re.compile(r"([0-9]+)([A-Za-z])")
+PATTERN_CHARS = re.compile(r"[01Xx_]*")
+RELOP = re.compile(r"[<>=!]+")
+SPACES = re.compile(r"\s*")
+BIT_CLASSES = {  # argument class -> (characters, min length, max length)
+    "pattern6": ("01X", 1, 6),
+    "led8": ("01X", 1, 8),
+    "bits8": ("01", 8, 8),
+    "bits6": ("01", 6, 6),
+}
+INPUT_GROUPS = (7, 10)  # dedicated inputs, then user inputs IN1-IN10 (L3778-L3779)
+INPUTS, OUTPUTS = 10, 6
+
+
+class Piece:
+    """The text of one command token and where each character sits in the source.
+
+    A token is contiguous, except when the tolerance rule re-joins a command and an argument
+    written after a space (`IF (...)`, `1OUTL XX10X1`): then the second part starts at `start2`.
+    """
+
+    __slots__ = ("text", "start", "gap", "start2")
+
+    def __init__(self, text: str, start: int, gap: int | None = None, start2: int = 0):
+        self.text = text
+        self.start = start
+        self.gap = len(text) if gap is None else gap
+        self.start2 = start2
+
+    def offset(self, index: int) -> int:
+        if index < self.gap:
+            return self.start + index
+        return self.start2 + index - self.gap
+
+    def end_offset(self, index: int) -> int:
+        """Source offset just after character `index - 1` (exclusive end)."""
+        if index <= 0:
+            return self.start
+        return self.offset(index - 1) + 1
+
+
+class LineSpans:
+    """Spans on one line, without a search: a command never crosses a line end."""
+
+    __slots__ = ("path", "line", "line_start")
+
+    def __init__(self, path: str, line: int, line_start: int):
+        self.path = path
+        self.line = line
+        self.line_start = line_start
+
+    def at(self, start: int, end: int) -> Span:
+        base = self.line_start - 1
+        return Span(self.path, self.line, start - base, self.line, end - base, start, end)
+
+
+class ArgError(Exception):
+    """A malformed argument: message and the character range (in the token) it is about."""
+
+    def __init__(self, message: str, begin: int, end: int):
+        super().__init__(message)
+        self.message = message
+        self.begin = begin
+        self.end = end
+
+
+def number_value(text: str) -> int | float:
+    if "." in text or "e" in text or "E" in text:
+        return float(text)
+    return int(text)
+
+
+class CommandReader:
+    """Reads command tokens against the catalog. One instance per catalog (cached by the parser)."""
+
+    def __init__(self, cat: X150Catalog):
+        self.cat = cat
+        self.names = sorted(cat.commands)
+        self.input_functions = frozenset(cat.input_functions())
+        self.output_functions = frozenset(cat.output_functions())
+        self.relational = frozenset(cat.relational)
+        self.sources = {name.upper() for name in cat.sources}
+        self.arithmetic = {name.upper() for name in cat.arithmetic_sources}
+        self.arg_readers: dict[str, Callable] = {
+            "none": self.read_none, "query": self.read_none,
+            "number": self.read_number, "int": self.read_int, "sequence": self.read_int,
+            "pattern17": self.read_pattern17, "pattern6": self.read_bits, "led8": self.read_bits,
+            "bits8": self.read_bits, "bits6": self.read_bits,
+            "in_func": self.read_in_function, "out_func": self.read_out_function,
+            "composite": self.read_fields, "raw": self.read_fields, "string": self.read_string,
+            "variable": self.read_variable, "condition": self.read_condition,
+        }
+
+    # -- the token -------------------------------------------------------------------------------
+    def read(self, piece: Piece, spans: LineSpans) -> st.Command:
+        text = piece.text
+        span = spans.at(piece.start, piece.end_offset(len(text)))
+        cmd = st.Command(text=text, span=span)
+
+        def sub(begin: int, end: int) -> Span:
+            start = piece.offset(begin) if begin < len(text) else piece.end_offset(len(text))
+            return spans.at(start, piece.end_offset(end) if end > begin else start)
+
+        if text.startswith("!"):
+            return self.read_host(cmd, text, sub)
+        pos = 0
+        digits = DIGITS.match(text)
+        if digits:
+            pos = digits.end()
+            cmd.address = int(digits.group())
+            cmd.address_span = sub(0, pos)
+        if pos == len(text):
+            cmd.problems.append(st.Problem("X003", span, f"'{text}' is a device address with no command after it; "
+                                                         "write the command right after the address (1A10)"))
+            return cmd
+        info = None
+        if text[pos] in "Bb":
+            prefixed = self.cat.match(text, pos + 1)
+            if prefixed is not None and prefixed.b_prefixable:
+                cmd.buffered = True
+                info = prefixed
+                pos += 1
+        if info is None:
+            info = self.cat.match(text, pos)
+        if info is None:
+            self.unknown(cmd, text, pos, sub)
+            return cmd
+        end = pos + len(info.name)
+        cmd.info = info
+        cmd.mnemonic = info.name
+        cmd.written = text[pos:end]
+        cmd.mnemonic_span = sub(pos - (1 if cmd.buffered else 0), end)
+        try:
+            cmd.arg = self.arg_readers.get(info.arg, self.read_none)(cmd, text, end, sub)
+        except ArgError as exc:
+            cmd.problems.append(st.Problem("X002", sub(exc.begin, max(exc.end, exc.begin)), exc.message))
+        if cmd.arg is not None:
+            cmd.arg_span = cmd.arg.span
+        return cmd
+
+    def read_host(self, cmd: st.Command, text: str, sub) -> st.Command:
+        cmd.host = True
+        cmd.mnemonic = cmd.written = "!"
+        cmd.mnemonic_span = sub(0, 1)
+        if NUMBER.fullmatch(text, 1):
+            cmd.arg = st.Number(text[1:], number_value(text[1:]), sub(1, len(text)))
+            cmd.arg_span = cmd.arg.span
+        else:
+            cmd.problems.append(st.Problem("X002", sub(1, len(text)),
+                                           "host data for VARn=RSIN is '!' followed by a number (!12.34, L3604)"))
+        return cmd
+
+    def unknown(self, cmd: st.Command, text: str, pos: int, sub) -> None:
+        word = WORD.match(text, pos)
+        if word is None:
+            cmd.problems.append(st.Problem(
+                "X003", sub(pos, len(text)),
+                f"'{text[pos:]}' is not an X150 command: a command starts with its mnemonic (after an optional "
+                "device address)"))
+            return
+        name = word.group()
+        cmd.written = name
+        cmd.mnemonic_span = sub(pos, word.end())
+        close = difflib.get_close_matches(name.upper(), self.names, n=3, cutoff=0.6)
+        hint = f" (did you mean {', '.join(close)}?)" if close else ""
+        cmd.problems.append(st.Problem("X101", cmd.mnemonic_span,
+                                       f"'{name}' is not an X150 command{hint}; see the command list in "
+                                       "docs/dialects/x150.md"))
+
+    # -- argument classes ------------------------------------------------------------------------
+    def read_none(self, cmd: st.Command, text: str, pos: int, sub):
+        if pos == len(text):
+            return None
+        rest = text[pos:]
+        hint = ""
+        if cmd.mnemonic == "B":  # B1CPG50, BV5: a B prefix written the wrong way
+            digits = DIGITS.match(text, pos)
+            after = self.cat.match(text, digits.end() if digits else pos)
+            if digits and after is not None and after.b_prefixable:
+                hint = f"; put the device address before the B: {digits.group()}B{text[digits.end():]}"
+            elif after is not None and not digits:
+                hint = (f"; only the immediate '*' commands have a buffered B form, and {after.name} is not "
+                        "one of them")
+        raise ArgError(f"{cmd.mnemonic} takes no value, but '{rest}' follows it{hint}", pos, len(text))
+
+    def read_subst(self, cmd: st.Command, text: str, pos: int, sub):
+        match = VAR_SUBST.fullmatch(text, pos)
+        if match is None:
+            return None
+        if not (cmd.info and cmd.info.var_subst):
+            raise ArgError(f"{cmd.mnemonic} cannot take its value from a variable: (VARn) works only for the "
+                           "commands the manual lists (L4575-L4590)", pos, len(text))
+        return st.VarRef(int(match.group(1)), sub(pos, len(text)))
+
+    def read_number(self, cmd: st.Command, text: str, pos: int, sub):
+        if pos == len(text):
+            return None
+        found = self.read_subst(cmd, text, pos, sub)
+        if found is not None:
+            return found
+        match = NUMBER.match(text, pos)
+        if match is None or match.end() != len(text):
+            bad = match.end() if match else pos
+            raise ArgError(f"{cmd.mnemonic} takes a number (10, -2.5, 1.2E-3)"
+                           + (f" or (VARn)" if cmd.info and cmd.info.var_subst else "")
+                           + f"; '{text[bad:]}' is not part of one", bad, len(text))
+        return st.Number(match.group(), number_value(match.group()), sub(pos, len(text)))
+
+    def read_int(self, cmd: st.Command, text: str, pos: int, sub):
+        if pos == len(text):
+            return None
+        found = self.read_subst(cmd, text, pos, sub)
+        if found is not None:
+            return found
+        match = DIGITS.match(text, pos)
+        if match is None or match.end() != len(text):
+            bad = match.end() if match else pos
+            raise ArgError(f"{cmd.mnemonic} takes a whole number; '{text[bad:]}' is not part of one",
+                           bad, len(text))
+        return st.Number(match.group(), int(match.group()), sub(pos, len(text)))
+
+    def pattern17(self, text: str, pos: int, end: int, sub, what: str) -> st.Pattern:
+        bits = text[pos:end].upper()
+        groups = bits.split("_")
+        if len(groups) > 2:
+            raise ArgError(f"{what}: an input pattern has at most one '_' (dedicated inputs _ user inputs)",
+                           pos, end)
+        for group, size in zip(groups, INPUT_GROUPS):
+            if len(group) > size:
+                raise ArgError(f"{what}: '{group}' has {len(group)} positions, but that group has {size} inputs "
+                               "(7 dedicated inputs, '_', then IN1-IN10; L3778)", pos, end)
+        return st.Pattern(bits, sub(pos, end))
+
+    def read_pattern17(self, cmd: st.Command, text: str, pos: int, sub):
+        if pos == len(text):
+            return None
+        match = PATTERN_CHARS.match(text, pos)
+        if match.end() != len(text):
+            raise ArgError(f"{cmd.mnemonic} takes an input pattern of 0, 1 and X (e.g. _XX1); "
+                           f"'{text[match.end()]}' cannot appear in one", match.end(), len(text))
+        return self.pattern17(text, pos, len(text), sub, cmd.mnemonic)
+
+    def read_bits(self, cmd: st.Command, text: str, pos: int, sub):
+        if pos == len(text):
+            return None
+        chars, low, high = BIT_CLASSES[cmd.info.arg]
+        bits = text[pos:].upper()
+        bad = next((i for i, ch in enumerate(bits) if ch not in chars), None)
+        if bad is not None or not low <= len(bits) <= high:
+            size = f"{low}" if low == high else f"{low}-{high}"
+            where = pos + bad if bad is not None else pos
+            raise ArgError(f"{cmd.mnemonic} takes {size} positions of {' or '.join(chars)}; got '{text[pos:]}'",
+                           where, len(text))
+        return st.Pattern(bits, sub(pos, len(text)))
+
+    def read_io_function(self, cmd: st.Command, text: str, pos: int, sub, count: int, functions) -> st.IoFunction | None:
+        if pos == len(text):
+            return None
+        match = IO_FUNCTION.fullmatch(text, pos)
+        kind = "input" if count == INPUTS else "output"
+        if match is None:
+            raise ArgError(f"{cmd.mnemonic} takes an {kind} number and a function letter ({cmd.mnemonic}3B)",
+                           pos, len(text))
+        index, letter = int(match.group(1)), match.group(2).upper()
+        if not 1 <= index <= count:
+            raise ArgError(f"{kind} {index} does not exist: the {kind}s are 1-{count}", pos, match.end(1))
+        if letter not in functions:
+            raise ArgError(f"'{letter}' is not an {kind} function (known: {' '.join(sorted(functions))})",
+                           match.start(2), len(text))
+        return st.IoFunction(index, letter, sub(pos, len(text)))
+
+    def read_in_function(self, cmd, text, pos, sub):
+        return self.read_io_function(cmd, text, pos, sub, INPUTS, self.input_functions)
+
+    def read_out_function(self, cmd, text, pos, sub):
+        return self.read_io_function(cmd, text, pos, sub, OUTPUTS, self.output_functions)
+
+    def read_fields(self, cmd: st.Command, text: str, pos: int, sub):
+        info = cmd.info
+        fields = info.fields
+        if not fields:  # a raw argument without a field list: keep the text
+            return st.Text(text[pos:], sub(pos, len(text))) if pos < len(text) else None
+        if pos == len(text):
+            if 0 in info.counts:
+                return None
+            raise ArgError(f"{cmd.mnemonic} needs {self.describe_fields(info)}", pos, pos)
+        sep = info.separator
+        values: list[int] = []
+        spans: list[Span] = []
+        cursor = pos
+        tail = None
+        for index, spec in enumerate(fields):
+            if index and sep:
+                if cursor >= len(text) or text[cursor] != sep:
+                    break
+                cursor += 1
+            match = DIGITS.match(text, cursor)
+            if match is None:
+                break
+            end = cursor + spec.digits if spec.digits else match.end()
+            if spec.digits and match.end() - cursor < spec.digits:
+                raise ArgError(f"{cmd.mnemonic}: the {spec.name} is always written with {spec.digits} digits "
+                               f"({self.example(info)})", cursor, match.end())
+            values.append(int(text[cursor:end]))
+            spans.append(sub(cursor, end))
+            cursor = end
+        if info.tail:
+            if len(values) == len(fields) and cursor < len(text) and text[cursor] == sep:
+                tail = text[cursor + 1:]
+                cursor = len(text)
+            elif len(values) == len(fields) and cursor == len(text):
+                tail = ""
+        if cursor != len(text) or len(values) not in info.counts:
+            raise ArgError(f"{cmd.mnemonic} takes {self.describe_fields(info)} ({self.example(info)}); "
+                           f"'{text[pos:]}' does not fit", pos, len(text))
+        return st.Fields(values, spans, tail, sub(pos, len(text)))
+
+    @staticmethod
+    def describe_fields(info: CatalogCommand) -> str:
+        names = ", ".join(f.name for f in info.fields)
+        counts = info.counts
+        if 0 in counts and len(counts) == 2:
+            return f"either nothing or all of: {names}"
+        return names + (" and a text" if info.tail else "")
+
+    @staticmethod
+    def example(info: CatalogCommand) -> str:
+        parts = [str(f.low).rjust(f.digits, "0") if f.digits else str(f.low) for f in info.fields]
+        count = max(info.counts)
+        text = info.separator.join(parts[:count])
+        return info.name + text + (info.separator + "TEXT" if info.tail else "")
+
+    def read_string(self, cmd: st.Command, text: str, pos: int, sub):
+        if cmd.mnemonic == '"':  # the quote command is its own opening quote: 1"2XR1"
+            body_start = pos
+        else:
+            if pos == len(text) or text[pos] != '"':
+                raise ArgError(f'{cmd.mnemonic} takes quoted text: {cmd.mnemonic}"TEXT"', pos, len(text))
+            body_start = pos + 1
+        close = text.find('"', body_start)
+        if close < 0:
+            raise ArgError("the text has no closing '\"'", pos, len(text))
+        if close != len(text) - 1:
+            raise ArgError(f"'{text[close + 1:]}' follows the closing quote; end the command after it",
+                           close + 1, len(text))
+        return st.Text(text[body_start:close], sub(body_start, close))
+
+    # -- variables ---------------------------------------------------------------------------------
+    def read_variable(self, cmd: st.Command, text: str, pos: int, sub):
+        match = DIGITS.match(text, pos)
+        if match is None:
+            hint = " (write VARn=VARm to copy a variable)" if text.startswith("(", pos) else ""
+            raise ArgError(f"{cmd.mnemonic} needs a variable number: {cmd.mnemonic}1 to {cmd.mnemonic}50{hint}",
+                           pos, len(text))
+        var = st.VarRef(int(match.group()), sub(pos, match.end()))
+        cursor = match.end()
+        if cursor == len(text):
+            return st.VarStatement(var, None, sub(pos, len(text)))
+        if text[cursor] != "=":
+            raise ArgError(f"expected '=' after {cmd.mnemonic}{var.number}, not '{text[cursor:]}'",
+                           cursor, len(text))
+        chain = self.read_chain(text, cursor + 1, sub)
+        first = chain.first
+        if isinstance(first, st.Source) and first.name in self.cat.statements:
+            cmd.info = self.cat.statements[first.name]
+        return st.VarStatement(var, chain, sub(pos, len(text)))
+
+    def read_operand(self, text: str, pos: int, sub) -> tuple[st.Operand, int]:
+        var = VAR_NAME.match(text, pos)
+        if var:
+            return st.VarRef(int(var.group(1)), sub(pos, var.end())), var.end()
+        word = WORD.match(text, pos)
+        if word and word.group().upper() in self.sources:
+            return st.Source(word.group().upper(), sub(pos, word.end())), word.end()
+        number = NUMBER.match(text, pos)
+        if number:
+            return st.Number(number.group(), number_value(number.group()), sub(pos, number.end())), number.end()
+        raise ArgError("expected VARn, a number or one of " + " ".join(sorted(self.sources))
+                       + (f", not '{text[pos:]}'" if pos < len(text) else " after the operator"), pos, len(text))
+
+    def read_chain(self, text: str, pos: int, sub) -> st.Chain:
+        first, cursor = self.read_operand(text, pos, sub)
+        rest: list[tuple[str, st.Operand]] = []
+        starts = [pos]
+        while cursor < len(text):
+            op = text[cursor]
+            if op not in "+-*/":
+                raise ArgError(f"expected + - * or / here, not '{text[cursor:]}'", cursor, len(text))
+            starts.append(cursor + 1)
+            operand, cursor = self.read_operand(text, cursor + 1, sub)
+            rest.append((op, operand))
+        if rest:
+            for start, operand in zip(starts, [first] + [o for _, o in rest]):
+                if isinstance(operand, st.Source) and operand.name not in self.arithmetic:
+                    raise ArgError(f"{operand.name} must stand alone on the right of '=' (VAR1={operand.name}); "
+                                   f"only {' and '.join(sorted(self.arithmetic))} take part in arithmetic",
+                                   start, start + len(operand.name))
+        return st.Chain(first, rest, sub(pos, len(text)))
+
+    # -- conditions --------------------------------------------------------------------------------
+    def read_condition(self, cmd: st.Command, text: str, pos: int, sub):
+        if pos == len(text) or text[pos] != "(":
+            raise ArgError(f"{cmd.mnemonic} needs a condition in parentheses: {cmd.mnemonic}(VAR1>5 AND IN_XX1)",
+                           pos, len(text))
+        close = text.find(")", pos)
+        if close < 0:
+            raise ArgError("the condition has no closing ')'", pos, len(text))
+        if close != len(text) - 1:
+            raise ArgError(f"'{text[close + 1:]}' follows the condition; end the command after ')'",
+                           close + 1, len(text))
+        terms: list[st.Term] = []
+        joins: list[str] = []
+        cursor = SPACES.match(text, pos + 1).end()
+        if cursor == close:
+            raise ArgError("the condition is empty: write a term such as VAR1>5 or IN_XX1", pos, len(text))
+        while True:
+            term, cursor = self.read_term(text, cursor, close, sub)
+            terms.append(term)
+            cursor = SPACES.match(text, cursor, close).end()
+            if cursor >= close:
+                break
+            word = WORD.match(text, cursor, close)
+            if word is None or word.group().upper() not in ("AND", "OR"):
+                raise ArgError(f"expected AND or OR between two terms, not '{text[cursor:close]}'", cursor, close)
+            joins.append(word.group().upper())
+            cursor = SPACES.match(text, word.end(), close).end()
+            if cursor >= close:
+                raise ArgError(f"a term must follow {joins[-1]}", word.start(), close)
+        return st.Condition(terms, joins, sub(pos, len(text)))
+
+    def read_term(self, text: str, pos: int, close: int, sub) -> tuple[st.Term, int]:
+        if text[pos:pos + 2].upper() == "IN" and (pos + 2 >= close or text[pos + 2] in "01Xx_ "):
+            start = SPACES.match(text, pos + 2, close).end()
+            end = PATTERN_CHARS.match(text, start, close).end()
+            if end == start:
+                raise ArgError("IN needs an input pattern: IN_1 is input 1, IN_XX1 input 3", pos, close)
+            pattern = self.pattern17(text, start, end, sub, "IN")
+            return st.InputTerm(pattern, "_" in pattern.bits, sub(pos, end)), end
+        var = VAR_NAME.match(text, pos, close)
+        if var is None:
+            raise ArgError("a condition term is VARn<op>value or IN<pattern> (VAR1>5, IN_XX1)", pos, close)
+        left = st.VarRef(int(var.group(1)), sub(pos, var.end()))
+        cursor = SPACES.match(text, var.end(), close).end()
+        rel = RELOP.match(text, cursor, close)
+        if rel is None or rel.group() not in self.relational:
+            shown = rel.group() if rel else text[cursor:close]
+            raise ArgError(f"X150 conditions compare with {', '.join(sorted(self.relational))} only, not '{shown}'",
+                           cursor, rel.end() if rel else close)
+        cursor = SPACES.match(text, rel.end(), close).end()
+        right_var = VAR_NAME.match(text, cursor, close)
+        if right_var:
+            right: st.Operand = st.VarRef(int(right_var.group(1)), sub(cursor, right_var.end()))
+            end = right_var.end()
+        else:
+            number = NUMBER.match(text, cursor, close)
+            if number is None:
+                raise ArgError(f"expected VARn or a number after '{rel.group()}'", cursor, close)
+            right = st.Number(number.group(), number_value(number.group()), sub(cursor, number.end()))
+            end = number.end()
+        return st.Comparison(left, rel.group(), right, sub(pos, end)), end

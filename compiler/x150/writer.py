@@ -1,0 +1,396 @@
+"""Writing IR as X150 command text: the canonical form shared by the backend and the memory check.
+
+The canonical form (docs/dialects/x150.md, "Backend"): upper case, one command per line, no spaces
+inside a command (`GOTO2` is written `XG2`, `1OUTLXX10X1`), the device address in front, the `B`
+prefix on immediate `*` commands stored in a sequence, no comments. Each sequence is written
+`XEn XDn ... XT`. The memory check of the frontend counts the bytes of exactly these lines (each
+character and its delimiter one byte, L241), so what mcc reports is what it would download.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from mcc.compiler import ir
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import Span
+from mcc.compiler.x150 import catalog as cat
+from mcc.compiler.x150 import naming
+from mcc.compiler.x150.structurer import Step, Structurer, Unstructured, flat_steps
+
+DIALECT = "x150"
+KEYWORDS = {"L": "L", "IF": "IF", "ELSE": "ELSE", "NIF": "NIF", "WHILE": "WHILE", "NWHILE": "NWHILE",
+            "REPEAT": "REPEAT", "UNTIL": "UNTIL", "N": "N"}
+HANDLER_COMMANDS = {"powerup": "XP", "fault": "XFK", "when": "XWHEN"}
+MOTION_COMMANDS = {ir.MotionParam.ACCEL: "A", ir.MotionParam.MAX_SPEED: "V"}
+ARITHMETIC = "+-*/"
+
+
+def number(value) -> str:
+    """A number as the controller reads it: integers plain, decimals shortest, E notation (L152-L161)."""
+    if isinstance(value, bool):
+        value = int(value)
+    if isinstance(value, int):
+        return str(value)
+    if not math.isfinite(value):
+        return repr(value)
+    if value == int(value) and abs(value) < 1e15:
+        return str(int(value))
+    text = repr(float(value))
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        return f"{mantissa}E{exponent}"
+    return text
+
+
+@dataclass
+class Line:
+    text: str
+    sources: tuple[Span, ...] = ()
+    sequence: str | None = None  # the routine whose stored body this line belongs to (XD excluded)
+
+
+@dataclass
+class Written:
+    lines: list[Line] = field(default_factory=list)
+    diagnostics: Diagnostics = field(default_factory=Diagnostics)
+    sequence_bytes: dict[str, int] = field(default_factory=dict)  # routine -> bytes stored
+
+
+class CannotWrite(Exception):
+    def __init__(self, message: str, code: str = "X202"):
+        super().__init__(message)
+        self.message = message
+        self.code = code
+
+
+class Writer:
+    def __init__(self, module: ir.Module, profile: Profile):
+        self.module = module
+        self.profile = profile
+        self.cat = cat.load()
+        self.out = Written()
+        self.numbers = self.sequence_numbers()
+        self.routine: ir.Routine | None = None
+        self.device: int | None = None
+        self.in_sequence = False
+        self.position_mode: dict[str, ir.MoveMode] = {}
+        self.foreign_reported: set[str] = set()
+
+    # -- sequence numbers --------------------------------------------------------------------------
+    def sequence_numbers(self) -> dict[str, int]:
+        """Every non-immediate routine's sequence number (routines of other dialects get free ones)."""
+        numbers: dict[str, int] = {}
+        used = set()
+        for routine in self.module.routines:
+            if routine.kind is ir.RoutineKind.IMMEDIATE:
+                continue
+            n = naming.sequence_number(routine.name) or routine.number
+            if self.module.dialect == DIALECT and n:
+                numbers[routine.name] = n
+                used.add(n)
+        free = (n for n in range(1, 65) if n not in used)
+        for routine in self.module.routines:
+            if routine.kind is not ir.RoutineKind.IMMEDIATE and routine.name not in numbers:
+                n = routine.number if routine.number and routine.number not in used and 1 <= routine.number <= 64 \
+                    else next(free, 0)
+                used.add(n)
+                numbers[routine.name] = n
+        return numbers
+
+    def number_of(self, name: str) -> int:
+        if name in self.numbers:
+            return self.numbers[name]
+        return naming.sequence_number(name) or 0
+
+    # -- module and routines -----------------------------------------------------------------------
+    def write_module(self) -> Written:
+        selected = set()
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                for op in block.ops:
+                    if isinstance(op, ir.SetHandler) and op.event == "powerup" and op.routine:
+                        selected.add(op.routine)
+        for routine in self.module.routines:
+            self.write_routine(routine)
+        for routine in self.module.routines:  # a power-up routine from another dialect: select it
+            if routine.kind is ir.RoutineKind.POWERUP and routine.name not in selected:
+                self.routine, self.in_sequence = routine, False
+                self.emit(f"XP{self.number_of(routine.name)}", routine.span)
+        return self.out
+
+    def write_routine(self, routine: ir.Routine) -> None:
+        self.routine = routine
+        self.device = naming.device_of(routine.name) if self.module.dialect == DIALECT else None
+        self.position_mode = {}
+        self.in_sequence = routine.kind is not ir.RoutineKind.IMMEDIATE
+        prefix = str(self.device) if self.device is not None else ""
+        if self.in_sequence:
+            n = self.number_of(routine.name)
+            if not 1 <= n <= 64:
+                self.out.diagnostics.add("X203", routine.span or self.fallback_span(),
+                                         f"routine {routine.name} needs a sequence number, but all 64 are in use")
+            self.emit(f"{prefix}XE{n}", routine.span, stored=False)
+            self.emit(f"{prefix}XD{n}", routine.span, stored=False)
+        try:
+            steps = Structurer(routine).run()
+        except Unstructured as exc:
+            self.out.diagnostics.add("X201", exc.span or routine.span or self.fallback_span(),
+                                     f"{exc.message} in {routine.name}: X150 sequences have no labels, so only "
+                                     "L..N, IF..ELSE..NIF, WHILE..NWHILE and REPEAT..UNTIL can be written; "
+                                     "restructure this part")
+            steps = flat_steps(routine)
+        for step in steps:
+            self.write_step(step)
+        if self.in_sequence:
+            end = routine.blocks[-1].terminator if routine.blocks else None
+            self.emit(f"{prefix}XT", getattr(end, "span", None) or routine.span)
+            self.out.sequence_bytes[routine.name] = sum(len(line.text) + 1 for line in self.out.lines
+                                                        if line.sequence == routine.name)
+
+    def fallback_span(self) -> Span:
+        return Span(self.module.path or "<module>", 1, 1, 1, 1)
+
+    def emit(self, text: str, *spans: Span | None, stored: bool = True) -> None:
+        """Add a line; `stored` lines of a sequence count against its memory (XEn and XDn do not)."""
+        sequence = self.routine.name if self.in_sequence and stored else None
+        self.out.lines.append(Line(text, tuple(s for s in spans if s is not None), sequence))
+
+    # -- steps ---------------------------------------------------------------------------------------
+    def write_step(self, step: Step) -> None:
+        try:
+            if step.kind == "op":
+                self.write_op(step.payload)
+            elif step.kind == "term":
+                self.write_term(step.payload)
+            elif step.kind == "L":
+                count = step.payload
+                if count is None or (isinstance(count, ir.Const) and count.value == 0):
+                    self.emit(self.address() + "L", step.span)
+                else:
+                    self.emit(self.address() + "L" + self.value(count), step.span)
+            elif step.kind in ("IF", "WHILE", "UNTIL"):
+                self.emit(f"{self.address()}{step.kind}({self.cond(step.payload)})", step.span)
+            else:
+                self.emit(self.address() + KEYWORDS[step.kind], step.span)
+        except CannotWrite as exc:
+            span = step.span or self.routine.span or self.fallback_span()
+            self.out.diagnostics.add(exc.code, span, exc.message)
+
+    def address(self, axis: str = ir.ALL_AXES) -> str:
+        if self.device is not None:
+            return str(self.device)
+        return axis if axis.isdigit() else ""
+
+    def target(self, name: str) -> tuple[str, int]:
+        """The address and number to write for a command naming routine `name`."""
+        device = naming.device_of(name) if self.module.dialect == DIALECT else None
+        prefix = self.address() if self.device is not None else (str(device) if device is not None else "")
+        return prefix, self.number_of(name)
+
+    def write_term(self, term) -> None:
+        span = term.span
+        if isinstance(term, ir.GotoRoutine):
+            prefix, n = self.target(term.routine)
+            self.emit(f"{prefix}XG{n}", span)
+        elif isinstance(term, ir.Return):
+            self.emit(self.address() + "XRT", span)
+        elif isinstance(term, ir.End):
+            self.emit(self.address() + "HALT", span)
+
+    def write_op(self, op) -> None:
+        span = op.span
+        if isinstance(op, ir.Native):
+            if op.dialect != DIALECT:
+                raise CannotWrite(f"{op.dialect} command {op.mnemonic} has no X150 equivalent; rewrite this part "
+                                  "with X150 commands or compile to its own dialect", "G003")
+            self.emit(self.native(op), span)
+            role = info.ir if (info := self.cat.lookup(op.mnemonic)) is not None else ""
+            if role in ("mode_absolute", "mode_incremental"):
+                mode = ir.MoveMode.ABSOLUTE if role == "mode_absolute" else ir.MoveMode.RELATIVE
+                set_mode(self.position_mode, op.axis, mode)
+        elif isinstance(op, ir.SetMotion):
+            command = MOTION_COMMANDS.get(op.param)
+            if command is None:
+                raise CannotWrite(f"X150 has no command for the {op.param.value.replace('_', ' ')}", "G003")
+            self.emit(self.address(op.axis) + command + self.value(op.value, allow_var=True), span)
+        elif isinstance(op, ir.Move):
+            self.move(op)
+        elif isinstance(op, ir.Delay):
+            self.emit(self.address() + "T" + self.seconds(op.duration), span)
+        elif isinstance(op, ir.WaitInput):
+            self.emit(self.address() + self.wait(op.cond), span)
+        elif isinstance(op, ir.Assign):
+            self.emit(self.address() + self.assign(op), span)
+        elif isinstance(op, ir.Save):
+            self.emit(self.address() + "SV", span)
+        elif isinstance(op, ir.Call):
+            if op.cond is not None:
+                raise CannotWrite("X150 has no conditional call: write IF(...) XRn NIF")
+            prefix, n = self.target(op.routine)
+            self.emit(f"{prefix}XR{n}", span)
+        elif isinstance(op, ir.SetHandler):
+            self.handler(op)
+        else:
+            raise CannotWrite(f"{type(op).__name__} has no X150 equivalent in mcc yet", "G003")
+
+    def handler(self, op: ir.SetHandler) -> None:
+        command = HANDLER_COMMANDS.get(op.event)
+        if command is None:
+            raise CannotWrite(f"X150 has no '{op.event}' handler (only power-up XP, fault XFK and WHEN)", "G003")
+        if op.routine is not None:
+            prefix, n = self.target(op.routine)
+            self.emit(f"{prefix}{command}{n}", op.span)
+        elif op.event == "when" and op.args:
+            self.emit(f"{self.address()}WHEN({self.cond(op.args[0])})", op.span)
+        else:
+            self.emit(f"{self.address()}{command}0", op.span)
+
+    def move(self, op: ir.Move) -> None:
+        if len(op.targets) != 1:
+            raise CannotWrite("X150 moves one axis per command; a multi-axis move has no equivalent", "G003")
+        axis, target = op.targets[0]
+        prefix = self.address(axis)
+        span = op.span
+        if op.mode is not ir.MoveMode.MODAL and get_mode(self.position_mode, axis) is not op.mode:
+            self.emit(prefix + ("MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI"), span)
+            set_mode(self.position_mode, axis, op.mode)
+        if not (isinstance(target, ir.DeviceRef) and target.dialect == DIALECT and target.name == "D"):
+            self.emit(prefix + "D" + self.value(target, allow_var=True), span)
+        self.emit(prefix + "G", span)
+
+    # -- operands ------------------------------------------------------------------------------------
+    def value(self, expr, allow_var: bool = True) -> str:
+        if isinstance(expr, ir.Const) and isinstance(expr.value, (int, float)):
+            return number(expr.value)
+        if allow_var and isinstance(expr, ir.Var) and variable_number(expr.name):
+            return f"(VAR{variable_number(expr.name)})"
+        raise CannotWrite(f"an X150 value is a number or (VARn); {describe(expr)} cannot be written here")
+
+    def seconds(self, expr) -> str:
+        if isinstance(expr, ir.Const) and expr.unit is ir.Unit.MS:
+            return number(expr.value / 1000)
+        return self.value(expr)
+
+    def wait(self, cond) -> str:
+        if isinstance(cond, ir.InputMatch):
+            return "TRE" + cond.pattern.bits
+        if isinstance(cond, ir.Not) and isinstance(cond.cond, ir.InputMatch):
+            return "TRN" + cond.cond.pattern.bits
+        raise CannotWrite("X150 waits only for an input pattern (TRE/TRN)", "G003")
+
+    def assign(self, op: ir.Assign) -> str:
+        n = variable_number(op.target.name)
+        if not n:
+            raise CannotWrite(f"X150 has only VAR1-VAR50; {op.target.name} has no equivalent", "G003")
+        return f"VAR{n}={self.chain(op.value)}"
+
+    def chain(self, expr) -> str:
+        """A left-to-right chain (X150 has no precedence and no parentheses, L4638)."""
+        if isinstance(expr, ir.BinOp) and expr.op in ARITHMETIC:
+            if isinstance(expr.right, ir.BinOp):
+                raise CannotWrite("X150 evaluates strictly left to right without parentheses; split this "
+                                  "expression over several VARn= assignments")
+            return self.chain(expr.left) + expr.op + self.operand(expr.right)
+        return self.operand(expr)
+
+    def operand(self, expr) -> str:
+        if isinstance(expr, ir.Const):
+            return number(expr.value)
+        if isinstance(expr, ir.Var) and variable_number(expr.name):
+            return f"VAR{variable_number(expr.name)}"
+        if isinstance(expr, ir.DeviceRef) and expr.dialect == DIALECT and expr.name in self.cat.sources:
+            return expr.name
+        if isinstance(expr, ir.UnOp) and expr.op == "-" and isinstance(expr.operand, ir.Const):
+            return number(-expr.operand.value)
+        raise CannotWrite(f"{describe(expr)} cannot be an X150 operand (VARn, a number, POS, ABS, ...)")
+
+    def cond(self, cond) -> str:
+        if isinstance(cond, ir.Logic):
+            return f"{self.cond(cond.left)} {cond.op.upper()} {self.cond(cond.right)}"
+        if isinstance(cond, ir.InputMatch):
+            return "IN" + cond.pattern.bits
+        if isinstance(cond, ir.Compare) and cond.op in self.cat.relational:
+            return self.operand(cond.left) + cond.op + self.operand(cond.right)
+        raise CannotWrite(f"{describe(cond)} is not an X150 condition (VARn>x, VARn<x, VARn=x, IN<pattern>, "
+                          "joined by AND or OR)")
+
+    # -- native commands -----------------------------------------------------------------------------
+    def native(self, op: ir.Native) -> str:
+        mnemonic = op.mnemonic
+        prefix = self.address(op.axis)
+        if mnemonic == "!":
+            return "!" + self.value(op.args[0]) if op.args else "!"
+        info = self.cat.lookup(mnemonic)
+        if info is None:
+            raise CannotWrite(f"'{mnemonic}' is not an X150 command")
+        buffered = "B" if op.form == "B" or (self.in_sequence and info.b_prefixable) else ""
+        return prefix + buffered + mnemonic + self.argument(info, op.args)
+
+    def argument(self, info: cat.Command, args: tuple) -> str:
+        if not args:
+            return ""
+        kind = info.arg
+        first = args[0]
+        if kind in ("number", "int", "sequence"):
+            return self.value(first)
+        if isinstance(first, ir.Pattern):
+            return first.bits
+        if kind in ("in_func", "out_func"):
+            return number(first.value) + args[1].value
+        if kind == "string":
+            return ("" if info.name == '"' else '"') + first.value + '"'
+        if kind == "variable":
+            n = variable_number(first.name)
+            return f"{n}" + (f"={self.chain(args[1])}" if len(args) > 1 else "")
+        if kind == "condition":
+            return f"({self.cond(first)})"
+        if kind in ("composite", "raw"):
+            return self.fields(info, args)
+        raise CannotWrite(f"cannot write the argument of {info.name}")
+
+    def fields(self, info: cat.Command, args: tuple) -> str:
+        parts = []
+        for spec, arg in zip(info.fields, args):
+            parts.append(number(arg.value).rjust(spec.digits, "0") if spec.digits else number(arg.value))
+        text = info.separator.join(parts)
+        if info.tail and len(args) > len(info.fields):
+            text += info.separator + args[len(info.fields)].value
+        return text
+
+
+def variable_number(name: str) -> int:
+    if name.upper().startswith("VAR") and name[3:].isdigit():
+        return int(name[3:])
+    return 0
+
+
+def describe(expr) -> str:
+    if isinstance(expr, ir.Var):
+        return f"the variable {expr.name}"
+    if isinstance(expr, ir.DeviceRef):
+        return f"the {expr.dialect} reading {expr.name}"
+    return f"this {type(expr).__name__.lower()}"
+
+
+def set_mode(table: dict, axis: str, value) -> None:
+    if axis == ir.ALL_AXES:
+        table.clear()
+    table[axis] = value
+
+
+def get_mode(table: dict, axis: str):
+    return table.get(axis, table.get(ir.ALL_AXES))
+
+
+def write(module: ir.Module, profile: Profile) -> Written:
+    return Writer(module, profile).write_module()
+
+
+def write_routine(module: ir.Module, profile: Profile, routine: ir.Routine) -> Written:
+    """One routine alone (the frontend's memory check)."""
+    writer = Writer(module, profile)
+    writer.write_routine(routine)
+    return writer.out
