@@ -1,0 +1,220 @@
+"""The Arcus catalog, indexed for the frontend and the backend.
+
+Reads compiler/catalogs/arcus.toml once. Every keyword is recognised by the catalog's `pattern`
+(a regex for the keyword token with its glued axis letter, bit number, direction or P/N suffix),
+matched case-insensitively and anchored, the LONGEST match winning: that one rule resolves all
+the prefix traps of the language (END/ENDIF, SSPD/SSPDM, P/PS, E/EO/ECLEAR, Z/ZHOME, DO/DO7, ...)
+without a line of keyword-specific code.
+
+Each pattern is rewritten once with named groups so that a match also tells which axis, bit,
+direction and suffix were written: `[XYZU]` is the axis, `[+-]` the direction, `[PN]` the
+suffix, any other bracketed digit class (with its quantifier) the index.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
+
+from mcc.compiler import catalog as generic
+
+ASCII_ONLY = "ascii-only"
+OTHER_PRODUCT = "other-product"
+CLASS = re.compile(r"\[([^\]]*)\]([+*?]?)")
+
+
+def _named(pattern: str) -> str:
+    """'SYN[XYZU]C' -> 'SYN(?P<axis>[XYZU])C'; 'DO[1-8]' -> 'DO(?P<index>[1-8])'."""
+
+    def replace(match: re.Match) -> str:
+        body, quant = match.group(1), match.group(2)
+        if body == "XYZU":
+            group = "axis"
+        elif body == "+-":
+            group = "dir"
+        elif body == "PN":
+            group = "suffix"
+        else:
+            group = "index"
+        if quant == "?":
+            return f"(?P<{group}>[{body}])?"
+        return f"(?P<{group}>[{body}]{quant})"
+
+    return CLASS.sub(replace, pattern)
+
+
+def _stem(pattern: str) -> str:
+    """The literal letters a pattern starts with: 'JOG[XYZU][+-]' -> 'JOG'."""
+    match = re.match(r"[A-Za-z]+", pattern)
+    return match.group(0).upper() if match else ""
+
+
+@dataclass(frozen=True, eq=False)
+class Keyword:
+    """One catalog entry, with typed access to the Arcus keys (see the catalog's header)."""
+
+    entry: generic.Entry
+    regex: re.Pattern
+    stem: str
+
+    def get(self, key: str, default: Any = None) -> Any:
+        return self.entry.get(key, default)
+
+    @property
+    def id(self) -> str:
+        return self.entry.get("id", self.entry.name)
+
+    @property
+    def name(self) -> str:
+        return self.entry.name
+
+    @property
+    def kind(self) -> str:
+        return self.entry.kind
+
+    @property
+    def form(self) -> str:
+        return self.entry.get("form", "")
+
+    @property
+    def axis(self) -> str:
+        return self.entry.get("axis", "none")
+
+    @property
+    def ir(self) -> str:
+        return self.entry.get("ir", "")
+
+    @property
+    def readable(self) -> bool:
+        return bool(self.entry.get("read", False))
+
+    @property
+    def writable(self) -> bool:
+        return bool(self.entry.get("write", False))
+
+    @property
+    def in_condition(self) -> bool:
+        return bool(self.entry.get("condition", False))
+
+    @property
+    def in_operation(self) -> bool:
+        return bool(self.entry.get("operand", False))
+
+    @property
+    def literal_only(self) -> bool:
+        return bool(self.entry.get("literal_only", False))
+
+    @property
+    def index_range(self) -> tuple[int, int] | None:
+        rng = self.entry.get("bit") or self.entry.get("index")
+        return (int(rng[0]), int(rng[1])) if isinstance(rng, list) and len(rng) == 2 else None
+
+    @property
+    def range(self) -> tuple[int, int] | None:
+        return self.entry.range
+
+    @property
+    def unit(self) -> str:
+        return self.entry.unit
+
+    @property
+    def example(self) -> str:
+        examples = self.entry.get("examples") or []
+        return examples[0] if examples else (self.entry.syntax[0] if self.entry.syntax else self.name)
+
+    @property
+    def usage(self) -> str:
+        return "; ".join(self.entry.syntax[:3])
+
+    def spell(self, axis: str = "", index: int | None = None, direction: int = 0, suffix: str = "") -> str:
+        """The keyword as typed, from its pattern: ('HSPD', 'X') -> 'HSPDX'; ('SYNS', 'Y') -> 'SYNYS'."""
+        pattern = self.entry.get("pattern", self.name)
+
+        def replace(match: re.Match) -> str:
+            body = match.group(1)
+            if body == "XYZU":
+                return axis if axis in ("X", "Y", "Z", "U") else ""
+            if body == "+-":
+                return "+" if direction >= 0 else "-"
+            if body == "PN":
+                return suffix
+            return "" if index is None else str(index)
+
+        return CLASS.sub(replace, pattern).upper()
+
+
+@dataclass(frozen=True)
+class Match:
+    """A keyword found at the start of a text, and the glued pieces the pattern captured."""
+
+    keyword: Keyword
+    end: int  # characters of the text the keyword took
+    axis: str = ""
+    index: int | None = None
+    direction: int = 0
+    suffix: str = ""
+
+
+class ArcusCatalog:
+    def __init__(self, raw: generic.Catalog):
+        self.raw = raw
+        self.keywords: list[Keyword] = []
+        self.by_first: dict[str, list[Keyword]] = {}
+        self.by_name: dict[str, list[Keyword]] = {}
+        for entry in raw.entries:
+            pattern = entry.get("pattern", "")
+            if not pattern or not pattern[0].isalpha():
+                continue  # the ';' comment entry: the grammar handles it
+            keyword = Keyword(entry, re.compile(_named(pattern), re.IGNORECASE), _stem(pattern))
+            self.keywords.append(keyword)
+            self.by_first.setdefault(keyword.stem[0], []).append(keyword)
+            self.by_name.setdefault(entry.name.upper(), []).append(keyword)
+
+    def table(self, key: str) -> dict:
+        return self.raw.table(key)
+
+    def limit(self, dotted: str, default: Any = None) -> Any:
+        node: Any = self.raw.data.get("limits", {})
+        for part in dotted.split("."):
+            if not isinstance(node, dict) or part not in node:
+                return default
+            node = node[part]
+        return node
+
+    def match(self, text: str) -> Match | None:
+        """The longest keyword at the start of `text` (upper case expected)."""
+        best: Match | None = None
+        for keyword in self.by_first.get(text[:1], ()):
+            found = keyword.regex.match(text)
+            if found is None or (best is not None and found.end() <= best.end):
+                continue
+            groups = found.groupdict()
+            index = groups.get("index")
+            best = Match(keyword, found.end(), (groups.get("axis") or "").upper(),
+                         int(index) if index else None,
+                         {"+": 1, "-": -1}.get(groups.get("dir") or "", 0), (groups.get("suffix") or "").upper())
+        return best
+
+    def stems(self, text: str) -> list[Keyword]:
+        """Keywords whose literal stem starts `text`, longest stem first (for 'JOGX needs a direction')."""
+        found = [k for k in self.by_first.get(text[:1], ()) if text.startswith(k.stem)]
+        return sorted(found, key=lambda k: -len(k.stem))
+
+    def lookup(self, name: str, axis: str = "", index: int | None = None) -> Keyword | None:
+        """The entry of a canonical name, choosing the bit form (DO[1-8]) when an index is given."""
+        candidates = self.by_name.get(name.upper(), [])
+        for keyword in candidates:
+            has_index = keyword.index_range is not None
+            if has_index == (index is not None):
+                return keyword
+        return candidates[0] if candidates else None
+
+    def names(self) -> list[str]:
+        return sorted({k.name for k in self.keywords if k.kind not in (ASCII_ONLY, OTHER_PRODUCT)})
+
+
+@lru_cache(maxsize=1)
+def load() -> ArcusCatalog:
+    return ArcusCatalog(generic.load("arcus"))

@@ -1,0 +1,20 @@
+"""The Arcus frontend: text → syntax tree → IR, with every Arcus check."""
+
+from __future__ import annotations
+
+from mcc.compiler.arcus import checks, parser
+from mcc.compiler.arcus.lower import Lowering
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.driver import Analysis
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import SourceFile
+
+
+def analyze(source: SourceFile, profile: Profile) -> Analysis:
+    diags = Diagnostics()
+    tree = parser.parse(source, diags)
+    lowering = Lowering(tree, profile, diags)
+    module = lowering.run()
+    checks.check_calls(lowering, diags)
+    checks.check_comments(tree, lowering, diags)
+    return Analysis(source, tree, module, diags)

@@ -1,0 +1,437 @@
+"""Lowering an Arcus syntax tree to the shared IR, matching the block structure on the way.
+
+An Arcus program is the main program, `END`, then `SUB n ... ENDSUB` blocks (L2071). The lowering
+makes one MAIN routine ("main") and one SUBROUTINE routine per SUB ("SUB1", number 1); inside a
+routine IF/ELSEIF/ELSE/ENDIF and WHILE/ENDWHILE become basic blocks joined by `Branch` and `Jump`
+terminators; `END` is an `End` terminator, `ENDSUB` a `Return`, `GOSUB n` a `Call`.
+
+Block structure is matched here with a stack, not by the grammar, so that a missing ENDIF is one
+diagnostic naming both ends and the rest of the file is still lowered: a closer that does not
+match the innermost open block closes the blocks above the one it matches (reported once), and
+blocks left open at the end of the file are closed there.
+
+Moves: the IR `Move` carries ABSOLUTE or RELATIVE when the ABS/INC mode in force is known on every
+path to it (a forward data-flow pass, `modes.py`), MODAL otherwise; ABS and INC themselves stay in
+the IR as `Native` operations so that the mode switch is written back where the source had it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+from mcc.compiler import ir
+from mcc.compiler.arcus import catalog as cat
+from mcc.compiler.arcus import modes
+from mcc.compiler.arcus import syntax as st
+from mcc.compiler.arcus.resolve import (ASSIGN, BARE, COLON, CONDITION, CONTROL, MOVE, NUMBERED, WRITE, Resolved,
+                                        Resolver)
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import Span
+
+DIALECT = "arcus"
+UNITS = {"pps": ir.Unit.STEPS_PER_S, "ms": ir.Unit.MS, "pulses": ir.Unit.STEPS}
+MOTION = {"max_speed": ir.MotionParam.MAX_SPEED, "initial_speed": ir.MotionParam.INITIAL_SPEED,
+          "accel": ir.MotionParam.ACCEL}
+HOME_METHODS = {0: "switch", 1: "limit", 2: "switch+index", 3: "index"}  # ASCII homing modes (L656-L680)
+OPENERS = {"ENDIF": "IF", "ENDWHILE": "WHILE", "ENDSUB": "SUB"}
+CLOSERS = {opener: closer for closer, opener in OPENERS.items()}
+
+
+def sub_name(number: int) -> str:
+    return f"SUB{number}"
+
+
+@dataclass
+class Frame:
+    """An open IF, WHILE or SUB block."""
+
+    kind: str  # IF | WHILE | SUB
+    opener: Resolved
+    join: ir.Block | None = None  # IF: the block after ENDIF; WHILE: the header
+    pending: ir.Branch | None = None  # the branch whose false edge is not yet placed
+    else_span: Span | None = None
+    routine: ir.Routine | None = None  # SUB: the subroutine; the main block to resume is `resume`
+    resume: ir.Block | None = None
+
+    @property
+    def span(self) -> Span:
+        return self.opener.span
+
+
+@dataclass
+class Program:
+    """What the whole-program checks need besides the IR."""
+
+    subs: dict[int, Resolved] = field(default_factory=dict)
+    calls: list[Resolved] = field(default_factory=list)
+    end: Resolved | None = None  # the top-level END of the main program
+    subs_before_end: list[Resolved] = field(default_factory=list)
+
+
+class Lowering:
+    def __init__(self, tree: st.SyntaxTree, profile: Profile, diags: Diagnostics):
+        self.tree = tree
+        self.profile = profile
+        self.diags = diags
+        self.resolver = Resolver(profile, diags)
+        self.cat = self.resolver.cat
+        self.module = ir.Module(DIALECT, profile.name, path=tree.path)
+        self.main = ir.Routine("main", ir.RoutineKind.MAIN)
+        self.module.routines.append(self.main)
+        self.program = Program()
+        self.routine = self.main
+        self.labels = 0
+        self.block: ir.Block | None = self.new_block()
+        self.stack: list[Frame] = []
+        self.dead_warned = False
+        self.last_span: Span | None = None
+        self.builders: dict[str, Callable[[Resolved], ir.Op]] = {
+            "max_speed": self.set_motion, "initial_speed": self.set_motion, "accel": self.set_motion,
+            "jog": self.jog, "home": self.home, "stop": self.stop, "abort": self.stop,
+            "wait_motion": self.wait, "delay": self.delay, "outputs": self.output, "output": self.output,
+            "position": self.position, "assign": self.assign, "move": self.move, "arc": self.arc,
+            "circle": self.arc,
+        }
+
+    # driver ------------------------------------------------------------------------------------
+    def run(self) -> ir.Module:
+        for line in self.tree.lines:
+            if line.statement is None:
+                continue
+            res = self.resolver.resolve(line)
+            self.statement(res)
+            self.last_span = res.span
+        self.finish()
+        modes.assign_move_modes(self.module, self.profile)
+        return self.module
+
+    def statement(self, res: Resolved) -> None:
+        shape = res.shape
+        if shape == CONDITION:
+            {"IF": self.open_if, "ELSEIF": self.elseif, "WHILE": self.open_while}[res.stmt.keyword](res)
+        elif shape == CONTROL:
+            {"ELSE": self.else_, "ENDIF": self.close, "ENDWHILE": self.close, "ENDSUB": self.close,
+             "END": self.end}[res.name](res)
+        elif shape == NUMBERED:
+            if res.name == "SUB":
+                self.open_sub(res)
+            elif res.name == "GOSUB":
+                self.program.calls.append(res)
+                if res.valid:
+                    self.emit(res, ir.Call(sub_name(res.number), span=res.span))
+        elif shape in (MOVE, BARE, WRITE, ASSIGN, COLON):
+            builder = self.builders.get(res.keyword.ir, self.native)
+            self.emit(res, builder(res))
+
+    # blocks ------------------------------------------------------------------------------------
+    def new_block(self, span: Span | None = None) -> ir.Block:
+        self.labels += 1
+        block = ir.Block(f"%{self.labels}", span=span)
+        self.routine.blocks.append(block)
+        return block
+
+    def current(self, res: Resolved) -> ir.Block:
+        """The block to add to; after the top-level END, a new unreachable one (reported)."""
+        if self.block is None:
+            if not self.dead_warned:
+                self.diags.add("A110", res.span, "this line is never executed: it follows END and is not in a SUB "
+                                                 "(move it before END, or into a SUB ... ENDSUB)")
+                self.dead_warned = True
+            self.block = self.new_block(res.span)
+        elif self.block.span is None:
+            self.block.span = res.span
+        return self.block
+
+    def emit(self, res: Resolved, op: ir.Op | None) -> None:
+        block = self.current(res)
+        if op is not None:
+            block.ops.append(op)
+
+    def terminate(self, res: Resolved | None, term: ir.Terminator) -> None:
+        if res is not None:
+            block = self.current(res)
+        elif self.block is None:
+            return
+        else:
+            block = self.block
+        if block.terminator is None:
+            block.terminator = term
+
+    # IF / ELSEIF / ELSE / ENDIF ------------------------------------------------------------------
+    def cond(self, res: Resolved) -> ir.Cond:
+        comp = res.stmt.condition.first
+        return ir.Compare(comp.op, self.expr(comp.left), self.expr(comp.right), comp.span)
+
+    def open_if(self, res: Resolved) -> None:
+        branch = ir.Branch(self.cond(res), "", "", res.span)
+        self.terminate(res, branch)
+        then = self.new_block(res.span)
+        branch.then = then.label
+        self.stack.append(Frame("IF", res, join=ir.Block("", span=res.span), pending=branch))
+        self.block = then
+
+    def innermost_if(self, res: Resolved, what: str) -> Frame | None:
+        """The IF an ELSE/ELSEIF belongs to, or None (reported)."""
+        if self.stack and self.stack[-1].kind == "IF":
+            return self.stack[-1]
+        inner = next((f for f in reversed(self.stack) if f.kind == "IF"), None)
+        if inner is None:
+            self.diags.add("A112", res.span, f"{what} without IF: there is no open IF block here")
+        else:
+            top = self.stack[-1]
+            self.diags.add("A113", res.span,
+                           f"{what} belongs to the IF of line {inner.span.line}, but the {top.kind} of line "
+                           f"{top.span.line} is still open: close it with {CLOSERS[top.kind]} first",
+                           notes=(f"{top.span.label}: the {top.kind} opened here",
+                                  f"{inner.span.label}: the IF opened here"))
+        return None
+
+    def join_label(self, frame: Frame) -> str:
+        if not frame.join.label:
+            self.labels += 1
+            frame.join.label = f"%{self.labels}"
+        return frame.join.label
+
+    def elseif(self, res: Resolved) -> None:
+        frame = self.innermost_if(res, "ELSEIF")
+        if frame is None:
+            return
+        if frame.else_span is not None:
+            self.diags.add("A114", res.span, f"ELSEIF after the ELSE of line {frame.else_span.line}: move it "
+                                             "before the ELSE (ELSE is the last branch of an IF)",
+                           notes=(f"{frame.else_span.label}: the ELSE is here",
+                                  f"{frame.span.label}: the IF opened here"))
+            return
+        self.terminate(res, ir.Jump(self.join_label(frame), res.span))
+        test = self.new_block(res.span)
+        frame.pending.otherwise = test.label
+        branch = ir.Branch(self.cond(res), "", "", res.span)
+        test.terminator = branch
+        self.block = self.new_block(res.span)
+        branch.then = self.block.label
+        frame.pending = branch
+
+    def else_(self, res: Resolved) -> None:
+        frame = self.innermost_if(res, "ELSE")
+        if frame is None:
+            return
+        if frame.else_span is not None:
+            self.diags.add("A114", res.span, f"a second ELSE in the IF of line {frame.span.line} (the first is at "
+                                             f"line {frame.else_span.line}): an IF has at most one ELSE",
+                           notes=(f"{frame.else_span.label}: the first ELSE is here",
+                                  f"{frame.span.label}: the IF opened here"))
+            return
+        self.terminate(res, ir.Jump(self.join_label(frame), res.span))
+        self.block = self.new_block(res.span)
+        frame.pending.otherwise = self.block.label
+        frame.pending = None
+        frame.else_span = res.span
+
+    def close_if(self, frame: Frame, span: Span) -> None:
+        label = self.join_label(frame)
+        self.terminate(None, ir.Jump(label, span))
+        if frame.pending is not None:
+            frame.pending.otherwise = label
+        frame.join.span = span
+        self.routine.blocks.append(frame.join)
+        self.block = frame.join
+
+    # WHILE / ENDWHILE ------------------------------------------------------------------------------
+    def open_while(self, res: Resolved) -> None:
+        header = self.new_block(res.span)
+        self.terminate(res, ir.Jump(header.label, res.span))
+        branch = ir.Branch(self.cond(res), "", "", res.span)
+        header.terminator = branch
+        body = self.new_block(res.span)
+        branch.then = body.label
+        self.stack.append(Frame("WHILE", res, join=header, pending=branch))
+        self.block = body
+
+    def close_while(self, frame: Frame, span: Span) -> None:
+        self.terminate(None, ir.Jump(frame.join.label, span))
+        self.block = self.new_block(span)
+        frame.pending.otherwise = self.block.label
+
+    # SUB / ENDSUB / END ------------------------------------------------------------------------------
+    def open_sub(self, res: Resolved) -> None:
+        if self.stack:
+            outer = self.stack[0]
+            self.diags.add("A115", res.span,
+                           f"SUB inside the {outer.kind} of line {outer.span.line}: subroutines cannot be nested; "
+                           f"close the {outer.kind} first and put subroutines after END",
+                           notes=(f"{outer.span.label}: the {outer.kind} opened here",))
+            while self.stack:
+                self.close_frame(self.stack.pop(), res.span)
+        number = res.number
+        if number in self.program.subs and res.valid:
+            first = self.program.subs[number]
+            self.diags.add("A107", res.number_span or res.span,
+                           f"SUB {number} is already defined at line {first.span.line}: give each subroutine its "
+                           "own number", notes=(f"{first.span.label}: the first SUB {number}",))
+        elif res.valid:
+            self.program.subs[number] = res
+        if self.program.end is None:
+            self.program.subs_before_end.append(res)
+        name = sub_name(number) if res.valid and self.program.subs.get(number) is res else f"%SUB{number}.{self.labels}"
+        routine = ir.Routine(name, ir.RoutineKind.SUBROUTINE, span=res.span, number=number)
+        self.module.routines.append(routine)
+        resume = self.block if self.program.end is None else None
+        self.stack.append(Frame("SUB", res, routine=routine, resume=resume))
+        self.routine = routine
+        self.block = self.new_block(res.span)
+        self.dead_warned = False
+
+    def close_sub(self, frame: Frame, span: Span) -> None:
+        self.terminate(None, ir.Return(span))
+        self.routine = self.main
+        self.block = frame.resume
+        self.dead_warned = False
+
+    def end(self, res: Resolved) -> None:
+        self.terminate(res, ir.End(res.span))
+        if not self.stack and self.routine is self.main:
+            if self.program.end is None:
+                self.program.end = res
+            self.block = None
+        else:
+            self.block = self.new_block(res.span)  # unreachable until the enclosing block closes
+
+    # closing blocks ------------------------------------------------------------------------------------
+    def close(self, res: Resolved) -> None:
+        kind = OPENERS[res.name]
+        position = next((i for i in range(len(self.stack) - 1, -1, -1) if self.stack[i].kind == kind), None)
+        if position is None:
+            self.diags.add("A112", res.span, f"{res.name} without {kind}: there is no open {kind} block here")
+            return
+        if position != len(self.stack) - 1:
+            top = self.stack[-1]
+            opener = self.stack[position]
+            self.diags.add("A113", res.span,
+                           f"{res.name} closes the {kind} of line {opener.span.line}, but the {top.kind} of line "
+                           f"{top.span.line} is still open: add {CLOSERS[top.kind]} before this line",
+                           notes=(f"{top.span.label}: the {top.kind} opened here",
+                                  f"{opener.span.label}: the {kind} opened here"))
+            while len(self.stack) - 1 > position:
+                self.close_frame(self.stack.pop(), res.span)
+        self.close_frame(self.stack.pop(), res.span)
+
+    def close_frame(self, frame: Frame, span: Span) -> None:
+        if frame.kind == "IF":
+            self.close_if(frame, span)
+        elif frame.kind == "WHILE":
+            self.close_while(frame, span)
+        else:
+            self.close_sub(frame, span)
+
+    def finish(self) -> None:
+        end_span = self.last_span
+        while self.stack:
+            frame = self.stack.pop()
+            closer = CLOSERS[frame.kind]
+            self.diags.add("A111", frame.opener.stmt.span if frame.kind != "SUB" else frame.span,
+                           f"this {frame.kind} is never closed: add {closer} where the block ends",
+                           notes=(f"{end_span.label if end_span else frame.span.label}: the file ends here",))
+            self.close_frame(frame, end_span or frame.span)
+        if self.block is not None and self.block.terminator is None:
+            self.block.terminator = ir.FallOff(self.last_span)
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                if block.terminator is None:
+                    block.terminator = ir.FallOff(block.span) if routine.kind is ir.RoutineKind.MAIN \
+                        else ir.Return(block.span)
+        self.main.span = self.main.blocks[0].span if self.main.blocks else None
+        program = self.program
+        if program.end is not None:
+            for res in program.subs_before_end:
+                self.diags.add("A108", res.span,
+                               f"SUB {res.number} comes before the END of line {program.end.span.line}: the main "
+                               "program would run into it; move the subroutines after END (L2071)",
+                               notes=(f"{program.end.span.label}: END is here",))
+        elif program.subs_before_end:
+            first = program.subs_before_end[0]
+            self.diags.add("A109", first.span,
+                           "the program has subroutines but no END: the main program runs on into SUB "
+                           f"{first.number}; add END before the first SUB (L2071)")
+
+    # operations ------------------------------------------------------------------------------------
+    def axis(self, res: Resolved) -> str:
+        """The axis letter written, "*" for the global form of a setting (HSPD), else ""."""
+        return res.match.axis or (ir.ALL_AXES if res.keyword.axis == "optional" else "")
+
+    def unit(self, res: Resolved) -> ir.Unit:
+        return UNITS.get(res.keyword.unit, ir.Unit.NONE)
+
+    def set_motion(self, res: Resolved) -> ir.Op:
+        return ir.SetMotion(MOTION[res.keyword.ir], self.axis(res), self.expr(res.value, self.unit(res)), res.span)
+
+    def jog(self, res: Resolved) -> ir.Op:
+        return ir.Slew(res.match.axis, direction=res.match.direction, span=res.span)
+
+    def home(self, res: Resolved) -> ir.Op:
+        method = HOME_METHODS.get(int(res.keyword.get("home_mode", 0)), "switch")
+        return ir.Home(res.match.axis, method, res.match.direction, span=res.span)
+
+    def stop(self, res: Resolved) -> ir.Op:
+        return ir.Stop(res.match.axis or ir.ALL_AXES, ramp=res.keyword.ir == "stop", span=res.span)
+
+    def wait(self, res: Resolved) -> ir.Op:
+        return ir.WaitMotion(res.match.axis, res.span)
+
+    def delay(self, res: Resolved) -> ir.Op:
+        return ir.Delay(self.expr(res.value, ir.Unit.MS), res.span)
+
+    def output(self, res: Resolved) -> ir.Op:
+        return ir.SetOutput(res.match.index, self.expr(res.value), res.span)
+
+    def position(self, res: Resolved) -> ir.Op:
+        return ir.SetPosition(res.match.axis, self.expr(res.value, ir.Unit.STEPS), res.span)
+
+    def assign(self, res: Resolved) -> ir.Op:
+        target = res.stmt.target
+        return ir.Assign(self.variable(res.spelled, target.span), self.expr(res.value), res.span)
+
+    def move(self, res: Resolved) -> ir.Op:
+        targets = tuple((t.axis, self.expr(t.value, ir.Unit.STEPS)) for t in res.targets)
+        return ir.Move(ir.MoveMode.MODAL, targets, span=res.span)
+
+    def arc(self, res: Resolved) -> ir.Op:
+        values = [ir.Const(n.value, ir.Unit.STEPS, n.span) for n in res.operands]
+        angle = None
+        if res.keyword.ir == "arc":
+            angle = ir.Const(res.operands[2].value, ir.Unit.MILLIDEGREES, res.operands[2].span)
+        axes = tuple(self.cat.limit("axes.arc_circle_axes", ["X", "Y"]))
+        return ir.Arc((axes[0], axes[1]), (values[0], values[1]), clockwise=res.match.suffix == "P", angle=angle,
+                      span=res.span)
+
+    def native(self, res: Resolved) -> ir.Op:
+        args: tuple = ()
+        if res.shape == WRITE:
+            args = (self.expr(res.value, self.unit(res)),)
+        return ir.Native(DIALECT, res.spelled, args, form="=" if res.shape == WRITE else "",
+                         axis=res.match.axis, span=res.span)
+
+    # expressions -------------------------------------------------------------------------------------
+    def variable(self, name: str, span: Span) -> ir.Var:
+        if name not in self.module.variables:
+            self.module.variables[name] = ir.Variable(name, ir.VarType.INT32, span=span)
+        return ir.Var(name, span)
+
+    def expr(self, node: st.Node, unit: ir.Unit = ir.Unit.NONE) -> ir.Expr:
+        if isinstance(node, st.Number):
+            return ir.Const(node.value, unit, node.span)
+        if isinstance(node, st.Ref):
+            info = self.resolver.ref(node)
+            if info is None:
+                return ir.DeviceRef(DIALECT, node.part.key, span=node.span)
+            if info.is_variable:
+                return self.variable(info.spelled, node.span)
+            keyword, match = info.keyword, info.match
+            axis = match.axis or (ir.ALL_AXES if keyword.axis == "optional" else "")
+            return ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
+        if isinstance(node, st.Unary):
+            return ir.UnOp(node.op, self.expr(node.operand), node.span)
+        if isinstance(node, st.Binary):
+            return ir.BinOp(node.op, self.expr(node.left), self.expr(node.right), node.span)
+        raise TypeError(f"unexpected node {type(node).__name__}")

@@ -1,0 +1,244 @@
+"""Parsing Arcus text into the syntax tree, with recovery at line ends.
+
+The common case (a file without syntax errors) is one LALR pass with the tree built directly by
+the parser's callbacks. When that pass fails, the file is parsed again line by line with the
+`line` start symbol, so a file with three bad lines gets three diagnostics and every other line is
+still checked. This is the scheme of compiler/mcode/parser.py.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from pathlib import Path
+
+from lark import Lark, Token, Transformer
+from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+from mcc.compiler.arcus import syntax as st
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.span import SourceFile, Span
+
+GRAMMAR = Path(__file__).resolve().parent.parent.parent / "grammars" / "arcus.lark"
+
+TOKEN_NAMES = {
+    "WORD": "a keyword", "NUMBER": "a number", "COMMENT": "a comment", "_NL": "the end of the line",
+    "$END": "the end of the file", "EQ": "'='", "CONDKW": "IF/ELSEIF/WHILE", "LOGIC": "AND/OR",
+    "PLUS": "'+'", "MINUS": "'-'", "STAR": "'*'", "SLASH": "'/'", "PERCENT": "'%'", "AMP": "'&'",
+    "PIPE": "'|'", "SHL": "'<<'", "SHR": "'>>'", "LE": "'<='", "GE": "'>='", "NE": "'!='", "LT": "'<'",
+    "GT": "'>'", "TILDE": "'~'", "COLON": "':'",
+}
+
+# Binding strength of the binary operators. The language allows one operator per statement
+# (L2675), so precedence only matters for the expressions mcc reports as errors; it follows C so
+# that the IR keeps the meaning a reader expects.
+PRECEDENCE = {"|": 1, "&": 2, "<<": 3, ">>": 3, "+": 4, "-": 4, "*": 5, "/": 5, "%": 5}
+
+
+class Builder(Transformer):
+    """Builds `syntax` nodes from the parser's callbacks. The deltas shift positions when one line
+    is parsed on its own (recovery mode)."""
+
+    def __init__(self) -> None:
+        super().__init__(visit_tokens=False)
+        self.path = ""
+        self.line_delta = 0
+        self.offset_delta = 0
+
+    def span(self, tok: Token) -> Span:
+        return Span(self.path, tok.line + self.line_delta, tok.column, tok.end_line + self.line_delta,
+                    tok.end_column, tok.start_pos + self.offset_delta, tok.end_pos + self.offset_delta)
+
+    # lines ---------------------------------------------------------------------------------------
+    def start(self, children):
+        return children
+
+    def line(self, children):
+        line = st.Line(0)
+        for child in children:
+            if isinstance(child, Token):
+                if child.type == "COMMENT":
+                    line.comment = st.Comment(str(child), self.span(child))
+            else:
+                line.statement = child
+        return line
+
+    # statements ----------------------------------------------------------------------------------
+    def command(self, children):
+        parts = [c for c in children if isinstance(c, st.Part)]
+        colon = next((c for c in children if isinstance(c, list)), [])
+        end = colon[-1].span if colon else parts[-1].span
+        return st.Command(parts, colon, parts[0].span.to(end))
+
+    def colon_args(self, children):
+        return [c for c in children if not isinstance(c, Token)]
+
+    def part(self, children):
+        word = children[0]
+        part = st.Part(str(word), self.span(word))
+        for tok in children[1:]:
+            if tok.type == "NUMBER":
+                part.number, part.number_span = str(tok), self.span(tok)
+            else:
+                part.sign, part.sign_span = str(tok), self.span(tok)
+        return part
+
+    def assignment(self, children):
+        target, _, value = children
+        return st.Assignment(target, value, target.span.to(value.span))
+
+    def conditional(self, children):
+        keyword, condition = children
+        span = self.span(keyword)
+        return st.Conditional(str(keyword).upper(), span, condition, span.to(condition.span))
+
+    def condition(self, children):
+        first = children[0]
+        cond = st.Condition(first, first.span)
+        for i in range(1, len(children) - 1, 2):
+            cond.more.append((str(children[i]).upper(), children[i + 1]))
+        cond.span = first.span.to(children[-1].span)
+        return cond
+
+    def comparison(self, children):
+        left, op, right = children[0], children[1], children[2]
+        comp = st.Comparison(str(op), left, right, left.span.to(right.span))
+        for i in range(3, len(children) - 1, 2):
+            comp.chained.append((str(children[i]), children[i + 1]))
+        comp.span = left.span.to(children[-1].span)
+        return comp
+
+    def cmp_op(self, children):
+        return children[0]
+
+    def binop(self, children):
+        return children[0]
+
+    def expr(self, children):
+        """Operands and operators in a row; folded by precedence climbing, left-associative."""
+        operands = children[0::2]
+        ops = [str(t) for t in children[1::2]]
+        if not ops:
+            return operands[0]
+        position = 0
+
+        def climb(min_prec: int):
+            nonlocal position
+            left = operands[position]
+            while position < len(ops) and PRECEDENCE[ops[position]] >= min_prec:
+                op = ops[position]
+                position += 1
+                right = climb(PRECEDENCE[op] + 1)
+                left = st.Binary(op, left, right, left.span.to(right.span))
+            return left
+
+        return climb(0)
+
+    # operands ------------------------------------------------------------------------------------
+    def number(self, children):
+        return st.Number(str(children[0]), self.span(children[0]))
+
+    def negative(self, children):
+        sign, digits = children
+        return st.Number("-" + str(digits), self.span(sign).to(self.span(digits)))
+
+    def number_plus(self, children):
+        sign, digits = children
+        return st.Number(str(digits), self.span(sign).to(self.span(digits)))
+
+    def bitnot(self, children):
+        tilde, operand = children
+        return st.Unary("~", operand, self.span(tilde).to(operand.span))
+
+    def ref(self, children):
+        part = st.Part(str(children[0]), self.span(children[0]))
+        if len(children) > 1:
+            part.number, part.number_span = str(children[1]), self.span(children[1])
+        return st.Ref(part)
+
+
+@lru_cache(maxsize=1)
+def _parser() -> tuple[Lark, Builder]:
+    builder = Builder()
+    parser = Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
+                  start=["start", "line"], transformer=builder, maybe_placeholders=False, cache=False)
+    return parser, builder
+
+
+def bare_parser() -> Lark:
+    """The same grammar with no callbacks: the baseline the benchmark compares against."""
+    return Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual")
+
+
+def describe_error(exc: UnexpectedInput) -> str:
+    if isinstance(exc, UnexpectedCharacters):
+        char = exc.char
+        shown = repr(char) if not char.isprintable() or char == " " else f"'{char}'"
+        hint = ""
+        if char in "()":
+            hint = ": Arcus has no parentheses; compute one operation per line into a variable"
+        elif char == ".":
+            hint = ": Arcus numbers are whole numbers (angles in 1/1000 degree, ARC 45000 = 45 degrees)"
+        elif char == '"':
+            hint = ": the standalone language has no text strings"
+        return f"unexpected character {shown}{hint}"
+    if isinstance(exc, (UnexpectedToken, UnexpectedEOF)):
+        tok = getattr(exc, "token", None)
+        if tok is None or tok.type in ("$END", "_NL"):
+            return "this statement is incomplete: a value is missing at the end of the line"
+        if tok.type == "WORD" or tok.type == "CONDKW":
+            return (f"unexpected '{tok}': one statement per line (put '{tok}' on its own line; "
+                    "the manual's examples were flattened by the PDF conversion)")
+        expected = sorted({TOKEN_NAMES.get(t, f"'{t}'") for t in getattr(exc, "expected", ()) if t != "COMMENT"})
+        found = f"'{tok}'" if tok.type not in TOKEN_NAMES else f"{TOKEN_NAMES[tok.type]} '{tok}'"
+        hint = f" (expected {', '.join(expected[:6])})" if expected else ""
+        return f"unexpected {found}{hint}"
+    return str(exc).splitlines()[0]
+
+
+def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
+    parser, builder = _parser()
+    text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
+    builder.path = source.path
+    builder.line_delta = builder.offset_delta = 0
+    try:
+        lines = parser.parse(text, start="start")
+    except LarkError:
+        lines = None
+    tree = st.SyntaxTree(source.path)
+    if lines is not None:
+        for number, line in enumerate(lines, 1):  # one line node per physical line, in order
+            line.number = number
+        tree.lines = lines
+        return tree
+    tree.lines = _parse_by_line(source, parser, builder, diags)
+    return tree
+
+
+def _parse_by_line(source: SourceFile, parser: Lark, builder: Builder, diags: Diagnostics) -> list[st.Line]:
+    lines = []
+    starts = source.line_starts
+    for number in range(1, source.line_count + 1):
+        text = source.line_text(number)
+        if number == source.line_count and not text:
+            break  # the empty remainder after the final newline
+        builder.line_delta = number - 1
+        builder.offset_delta = starts[number - 1]
+        try:
+            line = parser.parse(text + "\n", start="line")
+        except UnexpectedInput as exc:
+            column = getattr(exc, "column", 1) or 1
+            if isinstance(exc, UnexpectedToken) and exc.token.type in ("_NL", "$END"):
+                column = len(text.rstrip()) + 1
+            column = max(1, min(column, len(text) + 1))
+            start = starts[number - 1] + column - 1
+            end_col = column + (1 if column <= len(text) else 0)
+            span = Span(source.path, number, column, number, end_col, start, start + (end_col - column))
+            diags.add("A001", span, describe_error(exc))
+            line = st.Line(number, error=True)
+        except LarkError as exc:  # pragma: no cover - other parser failures are still syntax errors
+            diags.add("A001", source.line_span(number), str(exc).splitlines()[0])
+            line = st.Line(number, error=True)
+        line.number = number
+        lines.append(line)
+    builder.line_delta = builder.offset_delta = 0
+    return lines
