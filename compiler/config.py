@@ -17,6 +17,7 @@ e.g. an unknown code) becomes a diagnostic on the TOML file, at the line of the 
 
 from __future__ import annotations
 
+import difflib
 import fnmatch
 import os
 import re
@@ -289,7 +290,8 @@ def display_path(path: str) -> str:
 def parse(text: str, path: str, shown: str | None = None) -> Loaded:
     source = SourceFile(shown or path, text)
     reader = Reader(source, Path(path))
-    return Loaded(reader.read(), reader.diags.items, source)
+    settings = reader.read()
+    return Loaded(settings, sorted(reader.diags.items, key=Diagnostic.sort_key), source)
 
 
 class Reader:
@@ -315,8 +317,7 @@ class Reader:
         try:
             data = toml.loads(self.source.text)
         except toml.TOMLDecodeError as exc:
-            line, col = toml_error_position(str(exc))
-            at = min(self.source.line_starts[min(line, self.source.line_count) - 1] + col - 1, len(self.source.text))
+            at = toml_error_offset(self.source, str(exc))
             span = self.source.span(at, at)
             self.diags.add("G103", span, f"invalid TOML: {exc}")
             return Settings(root=root, path=str(self.path))
@@ -328,7 +329,7 @@ class Reader:
             return Settings(root=root, path=str(self.path))
         for key in table:
             if key not in KNOWN_KEYS:
-                near = [k for k in KNOWN_KEYS if k.replace("-", "") == key.replace("-", "").replace("_", "")]
+                near = difflib.get_close_matches(key.replace("_", "-"), KNOWN_KEYS, n=1, cutoff=0.6)
                 hint = f"; did you mean '{near[0]}'?" if near else f" (known keys: {', '.join(KNOWN_KEYS)})"
                 self.error("G102", (key,), f"unknown configuration key '{key}'{hint}")
         lists = {key: self.codes(table, key) for key in ("select", "extend-select", "ignore")}
@@ -436,9 +437,13 @@ class Reader:
         return value
 
 
-def toml_error_position(message: str) -> tuple[int, int]:
+def toml_error_offset(source: SourceFile, message: str) -> int:
+    """Where tomllib's message says the error is ("at line 3, column 7" or "at end of document")."""
     match = re.search(r"line (\d+), column (\d+)", message)
-    return (int(match.group(1)), int(match.group(2))) if match else (1, 1)
+    if match is None:
+        return len(source.text.rstrip("\n")) if "end of document" in message else 0
+    line = min(int(match.group(1)), source.line_count)
+    return min(source.line_starts[line - 1] + int(match.group(2)) - 1, len(source.text))
 
 
 # ---------------------------------------------------------------------------------------------

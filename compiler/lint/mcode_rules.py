@@ -449,7 +449,16 @@ def unused_variable(ctx: Context) -> None:
                                                  safe=False)
         what = "only written, never read" if name in mentioned else "never used"
         host = " (if a host reads it with PR, suppress this line)" if var.scope == "global" else ""
-        ctx.report(var.span, f"variable {name} is {what}{host}", fix=fix)
+        ctx.report(declared_name(ctx, var.span), f"variable {name} is {what}{host}", fix=fix)
+
+
+def declared_name(ctx: Context, span):
+    """The span of the name in `VA <name>` (the IR keeps the whole statement's span)."""
+    for stmt in ctx.tree.statements():
+        if stmt.span.line == span.line and stmt.head.key == "VA" and stmt.args:
+            arg = stmt.args[0]
+            return (arg.left if isinstance(arg, st.Comparison) else arg).span
+    return span
 
 
 @rule("M307", MCODE)

@@ -1,0 +1,22 @@
+"""Helpers for the linter's tests: lint a text without touching the disk."""
+
+from __future__ import annotations
+
+import textwrap
+
+from mcc.compiler.config import Settings
+from mcc.compiler.lint import engine
+
+
+def lint(text: str, path: str = "program.mxt", settings: Settings | None = None):
+    """The diagnostics of `text` (dedented) as `mcc lint` would report them."""
+    _, diags = engine.lint_text(path, textwrap.dedent(text).lstrip("\n"), settings or Settings())
+    return diags
+
+
+def codes(text: str, path: str = "program.mxt", settings: Settings | None = None) -> list[str]:
+    return [d.code for d in lint(text, path, settings)]
+
+
+def lines_of(code: str, text: str, path: str = "program.mxt") -> list[int]:
+    return [d.span.line for d in lint(text, path) if d.code == code]
