@@ -9,6 +9,7 @@ here only produces diagnostics.
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 
 from mcc.compiler import ir
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix, Severity
@@ -19,7 +20,7 @@ from mcc.compiler.x150 import naming
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.lower import OPENERS, Lowering, Site
 from mcc.compiler.x150.structure import Unit, sequence_number
-from mcc.compiler.x150.writer import write_routine
+from mcc.compiler.x150.writer import sequence_sizes
 
 PRODUCT_NAMES = {"bdhxe": "BDHX-E", "pdhxe": "PDHX-E", "blhx": "BLHX", "pdhx": "PDHX", "x150ds": "X150DS"}
 QUOTED = re.compile(r'"[^"]*"?')
@@ -31,6 +32,7 @@ UNMARKED = {
 }
 
 
+@lru_cache(maxsize=None)
 def version(text: str) -> tuple[int, ...]:
     return tuple(int(part) for part in re.findall(r"[0-9]+", str(text)))
 
@@ -359,7 +361,7 @@ class Checker:
                 reported.add((target, kind))
                 self.diags.add("X110", site.command.span,
                                f"{site.command.text} runs sequence {site.number}, which opens {kind} {depth} deep, "
-                               f"while {context[kind]} are already open: {min(total, limit + 1 + depth)} > {limit} "
+                               f"while {context[kind]} are already open: {total} > {limit} "
                                "(the controller's nesting is shared across XR calls)")
 
     def check_memory(self) -> None:
@@ -368,11 +370,11 @@ class Checker:
         buffer = int(self.profile.get("limits.command_buffer_bytes", self.cat.limit("command_buffer_bytes", default=2000)))
         ratio = float(self.profile.get("x150.buffer_warn_ratio", 0.9))
         latest: dict[tuple[int, int | None], tuple[Unit, int]] = {}
+        sizes = sequence_sizes(lowering.module, self.profile)
         for unit, routine in zip(lowering.units, lowering.module.routines):
             if not unit.is_sequence or unit.start is None:
                 continue
-            written = write_routine(lowering.module, self.profile, routine)
-            size = written.sequence_bytes.get(routine.name, 0)
+            size = sizes.get(routine.name, 0)
             latest[(unit.number or 0, unit.address)] = (unit, size)
             if size >= ratio * buffer:
                 over = "more than" if size > buffer else "close to"

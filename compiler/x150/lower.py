@@ -92,6 +92,7 @@ class Lowering:
         self.max_depth: dict[str, dict[str, int]] = {}  # routine -> deepest nesting of each construct
         self.nesting = int(profile.get("limits.nesting", self.cat.limit("nesting", default=16)))
         self.defined: set[str] = set()
+        self.device_list: list[int] = []  # devices that have sequences defined for them
         self.generated = 0
         self.counters = 0
         self.unit: Unit | None = None
@@ -108,6 +109,7 @@ class Lowering:
     def run(self) -> ir.Module:
         self.units = split_units(self.tree, self.diags)
         self.name_units()
+        self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
         kinds = self.routine_kinds()
         for unit in self.units:
             self.lower_unit(unit, kinds)
@@ -157,11 +159,9 @@ class Lowering:
             exact = naming.sequence_name(number, None)
             if exact in self.defined:
                 return (exact,)
-            return tuple(n for n in (naming.sequence_name(number, d) for d in self.devices()) if n in self.defined)
+            return tuple(n for n in (naming.sequence_name(number, d) for d in self.device_list) if n in self.defined)
         return tuple(n for n in naming.candidates(number, address) if n in self.defined)[:1]
 
-    def devices(self) -> list[int]:
-        return sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
 
     # -- units, routines, blocks -----------------------------------------------------------------
     def lower_unit(self, unit: Unit, kinds: dict[str, ir.RoutineKind]) -> None:

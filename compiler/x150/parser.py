@@ -23,7 +23,7 @@ from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedInput
 
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix
-from mcc.compiler.span import SourceFile, Span
+from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.tokens import CommandReader, LineSpans, Piece
@@ -202,9 +202,15 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
     return commands
 
 
+def _has_value(command: st.Command) -> bool:
+    arg = command.arg
+    return arg is not None and not (isinstance(arg, st.VarStatement) and arg.value is None)
+
+
 def _may_take_next(command: st.Command) -> bool:
+    """A command written without its value (`1OUTL`, `IF`, `GOTO`, `VAR2`) may take the next word."""
     info = command.info
-    return (info is not None and command.arg is None and info.arg not in NOT_A_VALUE
+    return (info is not None and not _has_value(command) and info.arg not in NOT_A_VALUE
             and not (command.problems and not info.value_required))
 
 
@@ -213,13 +219,10 @@ def _rejoin(reader: CommandReader, spans: LineSpans, command: st.Command, follow
     if following.ok and not command.problems:
         return None  # the next token is a command of its own: `1OUTL 1A10` is a report then a setting
     joined = reader.read(Piece(first[0] + second[0], first[1], len(first[0]), second[1]), spans)
-    if joined.mnemonic != command.mnemonic or joined.arg is None:
+    if joined.mnemonic != command.mnemonic or not _has_value(joined):
         return None
     if joined.problems and not command.problems:
         return None
     joined.rejoined = True
     return joined
 
-
-def comment_span(comment: st.Comment) -> Span:
-    return comment.span

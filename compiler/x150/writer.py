@@ -147,8 +147,6 @@ class Writer:
         if self.in_sequence:
             end = routine.blocks[-1].terminator if routine.blocks else None
             self.emit(f"{prefix}XT", getattr(end, "span", None) or routine.span)
-            self.out.sequence_bytes[routine.name] = sum(len(line.text) + 1 for line in self.out.lines
-                                                        if line.sequence == routine.name)
 
     def fallback_span(self) -> Span:
         return Span(self.module.path or "<module>", 1, 1, 1, 1)
@@ -157,6 +155,8 @@ class Writer:
         """Add a line; `stored` lines of a sequence count against its memory (XEn and XDn do not)."""
         sequence = self.routine.name if self.in_sequence and stored else None
         self.out.lines.append(Line(text, tuple(s for s in spans if s is not None), sequence))
+        if sequence is not None:
+            self.out.sequence_bytes[sequence] = self.out.sequence_bytes.get(sequence, 0) + len(text) + 1
 
     # -- steps ---------------------------------------------------------------------------------------
     def write_step(self, step: Step) -> None:
@@ -254,12 +254,13 @@ class Writer:
         axis, target = op.targets[0]
         prefix = self.address(axis)
         span = op.span
+        first, last = ends(span)
         if op.mode is not ir.MoveMode.MODAL and get_mode(self.position_mode, axis) is not op.mode:
             self.emit(prefix + ("MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI"), span)
             set_mode(self.position_mode, axis, op.mode)
         if not (isinstance(target, ir.DeviceRef) and target.dialect == DIALECT and target.name == "D"):
-            self.emit(prefix + "D" + self.value(target, allow_var=True), span)
-        self.emit(prefix + "G", span)
+            self.emit(prefix + "D" + self.value(target, allow_var=True), first)
+        self.emit(prefix + "G", last)
 
     # -- operands ------------------------------------------------------------------------------------
     def value(self, expr, allow_var: bool = True) -> str:
@@ -361,6 +362,17 @@ class Writer:
         return text
 
 
+def ends(span: Span | None) -> tuple[Span | None, Span | None]:
+    """The first and the last character of a span: a Move made of `D..` and `G` maps each written
+    line back to its own source line."""
+    if span is None or span.line == span.end_line:
+        return span, span
+    first = Span(span.file, span.line, span.column, span.line, span.column + 1, span.start, span.start + 1)
+    last = Span(span.file, span.end_line, max(1, span.end_column - 1), span.end_line, span.end_column,
+                max(span.start, span.end - 1), span.end)
+    return first, last
+
+
 def variable_number(name: str) -> int:
     if name.upper().startswith("VAR") and name[3:].isdigit():
         return int(name[3:])
@@ -389,8 +401,10 @@ def write(module: ir.Module, profile: Profile) -> Written:
     return Writer(module, profile).write_module()
 
 
-def write_routine(module: ir.Module, profile: Profile, routine: ir.Routine) -> Written:
-    """One routine alone (the frontend's memory check)."""
+def sequence_sizes(module: ir.Module, profile: Profile) -> dict[str, int]:
+    """The bytes each sequence routine stores, as the backend would write it (the memory check)."""
     writer = Writer(module, profile)
-    writer.write_routine(routine)
-    return writer.out
+    for routine in module.routines:
+        if routine.kind is not ir.RoutineKind.IMMEDIATE:
+            writer.write_routine(routine)
+    return writer.out.sequence_bytes

@@ -1,0 +1,124 @@
+"""The X150 backend: canonical text, statistics, and IR it cannot write."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+from conftest import ROOT, sample_files
+from mcc.backends import x150 as backend
+from mcc.compiler import driver, ir, profiles
+from mcc.compiler.span import Span
+
+from x150_helpers import check, compile_, output
+
+PROFILE = profiles.load("x150-pdhx")
+SPAN = Span("m", 1, 1, 1, 2, 0, 1)
+
+
+def test_canonical_form():
+    text = "xd1 ;stored\n1a10 v5 d4000 g\nIF (IN_1) gosub2 NIF GOTO 3\nxt\nSAVE\n"
+    assert output(text) == ["XE1", "XD1", "1A10", "V5", "D4000", "G", "IF(IN_1)", "XR2", "NIF", "XG3", "XT", "SV"]
+
+
+def test_addresses_of_a_device_sequence_are_written_on_every_line():
+    assert output("1XE1\n1XD1\nA10\n1XT\n1SV\n") == ["1XE1", "1XD1", "1A10", "1XT", "1SV"]
+
+
+def test_b_prefix_and_comments_inside_sequences():
+    lines = output("1XE1\n1XD1 ; a comment\n1BCPE2000 ; another\n1BY\n1XT\n1SV\n")
+    assert lines == ["1XE1", "1XD1", "1BCPE2000", "1BY", "1XT", "1SV"]
+
+
+def test_stats_count_sequence_memory_like_the_check():
+    result = compile_("1XE1\n1XD1\n1A10\n1G\n1XT\n1SV\n")
+    stats = result.listing.stats
+    # 1A10 (4+1) 1G (2+1) 1XT (3+1): XEn and XDn are sent, not stored
+    assert (stats["sequences"], stats["sequence_bytes"], stats["sequence_budget"]) == (1, 12, 8000)
+    assert stats["sequence_bytes_by_device"] == {"1": 12}
+
+
+def test_stats_of_every_sample_agree_with_the_memory_check():
+    for path in sample_files("x150"):
+        result = driver.compile_file(str(path), "x150")
+        assert result.listing is not None, path
+        assert result.listing.stats["sequence_bytes"] > 0
+        assert result.listing.stats["sequence_budget"] == 8000
+
+
+def test_source_map_points_at_the_source_lines():
+    result = compile_("1XE1\n1XD1\n1D4000\n1G\n1XT\n1XR1\n1SV\n")
+    rows = {row["line"]: row["sources"] for row in result.listing.source_map()}
+    assert rows[3] == [("program.x150", 3)] and rows[4] == [("program.x150", 4)]
+
+
+def module(*routines: ir.Routine, dialect: str = "x150") -> ir.Module:
+    return ir.Module(dialect, "test", routines=list(routines))
+
+
+def block(label: str, ops=(), term=None) -> ir.Block:
+    return ir.Block(label, list(ops), term or ir.FallOff(SPAN), SPAN)
+
+
+def test_foreign_native_is_g003_not_a_crash():
+    routine = ir.Routine("main", ir.RoutineKind.MAIN, [block("a", [ir.Native("mcode", "IS", (), span=SPAN)])], SPAN)
+    listing = backend.emit(module(routine, dialect="mcode"), PROFILE)
+    assert [d.code for d in listing.diagnostics] == ["G003"]
+    assert listing.text.splitlines() == ["XE1", "XD1", "XT"]
+
+
+def test_foreign_routines_get_free_sequence_numbers_and_modes():
+    main = ir.Routine("main", ir.RoutineKind.MAIN, [block("a", [
+        ir.Move(ir.MoveMode.ABSOLUTE, (("1", ir.Const(2000, ir.Unit.STEPS)),), span=SPAN),
+        ir.Delay(ir.Const(250, ir.Unit.MS), SPAN), ir.Call("sub", None, SPAN)])], SPAN)
+    sub = ir.Routine("sub", ir.RoutineKind.SUBROUTINE, [block("b", [ir.Save(SPAN)])], SPAN, number=64)
+    listing = backend.emit(module(main, sub, dialect="mcode"), PROFILE)
+    assert not listing.diagnostics.items
+    assert listing.text.splitlines() == ["XE1", "XD1", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT",
+                                         "XE64", "XD64", "SV", "XT"]
+
+
+def test_irreducible_flow_is_x201():
+    # a jump back into the middle of an IF: no X150 construct says that
+    blocks = [block("a", term=ir.Branch(ir.InputMatch(ir.Pattern("_1")), "b", "c", SPAN)),
+              block("b", [ir.Delay(ir.Const(1, ir.Unit.S))], ir.Jump("c", SPAN)),
+              block("c", [ir.Delay(ir.Const(2, ir.Unit.S))], ir.Branch(ir.InputMatch(ir.Pattern("_01")), "b", "d", SPAN)),
+              block("d")]
+    listing = backend.emit(module(ir.Routine("SEQ1", ir.RoutineKind.MAIN, blocks, SPAN, 1)), PROFILE)
+    assert "X201" in [d.code for d in listing.diagnostics]
+    assert "T1" in listing.text and "T2" in listing.text  # written flat, nothing lost
+
+
+def test_expression_that_needs_parentheses_is_x202():
+    value = ir.BinOp("*", ir.Var("VAR2"), ir.BinOp("+", ir.Var("VAR3"), ir.Const(1)))
+    routine = ir.Routine("immediate", ir.RoutineKind.IMMEDIATE, [block("a", [ir.Assign(ir.Var("VAR1"), value, SPAN)])])
+    listing = backend.emit(module(routine), PROFILE)
+    assert [d.code for d in listing.diagnostics] == ["X202"]
+
+
+def test_output_of_every_sample_checks_clean():
+    for path in sample_files("x150"):
+        text = driver.compile_file(str(path), "x150").listing.text
+        again = check(text)
+        assert not [d for d in again.diagnostics if d.severity.value == "error"], path
+
+
+def imports(path: Path) -> set[str]:
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    found = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module:
+            found.add(node.module)
+            found.update(f"{node.module}.{alias.name}" for alias in node.names)
+        elif isinstance(node, ast.Import):
+            found.update(alias.name for alias in node.names)
+    return found
+
+
+def test_backend_does_not_depend_on_the_syntax_tree():
+    """backends/x150.py and what it uses (writer, structurer, naming) see only the IR and the catalog."""
+    forbidden = {"mcc.compiler.x150.syntax", "mcc.compiler.x150.parser", "mcc.compiler.x150.tokens",
+                 "mcc.compiler.x150.lower", "mcc.compiler.x150.checks", "mcc.compiler.x150.structure"}
+    for name in ("backends/x150.py", "compiler/x150/writer.py", "compiler/x150/structurer.py",
+                 "compiler/x150/naming.py"):
+        assert not imports(ROOT / name) & forbidden, name

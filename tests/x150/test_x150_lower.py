@@ -1,0 +1,177 @@
+"""Lowering to the shared IR: routines, constructs as blocks, neutral operations, axes."""
+
+from __future__ import annotations
+
+from mcc.compiler import ir
+
+from x150_helpers import assert_well_formed, module
+
+
+def ops(routine: ir.Routine) -> list:
+    return [op for block in routine.blocks for op in block.ops]
+
+
+def test_routines_in_stream_order_with_names_numbers_and_kinds():
+    mod = module("""
+        1CUR4000
+        1XE20
+        1XD20
+        1O0
+        1XT
+        1XE10
+        1XD10
+        1XR11
+        1XT
+        1XE11
+        1XD11
+        1G
+        1XT
+        XE12
+        XD12
+        G
+        XT
+        1XFK20
+        1XP10
+        1SV
+    """)
+    assert [(r.name, r.kind.value, r.number) for r in mod.routines] == [
+        ("immediate@1", "immediate", None), ("SEQ20@1", "handler", 20), ("SEQ10@1", "powerup", 10),
+        ("SEQ11@1", "subroutine", 11), ("SEQ12", "main", 12), ("immediate.2@1", "immediate", None)]
+    handlers = [op for op in ops(mod.routines[-1]) if isinstance(op, ir.SetHandler)]
+    assert [(h.event, h.routine) for h in handlers] == [("fault", "SEQ20@1"), ("powerup", "SEQ10@1")]
+    assert isinstance(ops(mod.routines[-1])[-1], ir.Save)
+    assert_well_formed(mod)
+
+
+def test_erase_before_define_is_part_of_the_definition():
+    mod = module("1XE1\n1XD1\n1G\n1XT\n")
+    assert [r.kind for r in mod.routines] == [ir.RoutineKind.MAIN]
+
+
+def test_loop_uses_a_hidden_counter():
+    mod = module("L5\nG\nN\n")
+    routine = mod.routines[0]
+    assert "%L1" in mod.variables and mod.variables["%L1"].type is ir.VarType.INT32
+    entry, body, after = routine.blocks
+    assert isinstance(entry.ops[-1], ir.Assign) and entry.ops[-1].value.value == 5
+    assert isinstance(entry.terminator, ir.Jump) and entry.terminator.target == body.label
+    latch = body.terminator
+    assert isinstance(latch, ir.Branch) and (latch.then, latch.otherwise) == (body.label, after.label)
+    assert latch.cond.op == "!=" and latch.cond.left.name == "%L1"
+    assert_well_formed(mod)
+
+
+def test_if_else_while_repeat_shapes():
+    mod = module("""
+        IF(VAR1>5 AND IN_XX1)
+        XR1
+        ELSE
+        XR2
+        NIF
+        WHILE(IN_1)
+        T1
+        NWHILE
+        REPEAT
+        G
+        UNTIL(IN_10 OR IN_01)
+    """)
+    blocks = mod.routines[0].blocks
+    branch = blocks[0].terminator
+    assert isinstance(branch, ir.Branch) and isinstance(branch.cond, ir.Logic) and branch.cond.op == "and"
+    assert isinstance(branch.cond.right, ir.InputMatch) and branch.cond.right.pattern.bits == "_XX1"
+    then, other = mod.routines[0].block(branch.then), mod.routines[0].block(branch.otherwise)
+    assert isinstance(then.ops[0], ir.Call) and isinstance(other.ops[0], ir.Call)
+    assert then.terminator.target == other.terminator.target  # both reach the join
+    untils = [b.terminator for b in blocks if isinstance(b.terminator, ir.Branch)
+              and isinstance(b.terminator.cond, ir.Logic) and b.terminator.cond.op == "or"]
+    assert untils and mod.routines[0].block(untils[0].otherwise).ops  # back to the REPEAT body
+    assert_well_formed(mod)
+
+
+def test_goto_terminates_and_keeps_what_follows():
+    mod = module("XE1\nXD1\nIF(IN_1)\nXG2\nNIF\nXG2\nD5\nXT\nXE2\nXD2\nNIF\nG\nXT\n")
+    seq1 = mod.routine("SEQ1")
+    gotos = [b.terminator for b in seq1.blocks if isinstance(b.terminator, ir.GotoRoutine)]
+    assert [g.routine for g in gotos] == ["SEQ2", "SEQ2"]
+    assert any(isinstance(op, ir.Native) and op.mnemonic == "D" for op in ops(seq1))  # dead code kept
+    seq2 = mod.routine("SEQ2")
+    assert isinstance(ops(seq2)[0], ir.Native) and ops(seq2)[0].mnemonic == "NIF"  # leading NIF
+    assert_well_formed(mod)
+
+
+def test_motion_units_and_moves():
+    mod = module("1A10\n1V5\n1MPA\n1D4000\n1G\n1MPI\n1D-200\n1G\n1H\n1G\n1MC\n1G\n1T0.5\n1TRE_X1\n1TRN_X1\n")
+    found = ops(mod.routines[0])
+    accel, speed = found[0], found[1]
+    assert (accel.param, accel.axis, accel.value.value, accel.value.unit) == (
+        ir.MotionParam.ACCEL, "1", 10, ir.Unit.REVS_PER_S2)
+    assert (speed.param, speed.value.unit) == (ir.MotionParam.MAX_SPEED, ir.Unit.REVS_PER_S)
+    moves = [op for op in found if isinstance(op, ir.Move)]
+    assert [(m.mode, m.targets[0][0]) for m in moves] == [
+        (ir.MoveMode.ABSOLUTE, "1"), (ir.MoveMode.RELATIVE, "1"), (ir.MoveMode.RELATIVE, "1")]
+    assert moves[0].targets[0][1].value == 4000 and moves[0].targets[0][1].unit is ir.Unit.STEPS
+    assert isinstance(moves[2].targets[0][1], ir.DeviceRef) and moves[2].targets[0][1].name == "D"
+    assert [op.mnemonic for op in found if isinstance(op, ir.Native)][-1] == "G"  # G in MC mode
+    delay = next(op for op in found if isinstance(op, ir.Delay))
+    assert (delay.duration.value, delay.duration.unit) == (0.5, ir.Unit.S)
+    waits = [op for op in found if isinstance(op, ir.WaitInput)]
+    assert isinstance(waits[0].cond, ir.InputMatch) and isinstance(waits[1].cond, ir.Not)
+
+
+def test_move_mode_is_modal_when_unknown():
+    mod = module("D4000\nG\n")
+    move = ops(mod.routines[0])[0]
+    assert move.mode is ir.MoveMode.MODAL and move.targets[0][0] == ir.ALL_AXES
+
+
+def test_assignments_are_left_to_right():
+    mod = module("VAR4=VAR1-VAR2*VAR3\nVAR8=POS+50000\nVAR1=FUN\n")
+    first, second, third = ops(mod.routines[0])
+    # (VAR1 - VAR2) * VAR3 (L4638-L4642)
+    assert first.value.op == "*" and first.value.left.op == "-"
+    assert isinstance(second.value.left, ir.DeviceRef) and second.value.left.meaning == "position"
+    assert isinstance(third.value, ir.DeviceRef) and third.value.name == "FUN"
+    assert {"VAR1", "VAR2", "VAR3", "VAR4", "VAR8"} <= set(mod.variables)
+
+
+def test_natives_keep_mnemonic_args_form_and_axis():
+    mod = module("1XE1\n1XD1\n1BCPG50\n1OUT3B\n1DPC208\n1TX1,0,3,A=\n1XT\n")
+    natives = ops(mod.routines[0])
+    assert [(n.mnemonic, n.form, n.axis) for n in natives] == [
+        ("CPG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1"), ("TX", "", "1")]
+    assert [a.value for a in natives[1].args] == [3, "B"]
+    assert [a.value for a in natives[3].args] == [1, 0, 3, "A="]
+
+
+def test_mixed_devices_keep_addresses_on_natives():
+    mod = module("1A10\n2A10\n1VAR1=5\n2T1\n1SV\nVAR2=1\n")
+    found = ops(mod.routines[0])
+    assert mod.routines[0].name == "immediate"
+    assert [type(op).__name__ for op in found] == ["SetMotion", "SetMotion", "Native", "Native", "Native", "Assign"]
+    assert [op.axis for op in found[:5]] == ["1", "2", "1", "2", "1"]
+
+
+def test_single_device_stream_uses_neutral_operations():
+    mod = module("1VAR1=5\n1T1\n1SV\n1WHEN(IN_1)\n")
+    assert mod.routines[0].name == "immediate@1"
+    assert [type(op).__name__ for op in ops(mod.routines[0])] == ["Assign", "Delay", "Save", "SetHandler"]
+
+
+def test_calls_resolve_per_device():
+    mod = module("XE5\nXD5\nG\nXT\n2XE6\n2XD6\n2G\n2XT\nXR5\n2XR6\n1XR5\n")
+    calls = ops(mod.routines[-1])
+    assert isinstance(calls[0], ir.Call) and calls[0].routine == "SEQ5"
+    assert isinstance(calls[1], ir.Call) and calls[1].routine == "SEQ6@2"
+    # device 1 runs the sequence every device stored: the call keeps its address as a Native
+    assert isinstance(calls[2], ir.Native) and calls[2].axis == "1"
+
+
+def test_variable_targets_stay_native():
+    mod = module("VAR2=61\nGOSUB(VAR2)\nXG(VAR2)\n")
+    natives = [op for op in ops(mod.routines[0]) if isinstance(op, ir.Native)]
+    assert [(n.mnemonic, n.args[0].name) for n in natives] == [("GOSUB", "VAR2"), ("XG", "VAR2")]
+
+
+def test_errors_still_give_a_well_formed_module():
+    mod = module("XE1\nXD1\nL5\nIF(VAR1>=5)\nELSE\nN\nNWHILE\nXD2\nREPEAT\n")
+    assert_well_formed(mod)
