@@ -11,15 +11,13 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
-from mcc.compiler import ir
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix, Severity
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 from mcc.compiler.x150 import catalog as cat
-from mcc.compiler.x150 import naming
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.lower import OPENERS, Lowering, Site
-from mcc.compiler.x150.structure import Unit, sequence_number
+from mcc.compiler.x150.structure import Unit
 from mcc.compiler.x150.writer import sequence_sizes
 
 PRODUCT_NAMES = {"bdhxe": "BDHX-E", "pdhxe": "PDHX-E", "blhx": "BLHX", "pdhx": "PDHX", "x150ds": "X150DS"}

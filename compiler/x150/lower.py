@@ -33,6 +33,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler.x150 import naming
+from mcc.compiler.x150.modes import get_mode, set_mode
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.structure import Unit, sequence_number, split_units
 
@@ -569,13 +570,3 @@ class Lowering:
             mnemonic = "VAR"
         return ir.Native(DIALECT, mnemonic, self.native_args(command), form="B" if command.buffered else "",
                          axis=self.axis(command), span=command.span)
-
-
-def set_mode(table: dict, axis: str, value) -> None:
-    if axis == ir.ALL_AXES:
-        table.clear()
-    table[axis] = value
-
-
-def get_mode(table: dict, axis: str):
-    return table.get(axis, table.get(ir.ALL_AXES))

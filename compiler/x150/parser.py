@@ -20,7 +20,7 @@ from functools import lru_cache
 from pathlib import Path
 
 from lark import Lark, Token, Transformer
-from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedInput
+from lark.exceptions import LarkError, UnexpectedInput
 
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix
 from mcc.compiler.span import SourceFile

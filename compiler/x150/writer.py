@@ -18,6 +18,7 @@ from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler.x150 import naming
+from mcc.compiler.x150.modes import get_mode, set_mode
 from mcc.compiler.x150.structurer import Step, Structurer, Unstructured, flat_steps
 
 DIALECT = "x150"
@@ -385,16 +386,6 @@ def describe(expr) -> str:
     if isinstance(expr, ir.DeviceRef):
         return f"the {expr.dialect} reading {expr.name}"
     return f"this {type(expr).__name__.lower()}"
-
-
-def set_mode(table: dict, axis: str, value) -> None:
-    if axis == ir.ALL_AXES:
-        table.clear()
-    table[axis] = value
-
-
-def get_mode(table: dict, axis: str):
-    return table.get(axis, table.get(ir.ALL_AXES))
 
 
 def write(module: ir.Module, profile: Profile) -> Written:

@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import sys
 import time
-from pathlib import Path
 
 from conftest import ROOT, SAMPLES, run_mcc
 
