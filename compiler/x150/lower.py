@@ -105,6 +105,7 @@ class Lowering:
         self.position_mode: dict[str, ir.MoveMode] = {}
         self.move_mode: dict[str, str] = {}
         self.leading = True
+        self.after_skip: st.Command | None = None  # the SKE/SKN whose next command may be skipped
 
     # -- driver ----------------------------------------------------------------------------------
     def run(self) -> ir.Module:
@@ -178,6 +179,7 @@ class Lowering:
         self.device = naming.device_of(unit.name)
         self.frames = []
         self.pending_d = None
+        self.after_skip = None
         self.position_mode = {}
         self.move_mode = {}
         self.leading = unit.is_sequence
@@ -241,6 +243,12 @@ class Lowering:
             self.flush()
         if self.leading and not (role == "endif" and not self.frames):
             self.leading = False
+        skip, self.after_skip = self.after_skip, (command if role == "skip" else None)
+        if skip is not None and structural:
+            self.diags.add("X133", skip.span,
+                           f"{skip.mnemonic} skips the next command, here {command.text}: skipping one end of a "
+                           f"construct unbalances the {'sequence' if self.unit.is_sequence else 'stream'} "
+                           "(L3772, L3814); put a command such as T0.001 in between, or use IF(IN...)")
         if role in OPENERS:
             self.open(command, OPENERS[role])
         elif role in CLOSERS:
@@ -248,9 +256,9 @@ class Lowering:
         elif role in ("call", "goto") or role in HANDLERS:
             self.transfer(command, role)
         else:
-            self.simple(command, role)
+            self.simple(command, role, skip)
 
-    def simple(self, command: st.Command, role: str) -> None:
+    def simple(self, command: st.Command, role: str, skip: st.Command | None = None) -> None:
         info = command.info
         arg = command.arg
         span = command.span
@@ -264,7 +272,8 @@ class Lowering:
         elif role == "distance" and arg is not None:
             op = self.native(command)
             self.emit(op)
-            self.pending_d = (command, op)
+            if skip is None:  # after SKE/SKN the D alone may be skipped: it stays its own operation
+                self.pending_d = (command, op)
         elif role == "go" and arg is None:
             self.go(command, None)
         elif role == "delay" and arg is not None and fits:
