@@ -145,3 +145,93 @@ def ops(module: ir.Module, kinds: type | tuple[type, ...] | None = None) -> Iter
         for op in block.ops:
             if kinds is None or isinstance(op, kinds):
                 yield routine, block, op
+
+
+def natural_loops(routine: ir.Routine) -> list[tuple[ir.Block, list[ir.Block]]]:
+    """(header, body) of each loop: a block some later block jumps back to.
+
+    The body is every block from which the header can be reached again without passing through the
+    header itself — the blocks of a WHILE, an MCode `BR` loop or an X150 `L..N`.
+    """
+    preds: dict[str, list[ir.Block]] = {b.label: [] for b in routine.blocks}
+    for block in routine.blocks:
+        for succ in local_successors(routine, block):
+            preds[succ.label].append(block)
+    found = []
+    for header in routine.blocks:
+        inside = {b.label for b in reachable(routine, header)}
+        back = [p for p in preds[header.label] if p.label in inside]
+        body: set[str] = set()
+        stack = list(back)
+        while stack:
+            block = stack.pop()
+            if block.label in body or block is header:
+                continue
+            body.add(block.label)
+            stack += preds[block.label]
+        if back:
+            found.append((header, [b for b in routine.blocks if b.label in body or b is header]))
+    return found
+
+
+class MustFacts:
+    """Facts that hold on every path: settings made, variables written. Facts are only added.
+
+    `gen(item)` gives the facts an operation or terminator establishes. A call adds what the callee
+    establishes on every path to its end; a subroutine starts with what holds at every call site
+    (one it is never called from is not analysed: a host may run it in any state).
+    """
+
+    def __init__(self, module: ir.Module, gen: Callable[[object], Iterable[Hashable]]):
+        self.module = module
+        self.gen = gen
+        self.summaries: dict[str, frozenset] = {}
+
+    def transfer(self, state: frozenset, item) -> frozenset:
+        if isinstance(item, ir.Call):
+            return state | self.summary(item.routine)
+        facts = self.gen(item) if item is not None else ()
+        return state | frozenset(facts) if facts else state
+
+    def summary(self, name: str) -> frozenset:
+        if name in self.summaries:
+            return self.summaries[name]
+        self.summaries[name] = frozenset()  # recursion: assume nothing
+        routine = self.module.routine(name)
+        if routine is None:
+            return frozenset()
+        states = forward(routine, frozenset(), self.transfer, frozenset.intersection)
+        exits = []
+        for block in routine.blocks:
+            if block.label in states and not local_successors(routine, block):
+                state = states[block.label]
+                for item in [*block.ops, block.terminator]:
+                    state = self.transfer(state, item)
+                exits.append(state)
+        self.summaries[name] = frozenset.intersection(*exits) if exits else frozenset()
+        return self.summaries[name]
+
+    def states(self) -> dict[str, dict[str, frozenset]]:
+        """Routine name -> block label -> facts at the block's start, for every analysed routine."""
+        entries: dict[str, frozenset] = {r.name: frozenset() for r in self.module.routines
+                                         if r.kind is not ir.RoutineKind.SUBROUTINE}
+        result: dict[str, dict[str, frozenset]] = {}
+        queue = deque(entries)
+        while queue:
+            name = queue.popleft()
+            routine = self.module.routine(name)
+            if routine is None:
+                continue
+            states = forward(routine, entries[name], self.transfer, frozenset.intersection)
+            result[name] = states
+            for block in routine.blocks:
+                if block.label not in states:
+                    continue
+                for item, state in replay(block, states[block.label], self.transfer):
+                    if isinstance(item, ir.Call):
+                        old = entries.get(item.routine)
+                        new = state if old is None else old & state
+                        if old is None or new != old:
+                            entries[item.routine] = new
+                            queue.append(item.routine)
+        return result
