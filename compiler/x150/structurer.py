@@ -13,8 +13,11 @@ structured source gives:
   when the then-part's last block jumps past it, the blocks in between are the ELSE part;
 - GotoRoutine, Return and End write XG, XRT and HALT; what follows them in layout order is kept.
 
-What does not fit (an irreducible graph, a jump into the middle of a construct, a condition that
-would need NOT) is reported by the caller as X201 and written flat, so nothing is lost silently.
+A loop that runs back while its condition holds becomes REPEAT..UNTIL(NOT c), and a branch that
+skips forward when c holds becomes IF(NOT c); the writer turns NOT into the conditions X150 has
+(`NOT VAR1<5` is `VAR1>5 OR VAR1=5`) or reports X202. What does not fit (an irreducible graph, a
+jump into the middle of a construct, a loop with two ways back) is reported by the caller as X201
+and written flat, so nothing is lost silently.
 """
 
 from __future__ import annotations
@@ -55,8 +58,9 @@ def counter_test(term) -> str | None:
 
 
 class Structurer:
-    def __init__(self, routine: ir.Routine):
+    def __init__(self, routine: ir.Routine, entries: dict[str, str] | None = None):
         self.routine = routine
+        self.entries = entries or {}  # entry label of every other routine -> its name
         self.blocks = routine.blocks
         self.index = {block.label: i for i, block in enumerate(self.blocks)}
         self.counts: dict[str, object] = {}
@@ -110,6 +114,10 @@ class Structurer:
             return i + 1
         term = block.terminator
         span = getattr(term, "span", None) or block.span
+        if isinstance(term, ir.Jump) and term.target not in self.index and term.target in self.entries:
+            # a jump to the start of another routine (MCode BR across programs): XG, no return
+            self.steps.append(Step("term", ir.GotoRoutine(self.entries[term.target], span), span))
+            return i + 1
         if isinstance(term, ir.Jump):
             target = self.at(term.target, span)
             if target == i + 1 or (term.target == exit_label and i + 1 == stop):
@@ -123,6 +131,9 @@ class Structurer:
 
     def conditional(self, i: int, stop: int, term: ir.Branch, span) -> int:
         then, other = self.at(term.then, span), self.at(term.otherwise, span)
+        if other == i + 1 and then > other:  # `BR past, c` (MCode): IF(NOT c) around the blocks in between
+            term = ir.Branch(ir.Not(term.cond, term.span), term.otherwise, term.then, term.span)
+            then, other = other, then
         if then != i + 1 or other <= i or other > stop:
             raise Unstructured("a conditional branch that is not an IF(...) ... NIF", span)
         if then == other:
@@ -160,11 +171,12 @@ class Structurer:
             self.region(head, after, None, latch, skip_head=head)
             self.steps.append(Step("N", None, span))
             return after
-        if isinstance(term, ir.Branch) and term.otherwise == block.label and counter is None:
-            self.expect(term.then, after, span)
+        if isinstance(term, ir.Branch) and counter is None and block.label in (term.then, term.otherwise):
+            back_on_then = term.then == block.label  # loop while c (MCode `BR head, c`): UNTIL(NOT c)
+            self.expect(term.otherwise if back_on_then else term.then, after, span)
             self.steps.append(Step("REPEAT", None, block.span))
             self.region(head, after, None, latch, skip_head=head)
-            self.steps.append(Step("UNTIL", term.cond, span))
+            self.steps.append(Step("UNTIL", ir.Not(term.cond, term.span) if back_on_then else term.cond, span))
             return after
         test = block.terminator
         if isinstance(term, ir.Jump) and isinstance(test, ir.Branch) and not block.ops and latch > head:

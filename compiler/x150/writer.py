@@ -19,7 +19,7 @@ from mcc.compiler.span import Span
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler.x150 import naming
 from mcc.compiler.x150.modes import get_mode, set_mode
-from mcc.compiler.x150.structurer import Step, Structurer, Unstructured, flat_steps
+from mcc.compiler.x150.structurer import LOOP_PREFIX, Step, Structurer, Unstructured, flat_steps
 
 DIALECT = "x150"
 KEYWORDS = {"L": "L", "IF": "IF", "ELSE": "ELSE", "NIF": "NIF", "WHILE": "WHILE", "NWHILE": "NWHILE",
@@ -74,6 +74,8 @@ class Writer:
         self.cat = cat.load()
         self.out = Written()
         self.numbers = self.sequence_numbers()
+        self.variables = self.variable_numbers()
+        self.entries = {r.blocks[0].label: r.name for r in module.routines if r.blocks}
         self.routine: ir.Routine | None = None
         self.device: int | None = None
         self.in_sequence = False
@@ -101,6 +103,19 @@ class Writer:
                 numbers[routine.name] = n
         return numbers
 
+    def variable_numbers(self) -> dict[str, int]:
+        """VARn keeps its number; variables of other dialects get the free VAR numbers in order."""
+        numbers = {name: variable_number(name) for name in self.module.variables if variable_number(name)}
+        used = set(numbers.values())
+        free = (n for n in range(1, 51) if n not in used)
+        for name in self.module.variables:
+            if name not in numbers and not name.startswith(LOOP_PREFIX):
+                numbers[name] = next(free, 0)
+        return numbers
+
+    def var_number(self, name: str) -> int:
+        return self.variables.get(name) or variable_number(name)
+
     def number_of(self, name: str) -> int:
         if name in self.numbers:
             return self.numbers[name]
@@ -114,13 +129,27 @@ class Writer:
                 for op in block.ops:
                     if isinstance(op, ir.SetHandler) and op.event == "powerup" and op.routine:
                         selected.add(op.routine)
-        for routine in self.module.routines:
+        for routine in self.ordered():
             self.write_routine(routine)
         for routine in self.module.routines:  # a power-up routine from another dialect: select it
             if routine.kind is ir.RoutineKind.POWERUP and routine.name not in selected:
                 self.routine, self.in_sequence = routine, False
                 self.emit(f"XP{self.number_of(routine.name)}", routine.span)
         return self.out
+
+    def ordered(self) -> list[ir.Routine]:
+        """X150 programs keep their stream order. A program of another dialect is written as its
+        variables' initial values, then every sequence definition, then its immediate commands,
+        so no sequence runs before it is stored."""
+        routines = self.module.routines
+        if self.module.dialect == DIALECT:
+            return routines
+        initial = [ir.Assign(ir.Var(v.name), v.init, v.span) for v in self.module.variables.values()
+                   if v.init is not None and not v.name.startswith(LOOP_PREFIX)]
+        first = [ir.Routine("initial values", ir.RoutineKind.IMMEDIATE, [ir.Block("%init", initial, ir.FallOff())])] \
+            if initial else []
+        return first + [r for r in routines if r.kind is not ir.RoutineKind.IMMEDIATE] + \
+            [r for r in routines if r.kind is ir.RoutineKind.IMMEDIATE]
 
     def write_routine(self, routine: ir.Routine) -> None:
         self.routine = routine
@@ -136,7 +165,7 @@ class Writer:
             self.emit(f"{prefix}XE{n}", routine.span, stored=False)
             self.emit(f"{prefix}XD{n}", routine.span, stored=False)
         try:
-            steps = Structurer(routine).run()
+            steps = Structurer(routine, self.entries).run()
         except Unstructured as exc:
             self.out.diagnostics.add("X201", exc.span or routine.span or self.fallback_span(),
                                      f"{exc.message} in {routine.name}: X150 sequences have no labels, so only "
@@ -267,8 +296,8 @@ class Writer:
     def value(self, expr, allow_var: bool = True) -> str:
         if isinstance(expr, ir.Const) and isinstance(expr.value, (int, float)):
             return number(expr.value)
-        if allow_var and isinstance(expr, ir.Var) and variable_number(expr.name):
-            return f"(VAR{variable_number(expr.name)})"
+        if allow_var and isinstance(expr, ir.Var) and self.var_number(expr.name):
+            return f"(VAR{self.var_number(expr.name)})"
         raise CannotWrite(f"an X150 value is a number or (VARn); {describe(expr)} cannot be written here")
 
     def seconds(self, expr) -> str:
@@ -284,7 +313,7 @@ class Writer:
         raise CannotWrite("X150 waits only for an input pattern (TRE/TRN)", "G003")
 
     def assign(self, op: ir.Assign) -> str:
-        n = variable_number(op.target.name)
+        n = self.var_number(op.target.name)
         if not n:
             raise CannotWrite(f"X150 has only VAR1-VAR50; {op.target.name} has no equivalent", "G003")
         return f"VAR{n}={self.chain(op.value)}"
@@ -301,8 +330,8 @@ class Writer:
     def operand(self, expr) -> str:
         if isinstance(expr, ir.Const):
             return number(expr.value)
-        if isinstance(expr, ir.Var) and variable_number(expr.name):
-            return f"VAR{variable_number(expr.name)}"
+        if isinstance(expr, ir.Var) and self.var_number(expr.name):
+            return f"VAR{self.var_number(expr.name)}"
         if isinstance(expr, ir.DeviceRef) and expr.dialect == DIALECT and expr.name in self.cat.sources:
             return expr.name
         if isinstance(expr, ir.UnOp) and expr.op == "-" and isinstance(expr.operand, ir.Const):
@@ -310,14 +339,30 @@ class Writer:
         raise CannotWrite(f"{describe(expr)} cannot be an X150 operand (VARn, a number, POS, ABS, ...)")
 
     def cond(self, cond) -> str:
+        """A condition with the relations X150 has (> < =), at most two terms (L2009)."""
+        terms: list[str] = []
+        joins: list[str] = []
+        self.terms(expand(cond), terms, joins)
+        if len(terms) > self.cat.max_terms or len(set(joins)) > 1:
+            raise CannotWrite(f"this condition needs {len(terms)} X150 terms ({' '.join(joins)}); a condition has "
+                              f"at most {self.cat.max_terms} joined by AND or OR: split it over nested IFs")
+        out = terms[0]
+        for join, term in zip(joins, terms[1:]):
+            out += f" {join} {term}"
+        return out
+
+    def terms(self, cond, terms: list[str], joins: list[str]) -> None:
         if isinstance(cond, ir.Logic):
-            return f"{self.cond(cond.left)} {cond.op.upper()} {self.cond(cond.right)}"
-        if isinstance(cond, ir.InputMatch):
-            return "IN" + cond.pattern.bits
-        if isinstance(cond, ir.Compare) and cond.op in self.cat.relational:
-            return self.operand(cond.left) + cond.op + self.operand(cond.right)
-        raise CannotWrite(f"{describe(cond)} is not an X150 condition (VARn>x, VARn<x, VARn=x, IN<pattern>, "
-                          "joined by AND or OR)")
+            self.terms(cond.left, terms, joins)
+            joins.append(cond.op.upper())
+            self.terms(cond.right, terms, joins)
+        elif isinstance(cond, ir.InputMatch):
+            terms.append("IN" + cond.pattern.bits)
+        elif isinstance(cond, ir.Compare) and cond.op in self.cat.relational:
+            terms.append(self.operand(cond.left) + cond.op + self.operand(cond.right))
+        else:
+            raise CannotWrite(f"{describe(cond)} is not an X150 condition (VARn>x, VARn<x, VARn=x, IN<pattern>, "
+                              "joined by AND or OR)")
 
     # -- native commands -----------------------------------------------------------------------------
     def native(self, op: ir.Native) -> str:
@@ -345,7 +390,7 @@ class Writer:
         if kind == "string":
             return ("" if info.name == '"' else '"') + first.value + '"'
         if kind == "variable":
-            n = variable_number(first.name)
+            n = self.var_number(first.name)
             return f"{n}" + (f"={self.chain(args[1])}" if len(args) > 1 else "")
         if kind == "condition":
             return f"({self.cond(first)})"
@@ -372,6 +417,31 @@ def ends(span: Span | None) -> tuple[Span | None, Span | None]:
     last = Span(span.file, span.end_line, max(1, span.end_column - 1), span.end_line, span.end_column,
                 max(span.start, span.end - 1), span.end)
     return first, last
+
+
+SPLIT = {"!=": ("<", ">"), "<=": ("<", "="), ">=": (">", "=")}  # as two terms joined by OR
+NEGATED = {"<": ">=", ">": "<=", "=": "!=", "!=": "=", "<=": ">", ">=": "<"}
+
+
+def expand(cond):
+    """The condition with NOT pushed into comparisons and != <= >= split into X150's > < = terms."""
+    if isinstance(cond, ir.Not):
+        inner = cond.cond
+        if isinstance(inner, ir.Not):
+            return expand(inner.cond)
+        if isinstance(inner, ir.Compare) and inner.op in NEGATED:
+            return expand(ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span))
+        if isinstance(inner, ir.Logic):  # De Morgan
+            flipped = "or" if inner.op == "and" else "and"
+            return ir.Logic(flipped, expand(ir.Not(inner.left)), expand(ir.Not(inner.right)), inner.span)
+        return cond
+    if isinstance(cond, ir.Compare) and cond.op in SPLIT:
+        first, second = SPLIT[cond.op]
+        return ir.Logic("or", ir.Compare(first, cond.left, cond.right, cond.span),
+                        ir.Compare(second, cond.left, cond.right, cond.span), cond.span)
+    if isinstance(cond, ir.Logic):
+        return ir.Logic(cond.op, expand(cond.left), expand(cond.right), cond.span)
+    return cond
 
 
 def variable_number(name: str) -> int:

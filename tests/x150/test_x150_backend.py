@@ -122,3 +122,32 @@ def test_backend_does_not_depend_on_the_syntax_tree():
     for name in ("backends/x150.py", "compiler/x150/writer.py", "compiler/x150/structurer.py",
                  "compiler/x150/naming.py", "compiler/x150/modes.py", "compiler/x150/catalog.py"):
         assert not imports(ROOT / name) & forbidden, name
+
+
+def test_loops_and_branches_of_other_dialects_are_structured():
+    """MCode's `BR head, c` (loop while c) and `BR past, c` become REPEAT..UNTIL(NOT c) and IF(NOT c)."""
+    q1 = ir.Var("Q1")
+    blocks = [
+        block("A1", [ir.Assign(q1, ir.BinOp("+", q1, ir.Const(1)), SPAN)],
+              ir.Branch(ir.Compare("<", q1, ir.Const(5)), "A1", "b", SPAN)),
+        block("b", [], ir.Branch(ir.Compare("!=", q1, ir.Const(5)), "d", "c", SPAN)),
+        block("c", [ir.Delay(ir.Const(1, ir.Unit.S), SPAN)], ir.Jump("d", SPAN)),
+        block("d", [], ir.End(SPAN)),
+    ]
+    main = ir.Routine("A1", ir.RoutineKind.MAIN, blocks, SPAN)
+    start = ir.Routine("immediate", ir.RoutineKind.IMMEDIATE, [block("%imm", [], ir.Jump("A1", SPAN))], SPAN)
+    mod = module(start, main, dialect="mcode")
+    mod.variables["Q1"] = ir.Variable("Q1", ir.VarType.INT32, ir.Const(0))
+    listing = backend.emit(mod, PROFILE)
+    assert not listing.diagnostics.items, [d.message for d in listing.diagnostics]
+    assert listing.text.splitlines() == [
+        "VAR1=0", "XE1", "XD1", "REPEAT", "VAR1=VAR1+1", "UNTIL(VAR1>5 OR VAR1=5)",
+        "IF(VAR1=5)", "T1", "NIF", "HALT", "XT", "XG1"]
+
+
+def test_conditions_x150_cannot_say_are_x202():
+    cond = ir.Logic("and", ir.Compare("!=", ir.Var("VAR1"), ir.Const(1)), ir.InputMatch(ir.Pattern("_1")))
+    blocks = [block("a", term=ir.Branch(cond, "b", "c", SPAN)), block("b", [ir.Save(SPAN)], ir.Jump("c", SPAN)),
+              block("c")]
+    listing = backend.emit(module(ir.Routine("immediate", ir.RoutineKind.IMMEDIATE, blocks, SPAN)), PROFILE)
+    assert [d.code for d in listing.diagnostics] == ["X202"]  # VAR1<1 OR VAR1>1 AND IN_1: three terms
