@@ -27,6 +27,7 @@ from dataclasses import dataclass
 from mcc.compiler import ir
 
 LOOP_PREFIX = "%L"
+MAX_DEPTH = 200  # constructs nested deeper are not rebuilt (the controller allows 16; X110 says so)
 
 
 @dataclass(slots=True)
@@ -66,6 +67,7 @@ class Structurer:
         self.counts: dict[str, object] = {}
         self.latches: dict[int, list[int]] = {}
         self.steps: list[Step] = []
+        self.depth = 0
         for i, block in enumerate(self.blocks):
             for op in block.ops:
                 if isinstance(op, ir.Assign) and is_counter(op.target) and not self.decrement(op):
@@ -94,12 +96,16 @@ class Structurer:
     def region(self, i: int, stop: int, exit_label: str | None, latch: int | None, skip_head: int = -1) -> None:
         """Write blocks [i, stop). `exit_label` is where the enclosing construct continues, `latch`
         the block whose terminator the enclosing loop writes itself."""
+        self.depth += 1
+        if self.depth > MAX_DEPTH:
+            raise Unstructured(f"constructs nested more than {MAX_DEPTH} deep", self.blocks[min(i, stop - 1)].span)
         while i < stop:
             back = [j for j in self.latches.get(i, ()) if i <= j < stop]
             if back and i != skip_head:
                 i = self.loop(i, back, stop)
                 continue
             i = self.straight(i, stop, exit_label, latch)
+        self.depth -= 1
 
     def ops(self, block: ir.Block) -> None:
         for op in block.ops:

@@ -27,6 +27,7 @@ KEYWORDS = {"L": "L", "IF": "IF", "ELSE": "ELSE", "NIF": "NIF", "WHILE": "WHILE"
 HANDLER_COMMANDS = {"powerup": "XP", "fault": "XFK", "when": "XWHEN"}
 MOTION_COMMANDS = {ir.MotionParam.ACCEL: "A", ir.MotionParam.MAX_SPEED: "V"}
 ARITHMETIC = "+-*/"
+MAX_CONDITION_NODES = 32  # far above any writable condition; bounds the recursion on odd input
 
 
 def number(value) -> str:
@@ -320,12 +321,17 @@ class Writer:
 
     def chain(self, expr) -> str:
         """A left-to-right chain (X150 has no precedence and no parentheses, L4638)."""
-        if isinstance(expr, ir.BinOp) and expr.op in ARITHMETIC:
+        rights = []
+        while isinstance(expr, ir.BinOp) and expr.op in ARITHMETIC:
             if isinstance(expr.right, ir.BinOp):
                 raise CannotWrite("X150 evaluates strictly left to right without parentheses; split this "
                                   "expression over several VARn= assignments")
-            return self.chain(expr.left) + expr.op + self.operand(expr.right)
-        return self.operand(expr)
+            rights.append((expr.op, expr.right))
+            expr = expr.left
+        text = self.operand(expr)
+        for op, right in reversed(rights):
+            text += op + self.operand(right)
+        return text
 
     def operand(self, expr) -> str:
         if isinstance(expr, ir.Const):
@@ -340,6 +346,9 @@ class Writer:
 
     def cond(self, cond) -> str:
         """A condition with the relations X150 has (> < =), at most two terms (L2009)."""
+        if sum(1 for _ in ir.walk_expr(cond)) > MAX_CONDITION_NODES:
+            raise CannotWrite(f"this condition has far more than the {self.cat.max_terms} terms an X150 condition "
+                              "takes: split it over nested IFs")
         terms: list[str] = []
         joins: list[str] = []
         self.terms(expand(cond), terms, joins)

@@ -141,3 +141,13 @@ def test_memory_counts_broadcast_sequences_on_every_device():
 def test_undefined_and_dynamic_targets():
     assert codes("XR7\n") == ["X127"]
     assert codes("VAR1=7\nXR(VAR1)\n") == []
+
+
+def test_pathological_inputs_never_raise():
+    deep = "\n".join(["1XE1", "1XD1"] + ["1L2"] * 3000 + ["1G"] + ["1N"] * 3000 + ["1XT"]) + "\n"
+    wide = "1XE1\n1XD1\n1IF(" + " AND ".join(["IN_1"] * 3000) + ")\n1NIF\n1XT\n"
+    chain = "1VAR1=" + "+".join(["VAR2"] * 3000) + "\n"
+    for text in (deep, wide, chain):
+        for result in (check(text), driver.compile_file("p.x150", "x150", text=text)):
+            assert not [d for d in result.diagnostics if d.kind.value == "internal"]
+    assert "X110" in codes(deep) and "X111" in codes(wide)
