@@ -43,6 +43,8 @@ UNITS = {"rev/s^2": ir.Unit.REVS_PER_S2, "rev/s": ir.Unit.REVS_PER_S, "user step
          "%": ir.Unit.PERCENT}
 MOTION = {"accel": ir.MotionParam.ACCEL, "max_speed": ir.MotionParam.MAX_SPEED}
 HANDLERS = {"powerup": "powerup", "fault_handler": "fault", "event_handler": "when"}
+ROLE_KINDS = {"call": ir.RoutineKind.SUBROUTINE, "powerup": ir.RoutineKind.POWERUP,
+              "fault_handler": ir.RoutineKind.HANDLER, "event_handler": ir.RoutineKind.HANDLER}
 KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKind.SUBROUTINE: 1,
              ir.RoutineKind.MAIN: 0}
 OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
@@ -144,9 +146,7 @@ class Lowering:
                 info = command.info
                 if info is None or not command.ok:
                     continue
-                kind = {"call": ir.RoutineKind.SUBROUTINE, "powerup": ir.RoutineKind.POWERUP,
-                        "fault_handler": ir.RoutineKind.HANDLER,
-                        "event_handler": ir.RoutineKind.HANDLER}.get(info.ir)
+                kind = ROLE_KINDS.get(info.ir)
                 number = sequence_number(command)
                 if kind is None or not number:
                     continue
@@ -163,7 +163,6 @@ class Lowering:
                 return (exact,)
             return tuple(n for n in (naming.sequence_name(number, d) for d in self.device_list) if n in self.defined)
         return tuple(n for n in naming.candidates(number, address) if n in self.defined)[:1]
-
 
     # -- units, routines, blocks -----------------------------------------------------------------
     def lower_unit(self, unit: Unit, kinds: dict[str, ir.RoutineKind]) -> None:

@@ -59,6 +59,8 @@ def split_units(tree: st.SyntaxTree, diags: Diagnostics) -> list[Unit]:
                           "first")
                 sequence.end = None
             sequence = Unit("sequence", number=sequence_number(command), address=command.address, start=command)
+            if sequence.number is None and command.ok:
+                diags.add("X104", command.span, "XD needs the number of the sequence it defines: XD1 to XD64 (L4899)")
             if stream is not None and stream.commands and _erases(stream.commands[-1], command):
                 sequence.erase = stream.commands.pop()
                 if not stream.commands:
