@@ -211,9 +211,13 @@ class MustFacts:
         self.summaries[name] = frozenset.intersection(*exits) if exits else frozenset()
         return self.summaries[name]
 
-    def states(self) -> dict[str, dict[str, frozenset]]:
-        """Routine name -> block label -> facts at the block's start, for every analysed routine."""
-        entries: dict[str, frozenset] = {r.name: frozenset() for r in self.module.routines
+    def states(self, start: dict[str, frozenset] | None = None) -> dict[str, dict[str, frozenset]]:
+        """Routine name -> block label -> facts at the block's start, for every analysed routine.
+
+        `start` gives the entry facts of routines that are not subroutines (default: none).
+        """
+        start = start or {}
+        entries: dict[str, frozenset] = {r.name: start.get(r.name, frozenset()) for r in self.module.routines
                                          if r.kind is not ir.RoutineKind.SUBROUTINE}
         result: dict[str, dict[str, frozenset]] = {}
         queue = deque(entries)

@@ -1,0 +1,98 @@
+"""The X150 formatter: one canonical layout for command streams and sequences.
+
+- Commands in upper case, as the manual writes them ("sequences of upper case characters", L116);
+  quoted text (`DTXT"..."`, `"..."`) and the free text of `TX` keep their case.
+- One space between the commands of a line (the delimiter, L130); a space written inside a
+  command (`IF (..)`, `1OUTL XX10X1`, which the frontend re-joins with warning X103) is removed.
+- No indentation: the stream is sent to the controller as it is, and the manual never indents
+  sequences or constructs, so a leading delimiter is not introduced where none was.
+- Trailing comments are aligned to one column per block of lines (lines between blank lines):
+  column 25, or further right when the block's code is longer. Comment text is kept word for word;
+  runs of blank lines collapse to one; a line that does not parse, or a command the frontend could
+  not read, is left as it is.
+
+Formatting never changes what a program does: `mcc fmt` compares the IR before and after.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import SourceFile
+from mcc.compiler.x150 import parser
+from mcc.compiler.x150 import syntax as st
+
+COMMENT_COLUMN = 24  # 0-based: trailing comments start in column 25
+QUOTED = re.compile(r'("[^"]*")')
+KEEP_CASE_ARGS = ("raw",)  # TX's free text (catalog argument class)
+
+
+@dataclass
+class Out:
+    code: str = ""
+    comment: str = ""
+    verbatim: str | None = None
+    blank: bool = False
+
+
+def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
+    source = SourceFile(path, text)
+    tree = parser.parse(source, Diagnostics())
+    lines = collapse_blank_lines([layout_line(source, line) for line in tree.lines])
+    align_comments(lines)
+    return "".join(render(line) + "\n" for line in lines)
+
+
+def layout_line(source: SourceFile, line: st.Line) -> Out:
+    if line.error:
+        return Out(verbatim=source.line_text(line.number))
+    comment = line.comment.text.rstrip() if line.comment is not None else ""
+    if not line.commands:
+        return Out(comment=comment) if comment else Out(blank=True)
+    return Out(" ".join(command_text(c) for c in line.commands), comment)
+
+
+def command_text(command: st.Command) -> str:
+    text = command.text
+    if not command.ok or command.host or command.info is None:
+        return text
+    if command.info.arg in KEEP_CASE_ARGS:
+        end = text.upper().find(command.mnemonic) + len(command.mnemonic)
+        return text[:end].upper() + text[end:] if end >= len(command.mnemonic) else text
+    return "".join(piece if piece.startswith('"') else piece.upper() for piece in QUOTED.split(text))
+
+
+def collapse_blank_lines(lines: list[Out]) -> list[Out]:
+    out: list[Out] = []
+    for line in lines:
+        if line.blank and (not out or out[-1].blank):
+            continue
+        out.append(line)
+    while out and out[-1].blank:
+        out.pop()
+    return out
+
+
+def align_comments(lines: list[Out]) -> None:
+    block: list[Out] = []
+    for line in [*lines, Out(blank=True)]:
+        if not line.blank:
+            block.append(line)
+            continue
+        trailing_lines = [item for item in block if item.code and item.comment]
+        if trailing_lines:
+            column = max(COMMENT_COLUMN, *(len(item.code) + 2 for item in trailing_lines))
+            for item in trailing_lines:
+                item.code += " " * (column - len(item.code))
+        block = []
+
+
+def render(line: Out) -> str:
+    if line.verbatim is not None:
+        return line.verbatim
+    if line.blank:
+        return ""
+    return line.code + line.comment if line.code else line.comment
