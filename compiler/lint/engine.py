@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
 from mcc.compiler import dialects, driver
-from mcc.compiler.config import Resolver, Settings
+from mcc.compiler.config import Resolver, Settings, load_profile
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Kind
 from mcc.compiler.lint import files, fixes, suppress
 from mcc.compiler.lint.rules import Context, rules_for
@@ -59,7 +59,9 @@ class Outcome:
 def lint_text(path: str, text: str, settings: Settings, dialect: str | None = None) -> tuple[str, list[Diagnostic]]:
     """Lint one text: (dialect, diagnostics in file order)."""
     found = driver.resolve_dialect(path, dialect)
-    profile = settings.profile(found.name) if found is not None else None
+    profile = None
+    if found is not None:  # resolved here (and cached) so the driver does not re-read the default
+        profile = settings.profile(found.name) or load_profile(found.default_profile)
     result = driver.check_file(path, dialect, profile, text)
     diags = Diagnostics(list(result.diagnostics))
     analysis = result.analysis
@@ -82,7 +84,7 @@ def lint_text(path: str, text: str, settings: Settings, dialect: str | None = No
 
 
 def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, diags: Diagnostics) -> None:
-    ctx = Context(analysis, driver.profile_for(dialects.get(dialect), profile), dialect, diags)
+    ctx = Context(analysis, profile or load_profile(dialects.get(dialect).default_profile), dialect, diags)
     for rule in rules_for(dialect):
         if not settings.enabled(rule.code, path):
             continue
