@@ -449,7 +449,9 @@ def unused_variable(ctx: Context) -> None:
                                                  safe=False)
         what = "only written, never read" if name in mentioned else "never used"
         host = " (if a host reads it with PR, suppress this line)" if var.scope == "global" else ""
-        ctx.report(declared_name(ctx, var.span), f"variable {name} is {what}{host}", fix=fix)
+        where = declared_name(ctx, var.span)
+        written = ctx.source.text[where.start:where.end] if where is not var.span else name
+        ctx.report(where, f"variable {written} is {what}{host}", fix=fix)
 
 
 def declared_name(ctx: Context, span):
