@@ -146,6 +146,8 @@ class Motion:
 def position_read_while_moving(ctx: Context) -> None:
     motion = Motion(ctx.module, (ir.Move, ir.Home))
     for routine in ctx.module.routines:
+        if routine.kind is ir.RoutineKind.IMMEDIATE:
+            continue  # typed or downloaded outside a program, where H does not exist (program only)
         for item, state in motion.run(routine):
             if state and item is not None and reads_any(item, POSITION_REGISTERS):
                 where = ", ".join(str(n) for n in sorted(state) if n > 0)
@@ -267,16 +269,20 @@ def trip_not_re_enabled(ctx: Context) -> None:
                             "to keep) before its RT")
 
 
-def defined_trip_bits(module: ir.Module) -> int:
+def defined_trip_bits(ctx: Context) -> int:
+    """Trips the file defines, read from the syntax tree: a definition the frontend rejected (an
+    undeclared variable in TP=Ds*3,X2) is still a definition, and is already reported."""
     bits = 0
-    for op in handlers(module):
-        bits |= trip_bit(op.event)
+    for stmt in ctx.tree.statements():
+        command = catalog().lookup(stmt.head.key)
+        if command is not None:
+            bits |= int(command.entry.get("trip_bit", 0)) if command.ir == "trip" else 0
     return bits
 
 
 @rule("M317", MCODE)
 def trip_enable_undefined(ctx: Context) -> None:
-    defined = defined_trip_bits(ctx.module)
+    defined = defined_trip_bits(ctx)
     for _, _, op, value in te_writes(ctx.module):
         if value is None or not isinstance(value, int):
             continue
@@ -592,6 +598,8 @@ def move_after_slew_without_hold(ctx: Context) -> None:
         return frozenset() if isinstance(item, (ir.Move, ir.Home)) else motion.transfer(state, item)
 
     for routine in ctx.module.routines:
+        if routine.kind is ir.RoutineKind.IMMEDIATE:
+            continue  # H is program only: outside a program there is nothing to add
         states = flow.forward(routine, frozenset(), transfer, frozenset.union)
         for block in routine.blocks:
             if block.label not in states:

@@ -595,3 +595,13 @@ def test_rule_lines() -> None:
     """
     assert lines_of("M306", text) == [1]
     assert lines_of("M311", text) == [4]
+
+
+def test_a_trip_the_frontend_rejected_still_counts_as_defined() -> None:
+    text = "PG 1\nLB G1\n  TP=Ds*3,X2\n  TE=2\n  E\nLB X2\n  TE=2\n  RT\nPG\nS\n' k\n"
+    found = codes(text)
+    assert "M117" in found and "M317" not in found  # Ds is undeclared: one error, not two
+
+
+def test_position_reads_outside_a_program_are_not_reported() -> None:
+    assert "M301" not in codes("MA 20000\nPR P\n")  # immediate mode: H does not exist there
