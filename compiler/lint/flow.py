@@ -9,20 +9,11 @@ each routine is analysed from its own entry, and calls are summarised by the rul
 from __future__ import annotations
 
 from collections import deque
-from dataclasses import dataclass
 from typing import Callable, Hashable, Iterable, Iterator, TypeVar
 
 from mcc.compiler import ir
 
 State = TypeVar("State", bound=Hashable)
-
-
-@dataclass(frozen=True)
-class Site:
-    """Where an operation or terminator sits."""
-
-    routine: ir.Routine
-    block: ir.Block
 
 
 def block_index(module: ir.Module) -> dict[str, tuple[ir.Routine, ir.Block]]:

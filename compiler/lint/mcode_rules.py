@@ -46,10 +46,6 @@ def is_float_register(name: str) -> bool:
     return command is not None and command.is_float
 
 
-def device_names(node) -> set[str]:
-    return {n.name for n in flow.reads(node) if isinstance(n, ir.DeviceRef)}
-
-
 def reads_any(item, names: tuple[str, ...]) -> bool:
     """Whether an operation or terminator reads one of the named device registers."""
     found = flow.op_reads(item) if not isinstance(item, (ir.Branch, ir.Jump, ir.Return, ir.End, ir.FallOff)) \
@@ -219,7 +215,8 @@ def handler_re_enables(module: ir.Module, routine: ir.Routine, bit: int) -> bool
             return True
         if isinstance(item, ir.Call):
             callee = module.routine(item.routine)
-            if callee is not None and any(te_sets_bit(op, bit) for _, _, op, _ in te_writes_in(callee)):
+            if callee is not None and any(isinstance(op, ir.Native) and op.mnemonic == "TE" and te_sets_bit(op, bit)
+                                          for block in callee.blocks for op in block.ops):
                 return True
         return done
 
@@ -232,13 +229,6 @@ def handler_re_enables(module: ir.Module, routine: ir.Routine, bit: int) -> bool
             if not done:
                 return False
     return True
-
-
-def te_writes_in(routine: ir.Routine):
-    for block in routine.blocks:
-        for op in block.ops:
-            if isinstance(op, ir.Native) and op.mnemonic == "TE":
-                yield routine, block, op, None
 
 
 def main_re_arms(module: ir.Module, bit: int) -> bool:
