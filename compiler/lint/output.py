@@ -103,7 +103,7 @@ def to_github(outcomes: list[Outcome]) -> list[str]:
             s = d.span
             props = (f"file={escape_property(outcome.path)},line={s.line},col={s.column},endLine={s.end_line},"
                      f"endColumn={s.end_column},title={escape_property(d.code)}")
-            lines.append(f"::{GITHUB_LEVEL[d.severity]} {props}::{escape_data(f'{d.code} {d.message}')}")
+            lines.append(f"::{GITHUB_LEVEL[d.severity]} {props}::{escape_data(d.message)}")
     return lines
 
 

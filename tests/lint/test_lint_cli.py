@@ -105,7 +105,7 @@ def test_sarif(tree: Path) -> None:
 def test_github_annotations(tree: Path) -> None:
     lines = run_mcc("lint", "--format", "github", "a/bad.mxt", cwd=tree).stdout.splitlines()
     assert lines[0] == ("::warning file=a/bad.mxt,line=1,col=4,endLine=1,endColumn=6,title=M306::"
-                        "M306 variable Q1 is never used (if a host reads it with PR, suppress this line)")
+                        "variable Q1 is never used (if a host reads it with PR, suppress this line)")
     assert any(line.startswith("::error file=a/bad.mxt,line=7,") and "title=M106::" in line for line in lines)
 
 
