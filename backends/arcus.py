@@ -56,8 +56,11 @@ MOTION_IR = {ir.MotionParam.MAX_SPEED: "max_speed", ir.MotionParam.INITIAL_SPEED
              ir.MotionParam.ACCEL: "accel"}
 VARIABLE = re.compile(r"V([0-9]+)\Z", re.IGNORECASE)
 EXIT = "%exit"
+TAIL_COPY = 4  # operations of an END block the structurer may write twice rather than give up
 PLACEHOLDER = re.compile(r"\{(\w+)\}")
 TRUE = ir.Compare("=", ir.Const(1), ir.Const(1))
+CONSTANT_TESTS = {"=": lambda a, b: a == b, "!=": lambda a, b: a != b, "<": lambda a, b: a < b,
+                  "<=": lambda a, b: a <= b, ">": lambda a, b: a > b, ">=": lambda a, b: a >= b}
 
 
 class Unstructurable(Exception):
@@ -80,6 +83,7 @@ class Config:
     sub_range: tuple[int, int]
     allocate_from: int
     axes: tuple[str, ...]
+    max_copied: int
 
     @classmethod
     def from_profile(cls, profile: Profile) -> "Config":
@@ -93,7 +97,8 @@ class Config:
                    costs={str(k).upper(): int(v) for k, v in (cost.get("statements") or {}).items()},
                    default_cost=int(cost.get("default", 1)), temporaries=temps,
                    sub_range=(int(rng[0]), int(rng[1])),
-                   allocate_from=int(profile.get("arcus.allocate_subroutines_from", 1)), axes=axes)
+                   allocate_from=int(profile.get("arcus.allocate_subroutines_from", 1)), axes=axes,
+                   max_copied=int(profile.get("arcus.loop_test_copy_max", 4)))
 
     def cost(self, key: str) -> int:
         return max(1, self.costs.get(key, self.default_cost))
@@ -150,6 +155,7 @@ class Temps:
         self.live = 0
         self.peak = 0
         self.high = 0  # variables taken from the top
+        self.base = 0  # the first of them the current routine may use
         self.exhausted = False
 
     def alloc(self) -> ir.Var:
@@ -166,12 +172,19 @@ class Temps:
         self.live -= count
 
     def top(self, depth: int) -> ir.Var | None:
-        """The long-lived variable `depth` places below the top of the pool."""
-        self.high = max(self.high, depth + 1)
-        if depth >= len(self.pool):
+        """The current routine's long-lived variable number `depth`, from the top of the pool.
+
+        Each routine gets its own (`start_routine`): a loop flag or dispatch variable must survive
+        the GOSUBs made while it is live, so callers and callees never share one."""
+        index = self.base + depth
+        self.high = max(self.high, index + 1)
+        if index >= len(self.pool):
             self.exhausted = True
             return None
-        return ir.Var(f"V{self.pool[-1 - depth]}")
+        return ir.Var(f"V{self.pool[-1 - index]}")
+
+    def start_routine(self) -> None:
+        self.base = self.high
 
     @property
     def conflict(self) -> bool:
@@ -236,8 +249,9 @@ class Legalizer:
         allowed = {ir.Unit.NONE, ir.Unit.MS} if op.param is ir.MotionParam.ACCEL else \
             {ir.Unit.NONE, ir.Unit.STEPS_PER_S}
         if unit not in allowed:
-            self.em.unsupported(op, f"a {op.param.value} in {unit.value} cannot be written for Arcus "
-                                    "(ACC is a ramp time in ms, speeds are in pulses/s)", code="G005")
+            self.em.unsupported(op, f"the {op.param.value.replace('_', ' ')} is given in {unit.value}: Arcus ACC "
+                                    "is a ramp time in ms and speeds are in pulses/s; convert it in the source",
+                                code="G005")
             raise _Skip
         self.emit(ir.SetMotion(op.param, self.em.axis(op.axis, op, setting=True), self.value(op.value, op),
                                op.span))
@@ -389,16 +403,24 @@ class Legalizer:
             if self.em.sub_number(term.routine, None, span) is not None:
                 self.emit(ir.Call(term.routine, span=term.span))
             self.block.terminator = ir.End(term.span)
-        elif isinstance(term, ir.Return) and self.routine.kind is not ir.RoutineKind.SUBROUTINE:
-            block.terminator = ir.FallOff(term.span)
-        elif term is None:
-            block.terminator = ir.FallOff(span)
+        elif isinstance(term, (ir.Return, ir.FallOff)) or term is None:
+            # Falling off the main program is END (spec 5.1): written as END, so that a program and
+            # its compiled text structure alike. A subroutine's end is its ENDSUB.
+            end_span = getattr(term, "span", None) or span
+            kind = self.routine.kind
+            block.terminator = ir.End(end_span) if kind is ir.RoutineKind.MAIN else \
+                ir.Return(end_span) if kind is ir.RoutineKind.SUBROUTINE else ir.FallOff(end_span)
         else:
             block.terminator = term
 
     def test(self, cond: ir.Cond, then: str, otherwise: str, span: Span | None) -> None:
         """Ends the current block with a branch on `cond`, as one Arcus comparison."""
         cond = self.normal(cond)
+        if isinstance(cond, ir.Compare) and isinstance(cond.left, ir.Const) and isinstance(cond.right, ir.Const):
+            # A constant condition (WHILE 1=1) is a plain jump: the loop it makes has no exit.
+            holds = CONSTANT_TESTS[cond.op](cond.left.value, cond.right.value)
+            self.block.terminator = ir.Jump(then if holds else otherwise, span)
+            return
         if isinstance(cond, ir.Compare):
             left = self.cond_operand(cond.left, span)
             right = self.cond_operand(cond.right, span)
@@ -607,18 +629,21 @@ class Graph:
         return [(u, v) for u in body for v in self.succ[u] if v not in body and v not in ends]
 
 
-def flag_loops(routine: ir.Routine, temps: Temps) -> bool:
+def flag_loops(routine: ir.Routine, temps: Temps, max_copied: int) -> None:
     """Rewrites loops whose one exit is not the header's test into `f=1; WHILE f=1 ... f=0` form.
 
     The exit edge u -> e goes to a new block `f=0` that jumps to a new header testing f, whose false
-    edge leads to e; entries to the old header go through a new block `f=1`. Returns False when the
-    graph is irreducible or a loop has several exits (the dispatch fallback handles those)."""
+    edge leads to e; entries to the old header go through a new block `f=1`. A loop that exits at its
+    header but has operations there (a do-while, a condition computed into temporaries) is written
+    with the operations copied before WHILE and at the end of the body when there are at most
+    `max_copied` of them, with a flag otherwise. Raises Unstructurable when the graph is irreducible
+    or a loop has several exits (the dispatch fallback handles those)."""
     counter = 0
     done: set[str] = set()
     while True:
         graph = Graph(routine)
         if not graph.reducible:
-            return False
+            raise Unstructurable("the control-flow graph is irreducible (a loop is entered at two places)")
         ends = graph.terminating()
         loops = [(graph.loop_body(h), h) for h in graph.headers]
         loops.sort(key=lambda item: (len(item[0]), graph.index[item[1]]))
@@ -628,20 +653,21 @@ def flag_loops(routine: ir.Routine, temps: Temps) -> bool:
                 continue
             exits = graph.exits(header, body, ends)
             term = graph.blocks[header].terminator
-            clean = isinstance(term, ir.Branch) and len(exits) == 1 and exits[0][0] == header
+            clean = isinstance(term, ir.Branch) and len(exits) == 1 and exits[0][0] == header \
+                and len(graph.blocks[header].ops) <= max_copied
             if not exits or clean:
                 continue
             if len(exits) > 1:
-                return False
+                raise Unstructurable("a loop is left from several places")
             target = (header, body, exits[0])
             break
         if target is None:
-            return True
+            return
         header, body, (source, exit_label) = target
         depth = sum(1 for h in graph.headers if h != header and header in graph.loop_body(h))
         flag = temps.top(depth)
         if flag is None:
-            return False
+            raise Unstructurable("no temporary variable is left for a loop flag")
         counter += 1
         span = graph.blocks[header].span
         pre = ir.Block(f"{routine.name}.pre{counter}%", [ir.Assign(flag, ir.Const(1), span)], span=span)
@@ -699,6 +725,34 @@ class Structurer:
         block = self.blocks.get(label)
         return block.span if block is not None else None
 
+    def leaves(self, arm: str, join: str) -> bool:
+        """The arm ENDs on every path without ever reaching `join`."""
+        if arm not in self.ends:
+            return False
+        seen = {arm}
+        work = [arm]
+        while work:
+            label = work.pop()
+            if label == join:
+                return False
+            for succ in self.graph.succ.get(label, ()):
+                if succ not in seen:
+                    seen.add(succ)
+                    work.append(succ)
+        return True
+
+    def copyable(self, label: str) -> bool:
+        """A short block that ENDs the program may be written twice (tail duplication)."""
+        block = self.blocks[label]
+        return isinstance(block.terminator, ir.End) and len(block.ops) <= TAIL_COPY
+
+    def is_test(self, label: str) -> bool:
+        """A block that only tests (an ELSEIF): no operations, a branch, one way in."""
+        block = self.blocks.get(label)
+        return (block is not None and not block.ops and isinstance(block.terminator, ir.Branch)
+                and label not in self.graph.headers and label not in self.emitted
+                and self.graph.forward_preds(label) == 1)
+
     def join(self, label: str, follow: str) -> str:
         merges = [c for c in self.graph.children[label] if self.graph.forward_preds(c) >= 2]
         if not merges:
@@ -720,8 +774,8 @@ class Structurer:
                 code, label = self.loop(label, follow, forbidden, active)
                 out += code
                 continue
-            if label in self.emitted:
-                raise Unstructurable("a block reached from two structured places")
+            if label in self.emitted and not self.copyable(label):
+                raise Unstructurable("a block is reached from two structured places")
             self.emitted.add(label)
             block = self.blocks[label]
             out += [Simple(op) for op in block.ops]
@@ -748,13 +802,20 @@ class Structurer:
         inner = (forbidden | {follow}) - {join}
         then, otherwise = term.then, term.otherwise
         cond = term.cond
-        if join == follow:
+        if join == follow and self.leaves(otherwise, join) and not self.leaves(then, join) and then != follow \
+                and self.is_test(then):
+            cond, then, otherwise = negate(cond), otherwise, then  # the ENDing arm first, as below
+        if join == follow and self.leaves(then, join) and otherwise != follow and self.is_test(otherwise):
+            # IF a / END / ELSEIF b ...: keep the ELSEIF chain; its own merge point closes the whole IF.
+            join = self.join(otherwise, follow)
+            inner = (forbidden | {follow}) - {join}
+        elif join == follow:
             # One arm never comes back (it ENDs): keep it inside the IF, go on with the other one.
-            if then in self.ends and otherwise not in self.ends:
+            if self.leaves(then, join):
                 out.append(self.if_node(cond, self.region(then, join, inner, active), [], term, None,
                                         self.span(otherwise)))
                 return otherwise
-            if otherwise in self.ends and then not in self.ends:
+            if self.leaves(otherwise, join):
                 out.append(self.if_node(negate(cond), self.region(otherwise, join, inner, active), [], term, None,
                                         self.span(then)))
                 return then
@@ -861,7 +922,7 @@ class Emitter:
         self.temps = Temps(self.config.temporaries)
         self.var_map: dict[str, str] = {}
         self.sub_numbers: dict[str, int] = {}
-        self.reported: set[int] = set()
+        self.reported: dict[int, object] = {}
         self.stmts: list[Stmt] = []
         self.dispatched: list[str] = []
         self.by_ir = {k.ir: k for k in self.cat.keywords if k.ir and k.kind not in (arcus_catalog.ASCII_ONLY,)}
@@ -879,7 +940,7 @@ class Emitter:
     def unsupported(self, op, why: str, code: str = "G003", severity_note: bool = False) -> None:
         if id(op) in self.reported:
             return
-        self.reported.add(id(op))
+        self.reported[id(op)] = op  # kept alive so that its id is not reused
         from mcc.compiler.diagnostics import Severity
 
         self.diags.add(code, self.span_of(op), f"not written for the Arcus PMX-4EX-SA: {why}",
@@ -1061,11 +1122,11 @@ class Emitter:
     def compile_routine(self, routine: ir.Routine) -> tuple[list, Span | None]:
         legal = Legalizer(self, routine).run()
         self.insert_modes(legal)
+        self.temps.start_routine()
         flags = ir.Routine(legal.name, legal.kind, [self.copy_block(b) for b in legal.blocks], legal.span,
                            legal.number)
         try:
-            if not flag_loops(flags, self.temps):
-                raise Unstructurable("a loop is left from several places, or the graph is irreducible")
+            flag_loops(flags, self.temps, self.config.max_copied)
             structurer = Structurer(flags)
             return structurer.run(), structurer.exit_span
         except Unstructurable as why:
@@ -1090,25 +1151,68 @@ class Emitter:
         return ir.Block(block.label, list(block.ops), term, block.span, block.named)
 
     def insert_modes(self, routine: ir.Routine) -> None:
-        """Pass 2: ABS/INC before a move whose mode is not the one in force (modes.py)."""
-        moved = modes.changers(self.module)
-        states = modes.analyse(routine, modes.entry_state(routine, self.profile), moved)
-        for block in routine.blocks:
-            if block.label not in states:
-                continue
-            state = states[block.label]
-            ops: list[ir.Op] = []
+        """Pass 2: ABS/INC before a move whose mode is not the one in force (modes.py).
+
+        Two states flow through the CFG: the mode the IR's own ABS/INC select (what a MODAL move
+        means) and the mode the written program has in force (which an inserted ABS/INC changes).
+        An ABSOLUTE/RELATIVE move needs the written mode to be its own; a MODAL move needs it to be
+        the IR's mode when that one is known."""
+        moved = modes.changers(self.module, explicit_moves=True)
+        entry = modes.entry_state(routine, self.profile)
+
+        def transfer(block: ir.Block, state: tuple[str, str, bool], ops: list | None) -> tuple[str, str, bool]:
+            meant, written, changed = state  # changed: an inserted switch may hide an unknown mode
             for op in block.ops:
-                if isinstance(op, ir.Move) and op.mode in modes.STATE_OF and modes.STATE_OF[op.mode] != state:
-                    state = modes.STATE_OF[op.mode]
-                    ops.append(ir.Native(DIALECT, state, span=op.span))
-                ops.append(op)
+                if isinstance(op, ir.Move):
+                    need = modes.STATE_OF.get(op.mode) or (meant if meant != modes.UNKNOWN else None)
+                    if need is not None and written != need:
+                        written = need
+                        changed = changed or meant != written
+                        if ops is not None:
+                            ops.append(ir.Native(DIALECT, need, span=op.span))
+                    elif need is None and changed and ops is not None:
+                        self.uncertain_mode(op)
+                if ops is not None:
+                    ops.append(op)
                 selected = modes.switch(op)
                 if selected is not None:
-                    state = selected
+                    meant = written = selected
+                    changed = False
                 elif isinstance(op, ir.Call) and op.routine in moved:
-                    state = modes.UNKNOWN
-            block.ops = ops
+                    meant = written = modes.UNKNOWN
+            return meant, written, changed
+
+        if not routine.blocks:
+            return
+        blocks = {b.label: b for b in routine.blocks}
+        states: dict[str, tuple[str, str, bool]] = {routine.blocks[0].label: (entry, entry, False)}
+        work = [routine.blocks[0].label]
+        while work:
+            label = work.pop()
+            out = transfer(blocks[label], states[label], None)
+            for succ in ir.successors(blocks[label].terminator):
+                if succ not in blocks:
+                    continue
+                old = states.get(succ)
+                new = out if old is None else (modes.meet(old[0], out[0]), modes.meet(old[1], out[1]),
+                                               old[2] or out[2])
+                if old != new:
+                    states[succ] = new
+                    work.append(succ)
+        for block in routine.blocks:
+            if block.label in states:
+                ops: list[ir.Op] = []
+                transfer(block, states[block.label], ops)
+                block.ops = ops
+
+    def uncertain_mode(self, op: ir.Move) -> None:
+        if id(op) in self.reported:
+            return
+        self.reported[id(op)] = op
+        self.diags.add("A208", self.span_of(op),
+                       "this move uses the ABS/INC mode in force, which is not known here, and an ABS or INC "
+                       "written for an earlier move with an explicit mode may have changed it: make the move's "
+                       "mode explicit in the source")
 
     def check_temporaries(self) -> None:
         temps = self.temps

@@ -32,14 +32,18 @@ def switch(op: ir.Op) -> str | None:
     return None
 
 
-def changers(module: ir.Module) -> set[str]:
-    """Routines that may change the mode, directly or through the routines they call."""
+def changers(module: ir.Module, explicit_moves: bool = False) -> set[str]:
+    """Routines that may change the mode, directly or through the routines they call.
+
+    With `explicit_moves` (the backend's view) a routine with an ABSOLUTE or RELATIVE move counts
+    too: the backend may write ABS or INC before that move."""
     direct: set[str] = set()
     calls: dict[str, set[str]] = {}
     for routine in module.routines:
         for block in routine.blocks:
             for op in block.ops:
-                if switch(op) is not None:
+                if switch(op) is not None or (explicit_moves and isinstance(op, ir.Move)
+                                              and op.mode is not ir.MoveMode.MODAL):
                     direct.add(routine.name)
                 elif isinstance(op, ir.Call):
                     calls.setdefault(routine.name, set()).add(op.routine)
