@@ -163,7 +163,12 @@ class Resolver:
         keyword = match.keyword
         instead = keyword.get("standalone")
         if instead:
-            advice = f"in a standalone program write {instead.replace('<axis>', match.axis or '<axis>')}"
+            spelled = instead.replace("<axis>", match.axis or "<axis>")
+            if match.index is not None:
+                spelled = spelled.replace("<n>", str(match.index))
+            if match.axis and "<axis>" not in instead and spelled.isalpha():
+                spelled += match.axis  # HSX -> HSPDX
+            advice = f"in a standalone program write {spelled}"
         else:
             advice = "a standalone program has no equivalent; a host sends it over USB or RS-485"
         self.diags.add("A102", part.span,
@@ -345,6 +350,8 @@ class Resolver:
                 low, high = sibling.index_range
                 self.diags.add("A119", target.span, f"{target.key}: {sibling.entry.title.lower()} numbers are "
                                                     f"{sibling.name}{low}-{sibling.name}{high}")
+            elif leftover[:1].isalpha():
+                self.unknown(target)
             else:
                 self.diags.add("A122", sub_span(target, match.end, len(target.key)),
                                f"unexpected '{leftover}' after {match.keyword.spell(match.axis, match.index)}")
