@@ -1368,7 +1368,7 @@ class Emitter:
         detail: list[tuple[str, tuple[Span, ...]]] = []
         for stmt in self.stmts:
             listing.emit(stmt.text, *stmt.spans)
-            targets = {name: f"{self.stmts[i].address if i < len(self.stmts) else total:04d}"
+            targets = {name: f"{self.entry(i, total) if name == 'next' else self.address(i, total):04d}"
                        for name, i in stmt.jumps.items()}
             targets.update({f"sub{n}": f"{a:04d}" for n, a in sub_address.items()})
             rows = [f"{op:<5} {PLACEHOLDER.sub(lambda m: targets.get(m.group(1), '????'), operands)}".rstrip()
@@ -1385,6 +1385,19 @@ class Emitter:
         listing.header = self.header(total, statements)
         self.check_budget(total)
         listing.diagnostics = self.diags
+
+    def address(self, index: int, total: int) -> int:
+        return self.stmts[index].address if index < len(self.stmts) else total
+
+    def entry(self, index: int, total: int) -> int:
+        """Where a failed IF/ELSEIF test lands: the test of the next ELSEIF (after its jump to
+        ENDIF), the first line after ELSE, or the ENDIF."""
+        stmt = self.stmts[index]
+        if stmt.key == "ELSEIF":
+            return stmt.address + min(1, stmt.cost - 1)
+        if stmt.key == "ELSE":
+            return stmt.address + stmt.cost
+        return self.address(index, total)
 
     def header(self, total: int, statements: int) -> str:
         config = self.config

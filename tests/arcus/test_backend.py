@@ -42,7 +42,7 @@ def test_listing_rows_follow_the_cost_model_and_map_back_to_source_lines() -> No
     expected = [[n] for n, cost in zip([1, 2, 3, 4, 5, 6, 7, 8], costs) for _ in range(cost)]
     assert lines == expected
     rows = [text for text, _ in listing.detail]
-    assert rows[1].startswith("TEST") and rows[2] == "JF    0005"  # IF jumps to the ELSEIF at line 5
+    assert rows[1].startswith("TEST") and rows[2] == "JF    0006"  # to the ELSEIF (line 4) test, after its JMP
     assert "h-estimate" in listing.header and "3230" in listing.header
     rendered = listing.render()
     assert "    0  SET   HSPD <- 1000" in rendered and "; src 1" in rendered

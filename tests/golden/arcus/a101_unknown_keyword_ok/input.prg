@@ -1,0 +1,3 @@
+HSPD=1000
+JOGX+
+END

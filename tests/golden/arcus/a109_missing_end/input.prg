@@ -1,0 +1,4 @@
+GOSUB 1
+SUB 1
+X0
+ENDSUB

@@ -1,0 +1,3 @@
+V1=DI1
+V2=MSTX
+V3=PSY

@@ -1,0 +1,28 @@
+; Golden listing: a small palletising cycle with every kind of statement the cost model counts.
+ABS
+HSPD=20000
+LSPD=500
+ACC=200
+V1=0
+WHILE V1<4
+; row Y position: V2 = V1 * 2500
+V2=V1*2500
+X1000YV2
+WAITX
+WAITY
+IF DI1=1
+GOSUB 1
+ELSEIF DI2=1
+ARCP1000:5000:90000
+ELSE
+CIRN1000:5000
+ENDIF
+V1=V1+1
+ENDWHILE
+X0Y0
+END
+SUB 1
+DO1=1
+DELAY=250
+DO1=0
+ENDSUB
