@@ -518,6 +518,7 @@ class Graph:
             parent = self.idom.get(label)
             if parent is not None and parent != label:
                 self.children[parent].append(label)
+        self.number_dominator_tree()
         self.back_edges = {(u, v) for u in self.order for v in self.succ[u] if self.dominates(v, u)}
         self.headers = {v for _, v in self.back_edges}
         self.reducible = self.check_reducible()
@@ -565,15 +566,31 @@ class Graph:
                     changed = True
         return idom
 
+    def number_dominator_tree(self) -> None:
+        """Pre- and post-order numbers of the dominator tree: a dominates b when b's interval lies in
+        a's, a constant-time test (walking up the tree would make long programs quadratic)."""
+        self.pre: dict[str, int] = {}
+        self.post: dict[str, int] = {}
+        counter = 0
+        stack = [(self.entry, iter(self.children.get(self.entry, ())))]
+        self.pre[self.entry] = counter
+        while stack:
+            label, it = stack[-1]
+            child = next(it, None)
+            if child is None:
+                stack.pop()
+                counter += 1
+                self.post[label] = counter
+            else:
+                counter += 1
+                self.pre[child] = counter
+                stack.append((child, iter(self.children[child])))
+
     def dominates(self, a: str, b: str) -> bool:
         """a dominates b."""
-        while True:
-            if a == b:
-                return True
-            parent = self.idom.get(b)
-            if parent is None or parent == b:
-                return False
-            b = parent
+        if a not in self.pre or b not in self.pre:
+            return False
+        return self.pre[a] <= self.pre[b] and self.post[b] <= self.post[a]
 
     def check_reducible(self) -> bool:
         """Every edge to a node still on the DFS stack must be a back edge (target dominates source)."""
@@ -1065,6 +1082,7 @@ class Emitter:
     # the whole program ---------------------------------------------------------------------------------
     def run(self) -> Listing:
         listing = Listing(DIALECT)
+        self.moved = modes.changers(self.module, explicit_moves=True)
         self.number_routines()
         main_code: list = []
         subs: list[tuple[ir.Routine, list, Span | None]] = []
@@ -1157,7 +1175,7 @@ class Emitter:
         means) and the mode the written program has in force (which an inserted ABS/INC changes).
         An ABSOLUTE/RELATIVE move needs the written mode to be its own; a MODAL move needs it to be
         the IR's mode when that one is known."""
-        moved = modes.changers(self.module, explicit_moves=True)
+        moved = self.moved
         entry = modes.entry_state(routine, self.profile)
 
         def transfer(block: ir.Block, state: tuple[str, str, bool], ops: list | None) -> tuple[str, str, bool]:
@@ -1366,11 +1384,12 @@ class Emitter:
                 sub_address[int(stmt.text.split()[1])] = stmt.address
         total = address
         detail: list[tuple[str, tuple[Span, ...]]] = []
+        subs = {f"sub{n}": f"{a:04d}" for n, a in sub_address.items()}
         for stmt in self.stmts:
             listing.emit(stmt.text, *stmt.spans)
             targets = {name: f"{self.entry(i, total) if name == 'next' else self.address(i, total):04d}"
                        for name, i in stmt.jumps.items()}
-            targets.update({f"sub{n}": f"{a:04d}" for n, a in sub_address.items()})
+            targets.update(subs)
             rows = [f"{op:<5} {PLACEHOLDER.sub(lambda m: targets.get(m.group(1), '????'), operands)}".rstrip()
                     for op, operands in stmt.rows]
             for row in fit(rows, stmt.cost):

@@ -130,19 +130,22 @@ class Keyword:
 
     def spell(self, axis: str = "", index: int | None = None, direction: int = 0, suffix: str = "") -> str:
         """The keyword as typed, from its pattern: ('HSPD', 'X') -> 'HSPDX'; ('SYNS', 'Y') -> 'SYNYS'."""
-        pattern = self.entry.get("pattern", self.name)
+        return _spell(self.entry.get("pattern", self.name), axis, index, direction, suffix)
 
-        def replace(match: re.Match) -> str:
-            body = match.group(1)
-            if body == "XYZU":
-                return axis if axis in ("X", "Y", "Z", "U") else ""
-            if body == "+-":
-                return "+" if direction >= 0 else "-"
-            if body == "PN":
-                return suffix
-            return "" if index is None else str(index)
 
-        return CLASS.sub(replace, pattern).upper()
+@lru_cache(maxsize=4096)
+def _spell(pattern: str, axis: str, index: int | None, direction: int, suffix: str) -> str:
+    def replace(match: re.Match) -> str:
+        body = match.group(1)
+        if body == "XYZU":
+            return axis if axis in ("X", "Y", "Z", "U") else ""
+        if body == "+-":
+            return "+" if direction >= 0 else "-"
+        if body == "PN":
+            return suffix
+        return "" if index is None else str(index)
+
+    return CLASS.sub(replace, pattern).upper()
 
 
 @dataclass(frozen=True)
@@ -163,6 +166,7 @@ class ArcusCatalog:
         self.keywords: list[Keyword] = []
         self.by_first: dict[str, list[Keyword]] = {}
         self.by_name: dict[str, list[Keyword]] = {}
+        self._matches: dict[str, Match | None] = {}  # texts repeat a lot (WAITX, V1, DO7)
         for entry in raw.entries:
             pattern = entry.get("pattern", "")
             if not pattern or not pattern[0].isalpha():
@@ -185,6 +189,16 @@ class ArcusCatalog:
 
     def match(self, text: str) -> Match | None:
         """The longest keyword at the start of `text` (upper case expected)."""
+        try:
+            return self._matches[text]
+        except KeyError:
+            pass
+        if len(self._matches) > 20000:
+            self._matches.clear()
+        found = self._matches[text] = self._match(text)
+        return found
+
+    def _match(self, text: str) -> Match | None:
         best: Match | None = None
         for keyword in self.by_first.get(text[:1], ()):
             found = keyword.regex.match(text)
