@@ -198,6 +198,7 @@ class Legalizer:
         self.em = emitter
         self.routine = routine
         self.out = ir.Routine(routine.name, routine.kind, span=routine.span, number=routine.number)
+        self.labels = {block.label for block in routine.blocks}
         self.block: ir.Block | None = None
         self.split = 0
 
@@ -249,9 +250,9 @@ class Legalizer:
         allowed = {ir.Unit.NONE, ir.Unit.MS} if op.param is ir.MotionParam.ACCEL else \
             {ir.Unit.NONE, ir.Unit.STEPS_PER_S}
         if unit not in allowed:
-            self.em.unsupported(op, f"the {op.param.value.replace('_', ' ')} is given in {unit.value}: Arcus ACC "
-                                    "is a ramp time in ms and speeds are in pulses/s; convert it in the source",
-                                code="G005")
+            arcus_unit = "a ramp time in ms" if op.param is ir.MotionParam.ACCEL else "in pulses/s"
+            self.em.unsupported(op, f"the {op.param.value.replace('_', ' ')} is given in {unit.value}, and the "
+                                    f"Arcus setting is {arcus_unit}: convert it in the source", code="G005")
             raise _Skip
         self.emit(ir.SetMotion(op.param, self.em.axis(op.axis, op, setting=True), self.value(op.value, op),
                                op.span))
@@ -393,11 +394,40 @@ class Legalizer:
         raise _Skip
 
     # conditions and terminators --------------------------------------------------------------------
+    def target(self, label: str, span: Span | None) -> str:
+        """A jump target inside this routine; a jump into another routine (other dialects) becomes
+        a block of its own: into the main program from the setup lines, a fall-through; into a
+        subroutine's entry, GOSUB then END (a transfer without return); anywhere else, reported."""
+        if label in self.labels:
+            return label
+        em = self.em
+        routine = em.entries.get(label)
+        block = self.new_block(span)
+        holder = type("Holder", (), {"span": span})()
+        if routine is not None and routine.kind is ir.RoutineKind.MAIN and \
+                self.routine.kind is ir.RoutineKind.IMMEDIATE:
+            block.terminator = ir.FallOff(span)  # the setup lines are written before the main program
+        elif routine is not None and routine.name in em.sub_numbers:
+            block.ops.append(ir.Call(routine.name, span=span))
+            block.terminator = ir.End(span)
+            em.unsupported(holder, f"the jump into {routine.name} is written as GOSUB "
+                                   f"{em.sub_numbers[routine.name]} then END (Arcus has no GOTO)", code="G005")
+        else:
+            block.terminator = ir.End(span)
+            em.unsupported(holder, f"a jump to {label} inside another routine has no Arcus form (no GOTO)")
+        return block.label
+
     def terminator(self, term: ir.Terminator | None, span: Span | None) -> None:
         block = self.block
-        if isinstance(term, ir.Branch):
+        if isinstance(term, ir.Jump):
+            block.terminator = ir.Jump(self.target(term.target, term.span), term.span)
+        elif isinstance(term, ir.Branch):
             base = self.em.temps.live
-            self.test(term.cond, term.then, term.otherwise, term.span)
+            then, otherwise = self.target(term.then, term.span), self.target(term.otherwise, term.span)
+            try:
+                self.test(term.cond, then, otherwise, term.span)
+            except _Skip:  # reported: the condition has no Arcus form
+                self.block.terminator = ir.End(term.span)
             self.em.temps.live = base
         elif isinstance(term, ir.GotoRoutine):
             if self.em.sub_number(term.routine, None, span) is not None:
@@ -1083,6 +1113,7 @@ class Emitter:
     def run(self) -> Listing:
         listing = Listing(DIALECT)
         self.moved = modes.changers(self.module, explicit_moves=True)
+        self.entries = {r.blocks[0].label: r for r in self.module.routines if r.blocks}
         self.number_routines()
         main_code: list = []
         subs: list[tuple[ir.Routine, list, Span | None]] = []
