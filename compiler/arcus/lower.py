@@ -21,7 +21,6 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 from mcc.compiler import ir
-from mcc.compiler.arcus import catalog as cat
 from mcc.compiler.arcus import modes
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler.arcus.resolve import (ASSIGN, BARE, COLON, CONDITION, CONTROL, MOVE, NUMBERED, WRITE, Resolved,
@@ -303,7 +302,14 @@ class Lowering:
         kind = OPENERS[res.name]
         position = next((i for i in range(len(self.stack) - 1, -1, -1) if self.stack[i].kind == kind), None)
         if position is None:
-            self.diags.add("A112", res.span, f"{res.name} without {kind}: there is no open {kind} block here")
+            if self.stack:  # e.g. ENDWHILE while only an IF is open: name the block that is open
+                top = self.stack[-1]
+                self.diags.add("A112", res.span,
+                               f"{res.name} without {kind}: the block open here is the {top.kind} of line "
+                               f"{top.span.line}, closed by {CLOSERS[top.kind]}",
+                               notes=(f"{top.span.label}: the {top.kind} opened here",))
+            else:
+                self.diags.add("A112", res.span, f"{res.name} without {kind}: there is no open {kind} block here")
             return
         if position != len(self.stack) - 1:
             top = self.stack[-1]
