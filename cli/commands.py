@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import os
 import sys
-import tempfile
-from pathlib import Path
 
 import click
 
@@ -49,22 +47,6 @@ def load_profile(name: str | None):
 
 def use_color(fmt: str) -> bool:
     return fmt == "text" and sys.stdout.isatty() and "NO_COLOR" not in os.environ
-
-
-def write_atomically(path: str, text: str) -> None:
-    """Write via a temporary file in the same directory, so a reader never sees half a file."""
-    target = Path(path)
-    directory = target.parent if str(target.parent) else Path(".")
-    directory.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", dir=directory)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8", newline="") as handle:
-            handle.write(text)
-        os.replace(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def check_profile_dialect(profile, dialects_used: set[str]) -> None:
@@ -151,11 +133,14 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     result = driver.compile_file(file, dialect, target, prof)
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
-    if produced and output:
-        write_atomically(output, result.listing.text)
-        result.output = output
-    if produced and listing:
-        write_atomically(listing, result.listing.render())
+    if produced:
+        from mcc.compiler.lint.files import write_atomic
+
+        if output:
+            write_atomic(output, result.listing.text)
+            result.output = output
+        if listing:
+            write_atomic(listing, result.listing.render())
 
     def extra(res) -> dict:
         data = {"output": res.output, "target": res.target,

@@ -9,6 +9,7 @@ may `extends = "<built-in name>"` and override any key.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -77,6 +78,19 @@ def builtin_names() -> list[str]:
 
 
 def load(name_or_path: str) -> Profile:
+    """A built-in profile by name (read once per process) or a user profile by path."""
+    path = Path(name_or_path)
+    if path.suffix != ".toml" and not path.exists():
+        return _load_builtin(name_or_path)
+    return _load(name_or_path)
+
+
+@lru_cache(maxsize=None)
+def _load_builtin(name: str) -> Profile:
+    return _load(name)
+
+
+def _load(name_or_path: str) -> Profile:
     path = Path(name_or_path)
     if path.suffix == ".toml" or path.exists():
         if not path.is_file():

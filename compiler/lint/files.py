@@ -26,6 +26,9 @@ class TextFile:
     bom: bool = False
 
 
+PLAIN = TextFile("")  # how mcc writes a new file: UTF-8, "\n" line ends, no BOM
+
+
 def decode(data: bytes) -> TextFile:
     bom = data.startswith(b"\xef\xbb\xbf")
     try:
@@ -50,15 +53,22 @@ def encode(text: str, like: TextFile) -> bytes:
     return (b"\xef\xbb\xbf" + data) if like.bom else data
 
 
-def write_atomic(path: str, text: str, like: TextFile) -> None:
+def write_atomic(path: str, text: str, like: TextFile = PLAIN) -> None:
+    """Replace (or create) `path` atomically; an existing file keeps its permissions, a new one
+    gets the usual ones (0666 less the umask), not mkstemp's private 0600."""
     target = Path(path)
     data = encode(text, like)
+    target.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=str(target.parent or Path(".")))
     try:
         with os.fdopen(fd, "wb") as handle:
             handle.write(data)
         if target.exists():
             shutil.copymode(target, tmp)
+        else:
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(tmp, 0o666 & ~umask)
         os.replace(tmp, target)
     except BaseException:
         if os.path.exists(tmp):

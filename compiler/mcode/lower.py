@@ -165,6 +165,7 @@ class Lowering:
                 self.region_span = res.stmt.span
                 self.region_routines = []
                 self.routine = None
+                self.block = None  # the immediate lines before PG do not flow into the program
             elif self.region_origin is None and not self.region_routines:
                 self.diags.add("M128", res.stmt.span, "`PG` without an address closes program mode, but no program "
                                                       "is open here")
