@@ -98,6 +98,8 @@ class Lowering:
     def run(self) -> ir.Module:
         for line in self.tree.lines:
             if line.statement is None:
+                if line.error and line.keyword in ("IF", "ELSEIF", "WHILE"):
+                    self.statement(self.placeholder(line))  # keep the block structure around a bad line
                 continue
             res = self.resolver.resolve(line)
             self.statement(res)
@@ -105,6 +107,15 @@ class Lowering:
         self.finish()
         modes.assign_move_modes(self.module, self.profile)
         return self.module
+
+    def placeholder(self, line: st.Line) -> Resolved:
+        """An IF/ELSEIF/WHILE line that did not parse, as a condition that is never checked (the file
+        has a syntax error, so nothing is compiled): its ENDIF or ENDWHILE still has its opener."""
+        span = line.span
+        zero = st.Number("0", span)
+        condition = st.Condition(st.Comparison("=", zero, zero, span), span)
+        stmt = st.Conditional(line.keyword, span, condition, span)
+        return Resolved(line, stmt, CONDITION, self.cat.lookup(line.keyword))
 
     def statement(self, res: Resolved) -> None:
         shape = res.shape
@@ -264,14 +275,14 @@ class Lowering:
             while self.stack:
                 self.close_frame(self.stack.pop(), res.span)
         number = res.number
-        if number in self.program.subs and res.valid:
+        if res.valid and number in self.program.subs:
             first = self.program.subs[number]
             self.diags.add("A107", res.number_span or res.span,
                            f"SUB {number} is already defined at line {first.span.line}: give each subroutine its "
                            "own number", notes=(f"{first.span.label}: the first SUB {number}",))
         elif res.valid:
             self.program.subs[number] = res
-        if self.program.end is None:
+        if self.program.end is None and res.valid:
             self.program.subs_before_end.append(res)
         name = sub_name(number) if res.valid and self.program.subs.get(number) is res else f"%SUB{number}.{self.labels}"
         routine = ir.Routine(name, ir.RoutineKind.SUBROUTINE, span=res.span, number=number)

@@ -8,6 +8,7 @@ still checked. This is the scheme of compiler/mcode/parser.py.
 
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 from pathlib import Path
 
@@ -31,6 +32,9 @@ TOKEN_NAMES = {
 # Binding strength of the binary operators. The language allows one operator per statement
 # (L2675), so precedence only matters for the expressions mcc reports as errors; it follows C so
 # that the IR keeps the meaning a reader expects.
+OPENER = re.compile(r"\s*(ELSEIF|IF|WHILE)(?![A-Za-z])", re.IGNORECASE)
+FLATTENED = re.compile(r"\b(ENDIF|ENDWHILE)\b", re.IGNORECASE)
+
 PRECEDENCE = {"|": 1, "&": 2, "<<": 3, ">>": 3, "+": 4, "-": 4, "*": 5, "/": 5, "%": 5}
 
 
@@ -189,7 +193,8 @@ def describe_error(exc: UnexpectedInput) -> str:
             return (f"unexpected '{tok}': one statement per line (put '{tok}' on its own line; "
                     "the manual's examples were flattened by the PDF conversion)")
         expected = sorted({TOKEN_NAMES.get(t, f"'{t}'") for t in getattr(exc, "expected", ()) if t != "COMMENT"})
-        found = f"'{tok}'" if tok.type not in TOKEN_NAMES else f"{TOKEN_NAMES[tok.type]} '{tok}'"
+        name = TOKEN_NAMES.get(tok.type, "")
+        found = f"{name} '{tok}'" if name and name != f"'{tok}'" else f"'{tok}'"
         hint = f" (expected {', '.join(expected[:6])})" if expected else ""
         return f"unexpected {found}{hint}"
     return str(exc).splitlines()[0]
@@ -234,7 +239,10 @@ def _parse_by_line(source: SourceFile, parser: Lark, builder: Builder, diags: Di
             end_col = column + (1 if column <= len(text) else 0)
             span = Span(source.path, number, column, number, end_col, start, start + (end_col - column))
             diags.add("A001", span, describe_error(exc))
-            line = st.Line(number, error=True)
+            line = st.Line(number, error=True, span=source.line_span(number))
+            opener = OPENER.match(text)
+            if opener and not FLATTENED.search(text):  # `IF V1=1 X1000 ENDIF` opens nothing
+                line.keyword = opener.group(1).upper()
         except LarkError as exc:  # pragma: no cover - other parser failures are still syntax errors
             diags.add("A001", source.line_span(number), str(exc).splitlines()[0])
             line = st.Line(number, error=True)

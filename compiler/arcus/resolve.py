@@ -309,9 +309,12 @@ class Resolver:
             res.shape = COLON
 
     def numbered(self, res: Resolved, cmd: st.Command, leftover: str) -> None:
+        """GOSUB n, SUB n. A bad number still gives the statement its shape (with `valid` False), so
+        that the block structure around a broken SUB line is matched without follow-on errors."""
         first = cmd.parts[0]
         name = res.keyword.name
         extra = cmd.parts[1:]
+        res.shape, res.valid = NUMBERED, False
         if not leftover and extra and len(extra) == 1 and (info := self.ref(st.Ref(extra[0]))) is not None \
                 and info.is_variable:
             self.diags.add("A118", extra[0].span, f"{name} takes a subroutine number written out "
@@ -328,7 +331,7 @@ class Resolver:
             self.diags.add("A122", span, f"{name} needs a subroutine number (e.g. {name} 1), not '{leftover}'")
             return
         number = int(leftover)
-        res.number, res.number_span, res.shape = number, span, NUMBERED
+        res.number, res.number_span, res.valid = number, span, True
         low, high = self.sub_range
         if not low <= number <= high or m.group(1):
             self.diags.add("A104", span, f"{name} {leftover}: subroutine numbers are {low}-{high} "

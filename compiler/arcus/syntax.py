@@ -134,6 +134,8 @@ class Line:
     statement: Statement | None = None
     comment: Comment | None = None
     error: bool = False  # the line did not parse; it is kept verbatim in the source
+    keyword: str = ""  # for a line that did not parse: IF, ELSEIF or WHILE when it starts with one
+    span: Span | None = None  # for a line that did not parse: the whole line
 
 
 @dataclass

@@ -274,3 +274,8 @@ def test_no_input_raises(tmp_path) -> None:
                  "ARCP::", "X--1", "V1=~~~", "GOSUB 99999999999999999999", "\x00\x01", "é", "END\nEND\nELSE"]:
         result = driver.compile_file("f.prg", "arcus", text=text)
         assert not [d for d in result.diagnostics if d.kind.value == "internal"], text
+
+
+def test_a_bad_opener_line_still_opens_its_block() -> None:
+    text = "WHILE V1=\nIF V2 == 3\nX1\nELSEIF V2=(3)\nX2\nENDIF\nENDWHILE\nSUB x\nENDSUB\nEND\n"
+    assert codes(text) == ["A001", "A001", "A001", "A122"]
