@@ -16,6 +16,7 @@ from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from mcc.compiler.arcus import syntax as st
+from mcc.compiler import recovery
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import SourceFile, Span
 
@@ -202,51 +203,16 @@ def describe_error(exc: UnexpectedInput) -> str:
 
 def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
     parser, builder = _parser()
-    text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
-    builder.path = source.path
-    builder.line_delta = builder.offset_delta = 0
-    try:
-        lines = parser.parse(text, start="start")
-    except LarkError:
-        lines = None
-    tree = st.SyntaxTree(source.path)
-    if lines is not None:
-        for number, line in enumerate(lines, 1):  # one line node per physical line, in order
-            line.number = number
-        tree.lines = lines
-        return tree
-    tree.lines = _parse_by_line(source, parser, builder, diags)
-    return tree
 
-
-def _parse_by_line(source: SourceFile, parser: Lark, builder: Builder, diags: Diagnostics) -> list[st.Line]:
-    lines = []
-    starts = source.line_starts
-    for number in range(1, source.line_count + 1):
-        text = source.line_text(number)
-        if number == source.line_count and not text:
-            break  # the empty remainder after the final newline
-        builder.line_delta = number - 1
-        builder.offset_delta = starts[number - 1]
-        try:
-            line = parser.parse(text + "\n", start="line")
-        except UnexpectedInput as exc:
-            column = getattr(exc, "column", 1) or 1
-            if isinstance(exc, UnexpectedToken) and exc.token.type in ("_NL", "$END"):
-                column = len(text.rstrip()) + 1
-            column = max(1, min(column, len(text) + 1))
-            start = starts[number - 1] + column - 1
-            end_col = column + (1 if column <= len(text) else 0)
-            span = Span(source.path, number, column, number, end_col, start, start + (end_col - column))
-            diags.add("A001", span, describe_error(exc))
-            line = st.Line(number, error=True, span=source.line_span(number))
-            opener = OPENER.match(text)
-            if opener and not FLATTENED.search(text):  # `IF V1=1 X1000 ENDIF` opens nothing
-                line.keyword = opener.group(1).upper()
-        except LarkError as exc:  # pragma: no cover - other parser failures are still syntax errors
+    def bad_line(number: int, text: str, exc: LarkError) -> st.Line:
+        if not isinstance(exc, UnexpectedInput):  # pragma: no cover - other parser failures
             diags.add("A001", source.line_span(number), str(exc).splitlines()[0])
-            line = st.Line(number, error=True)
-        line.number = number
-        lines.append(line)
-    builder.line_delta = builder.offset_delta = 0
-    return lines
+            return st.Line(number, error=True)
+        diags.add("A001", recovery.error_span(source, number, text, exc), describe_error(exc))
+        line = st.Line(number, error=True, span=source.line_span(number))
+        opener = OPENER.match(text)
+        if opener and not FLATTENED.search(text):  # `IF V1=1 X1000 ENDIF` opens nothing
+            line.keyword = opener.group(1).upper()
+        return line
+
+    return st.SyntaxTree(source.path, recovery.parse_lines(source, parser, builder, bad_line))

@@ -1,9 +1,7 @@
 """Parsing MCode text into the syntax tree, with recovery at line ends.
 
-The common case (a file without syntax errors) is one LALR pass with the tree built directly by
-the parser's callbacks. When that pass fails, the file is parsed again line by line with the
-`line` start symbol, so a file with three bad lines gets three diagnostics and every other line is
-still checked.
+See `mcc.compiler.recovery`: one LALR pass over the whole file, and line by line when it fails,
+so a file with three bad lines gets three diagnostics and every other line is still checked.
 """
 
 from __future__ import annotations
@@ -14,6 +12,7 @@ from pathlib import Path
 from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
+from mcc.compiler import recovery
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.span import SourceFile, Span
@@ -186,49 +185,10 @@ def describe_error(exc: UnexpectedInput) -> str:
 
 def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
     parser, builder = _parser()
-    text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
-    builder.path = source.path
-    builder.line_delta = builder.offset_delta = 0
-    try:
-        lines = parser.parse(text, start="start")
-    except LarkError:
-        lines = None
-    tree = st.SyntaxTree(source.path)
-    if lines is not None:
-        # Each parsed line node matches one physical line, in order.
-        for number, line in enumerate(lines, 1):
-            line.number = number
-        tree.lines = lines
-        return tree
-    tree.lines = _parse_by_line(source, parser, builder, diags)
-    return tree
 
+    def bad_line(number: int, text: str, exc: LarkError) -> st.Line:
+        message = describe_error(exc) if isinstance(exc, UnexpectedInput) else str(exc).splitlines()[0]
+        diags.add("M001", recovery.error_span(source, number, text, exc), message)
+        return st.Line(number, error=True)
 
-def _parse_by_line(source: SourceFile, parser: Lark, builder: Builder, diags: Diagnostics) -> list[st.Line]:
-    lines = []
-    starts = source.line_starts
-    for number in range(1, source.line_count + 1):
-        text = source.line_text(number)
-        if number == source.line_count and not text:
-            break  # the empty remainder after the final newline
-        builder.line_delta = number - 1
-        builder.offset_delta = starts[number - 1]
-        try:
-            line = parser.parse(text + "\n", start="line")
-        except UnexpectedInput as exc:
-            column = getattr(exc, "column", 1) or 1
-            if isinstance(exc, UnexpectedToken) and exc.token.type in ("_NL", "$END"):
-                column = len(text.rstrip()) + 1
-            column = max(1, min(column, len(text) + 1))
-            start = starts[number - 1] + column - 1
-            end_col = column + (1 if column <= len(text) else 0)
-            span = Span(source.path, number, column, number, end_col, start, start + (end_col - column))
-            diags.add("M001", span, describe_error(exc))
-            line = st.Line(number, error=True)
-        except LarkError as exc:  # pragma: no cover - other parser failures are still syntax errors
-            diags.add("M001", source.line_span(number), str(exc).splitlines()[0])
-            line = st.Line(number, error=True)
-        line.number = number
-        lines.append(line)
-    builder.line_delta = builder.offset_delta = 0
-    return lines
+    return st.SyntaxTree(source.path, recovery.parse_lines(source, parser, builder, bad_line))
