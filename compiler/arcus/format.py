@@ -17,7 +17,6 @@ Formatting never changes what a program does: `mcc fmt` compares the IR before a
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import lru_cache
 
 from mcc.compiler.arcus import catalog as acat
@@ -26,21 +25,14 @@ from mcc.compiler.arcus import syntax as st
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
+from mcc.compiler.lint.layout import Out, align_comments, collapse_blank_lines, render
 
 INDENT = "  "
-COMMENT_COLUMN = 24  # 0-based: trailing comments start in column 25
 OPENERS = {"IF", "WHILE", "SUB"}
 MIDDLES = {"ELSEIF", "ELSE"}
 CLOSERS = {"ENDIF", "ENDWHILE", "ENDSUB"}
 
 
-@dataclass
-class Out:
-    indent: str = ""
-    code: str = ""
-    comment: str = ""
-    verbatim: str | None = None
-    blank: bool = False
 
 
 @lru_cache(maxsize=1)
@@ -166,37 +158,6 @@ def node(n: st.Node) -> str:
 
 # blank lines and comments ---------------------------------------------------------------------------
 
-def collapse_blank_lines(lines: list[Out]) -> list[Out]:
-    out: list[Out] = []
-    for line in lines:
-        if line.blank and (not out or out[-1].blank):
-            continue
-        out.append(line)
-    while out and out[-1].blank:
-        out.pop()
-    return out
 
 
-def align_comments(lines: list[Out], limit: int) -> None:
-    block: list[Out] = []
-    for line in [*lines, Out(blank=True)]:
-        if not line.blank:
-            block.append(line)
-            continue
-        trailing = [item for item in block if item.code and item.comment]
-        if trailing:
-            column = max(COMMENT_COLUMN, *(len(item.indent + item.code) + 2 for item in trailing))
-            for item in trailing:
-                gap = column - len(item.indent + item.code)
-                if limit and len(item.indent + item.code) + gap + len(item.comment) > limit:
-                    gap = 1
-                item.code += " " * gap
-        block = []
 
-
-def render(line: Out) -> str:
-    if line.verbatim is not None:
-        return line.verbatim
-    if line.blank:
-        return ""
-    return line.indent + line.code + line.comment if line.code else line.indent + line.comment

@@ -21,7 +21,6 @@ after and refuses to write when they differ (and the property tests check the sa
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as mcat
@@ -29,23 +28,14 @@ from mcc.compiler.mcode import parser
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
+from mcc.compiler.lint.layout import Out, align_comments, collapse_blank_lines, render
 
 INDENT = "  "
-COMMENT_COLUMN = 24  # 0-based: trailing comments start in column 25, as in the manual's samples
 DEFAULT_LINE_LENGTH = 64
 GLUED = re.compile(r"([A-Za-z]{1,2})([0-9]+)\Z")
 CANONICAL_OPERATORS = {"=<": "<="}
 
 
-@dataclass
-class Out:
-    """One output line before comment alignment."""
-
-    indent: str = ""
-    code: str = ""
-    comment: str = ""
-    verbatim: str | None = None  # a line that did not parse
-    blank: bool = False
 
 
 def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
@@ -66,7 +56,7 @@ class Formatter:
     def run(self) -> str:
         lines = self.layout()
         lines = collapse_blank_lines(lines)
-        align_comments(lines, self.limit)
+        align_comments(lines, self.limit, indent_counts=False)
         return "".join(render(line) + "\n" for line in lines)
 
     # layout ------------------------------------------------------------------------------------
@@ -175,40 +165,6 @@ def user_names(tree: st.SyntaxTree) -> set[str]:
     return names
 
 
-def collapse_blank_lines(lines: list[Out]) -> list[Out]:
-    out: list[Out] = []
-    for line in lines:
-        if line.blank and (not out or out[-1].blank):
-            continue
-        out.append(line)
-    while out and out[-1].blank:
-        out.pop()
-    return out
 
 
-def align_comments(lines: list[Out], limit: int) -> None:
-    """Give trailing comments of each block (lines between blank lines) one common column."""
-    block: list[Out] = []
-    for line in [*lines, Out(blank=True)]:
-        if not line.blank:
-            block.append(line)
-            continue
-        trailing = [item for item in block if item.code and item.comment]
-        if trailing:
-            column = max(COMMENT_COLUMN, *(len(item.indent + item.code) + 2 for item in trailing))
-            for item in trailing:
-                gap = column - len(item.indent + item.code)
-                if len(item.code) + gap + len(item.comment) > limit:
-                    gap = 1  # alignment must not overflow the device's line buffer
-                item.code += " " * gap
-        block = []
 
-
-def render(line: Out) -> str:
-    if line.verbatim is not None:
-        return line.verbatim
-    if line.blank:
-        return ""
-    if line.code:
-        return line.indent + line.code + line.comment
-    return line.indent + line.comment

@@ -17,25 +17,18 @@ Formatting never changes what a program does: `mcc fmt` compares the IR before a
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import parser
 from mcc.compiler.x150 import syntax as st
+from mcc.compiler.lint.layout import Out, align_comments, collapse_blank_lines, render
 
-COMMENT_COLUMN = 24  # 0-based: trailing comments start in column 25
 QUOTED = re.compile(r'("[^"]*")')
 KEEP_CASE_ARGS = ("raw",)  # TX's free text (catalog argument class)
 
 
-@dataclass
-class Out:
-    code: str = ""
-    comment: str = ""
-    verbatim: str | None = None
-    blank: bool = False
 
 
 def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
@@ -52,7 +45,7 @@ def layout_line(source: SourceFile, line: st.Line) -> Out:
     comment = line.comment.text.rstrip() if line.comment is not None else ""
     if not line.commands:
         return Out(comment=comment) if comment else Out(blank=True)
-    return Out(" ".join(command_text(c) for c in line.commands), comment)
+    return Out(code=" ".join(command_text(c) for c in line.commands), comment=comment)
 
 
 def command_text(command: st.Command) -> str:
@@ -65,34 +58,6 @@ def command_text(command: st.Command) -> str:
     return "".join(piece if piece.startswith('"') else piece.upper() for piece in QUOTED.split(text))
 
 
-def collapse_blank_lines(lines: list[Out]) -> list[Out]:
-    out: list[Out] = []
-    for line in lines:
-        if line.blank and (not out or out[-1].blank):
-            continue
-        out.append(line)
-    while out and out[-1].blank:
-        out.pop()
-    return out
 
 
-def align_comments(lines: list[Out]) -> None:
-    block: list[Out] = []
-    for line in [*lines, Out(blank=True)]:
-        if not line.blank:
-            block.append(line)
-            continue
-        trailing_lines = [item for item in block if item.code and item.comment]
-        if trailing_lines:
-            column = max(COMMENT_COLUMN, *(len(item.code) + 2 for item in trailing_lines))
-            for item in trailing_lines:
-                item.code += " " * (column - len(item.code))
-        block = []
 
-
-def render(line: Out) -> str:
-    if line.verbatim is not None:
-        return line.verbatim
-    if line.blank:
-        return ""
-    return line.code + line.comment if line.code else line.comment
