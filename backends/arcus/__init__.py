@@ -1,0 +1,97 @@
+"""The Arcus PMX-4EX-SA backend: IR → canonical standalone text + an assembly-level listing.
+
+`emit(module, profile)` is the whole interface. The work is done in five passes, one module each:
+
+1. **Legalize** (legalize.py): a copy of each routine's CFG in which every operation is one Arcus
+   statement, expressions split through the reserved temporaries (temporaries.py).
+2. **Move modes** (move_modes.py): ABS/INC where a move needs a mode not known to be in force.
+3. **Structure** (mcc.backends.structure, shared by targets without GOTO): IF/ELSEIF/ELSE and WHILE
+   rebuilt from the CFG; loops left from one other place get a flag variable; anything else makes
+   the routine a dispatch loop on a reserved variable, reported as a note (A202).
+4. **Layout** (writer.py): main program, END, then the SUB blocks, one canonical statement per line.
+5. **Cost** (costmodel.py): every statement expanded into the assembly lines of the profile's cost
+   model, numbered like the controller's program counter; over the budget is an error (A201).
+
+The backend reads only the IR, the profile and the Arcus catalog (for keyword spellings and what a
+register may be used for); it never sees a syntax tree. What the passes share lives in context.py
+(the names given, the diagnostics) and target.py (the target's tables and the profile's settings).
+"""
+
+from __future__ import annotations
+
+from mcc.backends.arcus import costmodel, move_modes, temporaries
+from mcc.backends.arcus.context import Context
+from mcc.backends.arcus.legalize import Legalizer
+from mcc.backends.arcus.target import DIALECT
+from mcc.backends.arcus.writer import Writer
+from mcc.backends.listing import Listing
+from mcc.backends.structure import EndNode, structure
+from mcc.compiler import ir
+from mcc.compiler.arcus import modes
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import Span
+
+__all__ = ["emit", "DIALECT"]
+
+
+def emit(module: ir.Module, profile: Profile) -> Listing:
+    """Canonical Arcus standalone text and its assembly-level listing for an IR module."""
+    ctx = Context(module, profile)
+    moved = modes.changers(module, explicit_moves=True)
+    ctx.number_subroutines()
+    main: list = []
+    subs: list[tuple[ir.Routine, list, Span | None]] = []
+    dispatched = 0
+    for routine in module.routines:
+        kind = routine.kind
+        if kind in (ir.RoutineKind.HANDLER, ir.RoutineKind.POWERUP):
+            ctx.unsupported_at(routine.span, f"{routine.name} is a {kind.value} routine; Arcus has no event "
+                                             "handlers or power-up entry")
+            continue
+        code, end_span, fallback = compile_routine(ctx, routine, moved)
+        dispatched += fallback
+        if kind is ir.RoutineKind.SUBROUTINE:
+            subs.append((routine, code, end_span))
+        elif kind is ir.RoutineKind.IMMEDIATE:  # commands that run before the program
+            main = [n for n in code if not isinstance(n, EndNode)] + main
+        else:
+            main += code
+    temporaries.check(ctx)
+    stmts = Writer(ctx).program(main, subs)
+    return listing(ctx, stmts, dispatched)
+
+
+def compile_routine(ctx: Context, routine: ir.Routine, moved: set[str]) -> tuple[list, Span | None, bool]:
+    """Passes 1-3 for one routine: its structured tree, where it ends, and whether it is a dispatch loop."""
+    legal = Legalizer(ctx, routine).run()
+    move_modes.insert(legal, ctx, moved)
+    temps = ctx.temps
+    temps.start_routine()
+
+    def dispatch_var() -> ir.Var:
+        var = temps.top(0)
+        return var if var is not None else temps.last  # the pool is used up: reported as A205
+
+    done = structure(legal, temps.top, dispatch_var, ctx.config.max_copied)
+    if done.fallback is not None:
+        ctx.diags.add("A202", routine.span or ctx.file_span(),
+                      f"{routine.name}: {done.fallback}; it is written as a dispatch loop on {done.var.name} "
+                      f"(WHILE {done.var.name}!=0 with one IF arm per block)")
+    return done.body, done.exit_span, done.fallback is not None
+
+
+def listing(ctx: Context, stmts: list, dispatched: int) -> Listing:
+    """Passes 4-5 put together: the text, its priced assembly rows, statistics and the budget check."""
+    config = ctx.config
+    total = costmodel.price(stmts, config)
+    result = Listing(DIALECT)
+    for stmt in stmts:
+        result.emit(stmt.text, *stmt.spans)
+    result.detail = costmodel.assembly_rows(stmts, total)
+    result.stats = {"statements": len(stmts), "asm_lines": total, "asm_budget": config.budget,
+                    "asm_percent": round(costmodel.share(total, config), 1), "cost_model": config.model,
+                    "temporaries": ctx.temps.used, "dispatch_loops": dispatched}
+    result.header = costmodel.header(ctx, total, len(stmts))
+    costmodel.check_budget(ctx, stmts, total)
+    result.diagnostics = ctx.diags
+    return result
