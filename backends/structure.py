@@ -346,25 +346,14 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
         leave.terminator = ir.Jump(test.label, span)
         for block in routine.blocks:
             inside = block.label in body
-            _retarget(block, header, test.label if inside else pre.label)
+            ir.retarget(block.terminator, header, test.label if inside else pre.label)
             if block.label == source:
-                _retarget(block, exit_label, leave.label)
+                ir.retarget(block.terminator, exit_label, leave.label)
         entry_moved = routine.blocks[0].label == header
         routine.blocks.extend([test, leave])
         routine.blocks.insert(0 if entry_moved else len(routine.blocks), pre)
         done.add(test.label)
         done.add(header)
-
-
-def _retarget(block: ir.Block, old: str, new: str) -> None:
-    term = block.terminator
-    if isinstance(term, ir.Jump) and term.target == old:
-        term.target = new
-    elif isinstance(term, ir.Branch):
-        if term.then == old:
-            term.then = new
-        if term.otherwise == old:
-            term.otherwise = new
 
 
 # =============================================================================================

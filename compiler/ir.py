@@ -474,6 +474,17 @@ def successors(term: Terminator | None) -> tuple[str, ...]:
     return ()
 
 
+def retarget(term: Terminator | None, old: str, new: str) -> None:
+    """Point a terminator's transfers to block `old` at block `new` instead."""
+    if isinstance(term, Jump) and term.target == old:
+        term.target = new
+    elif isinstance(term, Branch):
+        if term.then == old:
+            term.then = new
+        if term.otherwise == old:
+            term.otherwise = new
+
+
 def walk_expr(expr):
     """Yield an expression or condition and all of its sub-expressions, depth first."""
     stack = [expr]

@@ -51,7 +51,9 @@ class Writer:
         if not main or not isinstance(main[-1], EndNode):
             self.add("END", "END", None, [("HALT", "")])
         for routine, code, end_span in subs:
-            number = self.ctx.sub_numbers[routine.name]
+            number = self.ctx.sub_numbers.get(routine.name)
+            if number is None:
+                continue  # no SUB number left: A207 is already reported and the output is refused
             self.add(f"SUB {number}", "SUB", routine.span, [("ENTRY", f"SUB {number}")])
             self.flatten(code)
             self.add("ENDSUB", "ENDSUB", end_span, [("RET", "")])
@@ -154,7 +156,9 @@ class Writer:
             keyword = self.by_ir["position"]
             self.write(keyword.spell(op.axis), keyword.name, op.value, span)
         elif isinstance(op, ir.Call):
-            number = self.ctx.sub_numbers[op.routine]
+            number = self.ctx.sub_numbers.get(op.routine)
+            if number is None:
+                return  # the legaliser reported the call to a subroutine without a number
             self.add(f"GOSUB {number}", "GOSUB", span, [("CALL", "{sub%d}" % number)])
         elif isinstance(op, ir.Native):
             keyword = self.ctx.keyword_of(op.mnemonic)

@@ -248,14 +248,7 @@ class Lowering:
 
     def retarget(self, old: str, new: str) -> None:
         for _, block in self.module.blocks():
-            term = block.terminator
-            if isinstance(term, ir.Jump) and term.target == old:
-                term.target = new
-            elif isinstance(term, ir.Branch):
-                if term.then == old:
-                    term.then = new
-                if term.otherwise == old:
-                    term.otherwise = new
+            ir.retarget(block.terminator, old, new)
 
     def fresh_label(self) -> str:
         self.generated += 1
