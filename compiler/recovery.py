@@ -9,18 +9,30 @@ file (`line_delta`, `offset_delta`), so spans stay file-relative in both modes.
 
 from __future__ import annotations
 
-from typing import Callable, Protocol
+from typing import Callable
 
-from lark import Lark
+from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken
 
 from mcc.compiler.span import SourceFile, Span
 
 
-class PositionedBuilder(Protocol):
-    path: str
-    line_delta: int
-    offset_delta: int
+class PositionedBuilder(Transformer):
+    """Base of the parsers' tree builders: token spans shifted by the place of the line being
+    parsed, so they are file-relative when one line is parsed on its own."""
+
+    def __init__(self) -> None:
+        super().__init__(visit_tokens=False)
+        self.path = ""
+        self.line_delta = 0
+        self.offset_delta = 0
+
+    def span(self, tok: Token) -> Span:
+        return Span(self.path, tok.line + self.line_delta, tok.column, tok.end_line + self.line_delta,
+                    tok.end_column, tok.start_pos + self.offset_delta, tok.end_pos + self.offset_delta)
+
+    def start(self, children):
+        return children
 
 
 def with_final_newline(text: str) -> str:

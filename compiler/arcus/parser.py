@@ -12,13 +12,13 @@ import re
 from functools import lru_cache
 from pathlib import Path
 
-from lark import Lark, Token, Transformer
+from lark import Lark, Token
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler import recovery
 from mcc.compiler.diagnostics import Diagnostics
-from mcc.compiler.span import SourceFile, Span
+from mcc.compiler.span import SourceFile
 
 GRAMMAR = Path(__file__).resolve().parent.parent.parent / "grammars" / "arcus.lark"
 
@@ -39,24 +39,11 @@ FLATTENED = re.compile(r"\b(ENDIF|ENDWHILE)\b", re.IGNORECASE)
 PRECEDENCE = {"|": 1, "&": 2, "<<": 3, ">>": 3, "+": 4, "-": 4, "*": 5, "/": 5, "%": 5}
 
 
-class Builder(Transformer):
+class Builder(recovery.PositionedBuilder):
     """Builds `syntax` nodes from the parser's callbacks. The deltas shift positions when one line
     is parsed on its own (recovery mode)."""
 
-    def __init__(self) -> None:
-        super().__init__(visit_tokens=False)
-        self.path = ""
-        self.line_delta = 0
-        self.offset_delta = 0
-
-    def span(self, tok: Token) -> Span:
-        return Span(self.path, tok.line + self.line_delta, tok.column, tok.end_line + self.line_delta,
-                    tok.end_column, tok.start_pos + self.offset_delta, tok.end_pos + self.offset_delta)
-
     # lines ---------------------------------------------------------------------------------------
-    def start(self, children):
-        return children
-
     def line(self, children):
         line = st.Line(0)
         for child in children:

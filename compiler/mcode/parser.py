@@ -9,13 +9,13 @@ from __future__ import annotations
 from functools import lru_cache
 from pathlib import Path
 
-from lark import Lark, Token, Transformer
+from lark import Lark, Token
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from mcc.compiler import recovery
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import syntax as st
-from mcc.compiler.span import SourceFile, Span
+from mcc.compiler.span import SourceFile
 
 GRAMMAR = Path(__file__).resolve().parent.parent.parent / "grammars" / "mcode.lark"
 
@@ -27,24 +27,11 @@ TOKEN_NAMES = {
 }
 
 
-class Builder(Transformer):
+class Builder(recovery.PositionedBuilder):
     """Builds `syntax` nodes from the parser's callbacks. Offsets shift positions when one line is
     parsed on its own (recovery mode)."""
 
-    def __init__(self) -> None:
-        super().__init__(visit_tokens=False)
-        self.path = ""
-        self.line_delta = 0
-        self.offset_delta = 0
-
-    def span(self, tok: Token) -> Span:
-        return Span(self.path, tok.line + self.line_delta, tok.column, tok.end_line + self.line_delta,
-                    tok.end_column, tok.start_pos + self.offset_delta, tok.end_pos + self.offset_delta)
-
     # lines and statements -------------------------------------------------------------------
-    def start(self, children):
-        return children
-
     def line(self, children):
         line = st.Line(0)
         for child in children:
