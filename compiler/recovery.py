@@ -35,6 +35,16 @@ class PositionedBuilder(Transformer):
         return children
 
 
+def lalr_parser(grammar: str, builder: Transformer | None = None) -> Lark:
+    """The LALR parser of a line grammar. With a builder the syntax tree is built by the parser's
+    callbacks (starts "start" and "line", for recovery); without one it is the bare baseline the
+    benchmarks compare against, with the same lexer and grammar."""
+    if builder is None:
+        return Lark(grammar, parser="lalr", lexer="contextual")
+    return Lark(grammar, parser="lalr", lexer="contextual", start=["start", "line"], transformer=builder,
+                maybe_placeholders=False, cache=False)
+
+
 def with_final_newline(text: str) -> str:
     return text if text.endswith("\n") or not text else text + "\n"
 

@@ -141,15 +141,13 @@ class Builder(recovery.PositionedBuilder):
 @lru_cache(maxsize=1)
 def _parser() -> tuple[Lark, Builder]:
     builder = Builder()
-    parser = Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual",
-                  start=["start", "line"], transformer=builder, maybe_placeholders=False,
-                  cache=False)
+    parser = recovery.lalr_parser(GRAMMAR.read_text(encoding="utf-8"), builder)
     return parser, builder
 
 
 def bare_parser() -> Lark:
     """The same grammar with no callbacks: the baseline the benchmark compares against."""
-    return Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual")
+    return recovery.lalr_parser(GRAMMAR.read_text(encoding="utf-8"))
 
 
 def describe_error(exc: UnexpectedInput) -> str:

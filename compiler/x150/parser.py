@@ -22,6 +22,7 @@ from pathlib import Path
 from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedInput
 
+from mcc.compiler import recovery
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import catalog as cat
@@ -56,14 +57,13 @@ class Collector(Transformer):
 def _parser() -> tuple[Lark, Collector]:
     collector = Collector()
     text = GRAMMAR.read_text(encoding="utf-8").replace("_NL", "NL")
-    parser = Lark(text, parser="lalr", lexer="contextual", start=["start", "line"], transformer=collector,
-                  maybe_placeholders=False, cache=False)
+    parser = recovery.lalr_parser(text, collector)
     return parser, collector
 
 
 def bare_parser() -> Lark:
     """The same grammar with no callbacks: the baseline the benchmark compares against."""
-    return Lark(GRAMMAR.read_text(encoding="utf-8"), parser="lalr", lexer="contextual")
+    return recovery.lalr_parser(GRAMMAR.read_text(encoding="utf-8"))
 
 
 @lru_cache(maxsize=1)
