@@ -62,7 +62,8 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="text: one diagnostic per finding with the source line; json: one JSON object on stdout.")
 @click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file.")
-def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | None) -> None:
+@click.option("--verify-ir", is_flag=True, help="Also run the IR verifier after lowering (violations are G010).")
+def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | None, verify_ir: bool) -> None:
     """Check FILES for syntax and semantic errors, without writing anything.
 
     \b
@@ -75,6 +76,9 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | 
 
     prof = load_profile(profile)
     results = [driver.check_file(path, dialect, prof) for path in files]
+    if verify_ir:
+        for result in results:
+            driver.verify_ir(result)
     check_profile_dialect(prof, {r.dialect for r in results})
     report(results, fmt)
     sys.exit(EXIT_ERRORS if any(r.has_errors for r in results) else EXIT_OK)
@@ -197,5 +201,6 @@ def profiles() -> None:
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
 
-# `mcc lint` and `mcc fmt` register themselves on `cli` (cli/lint.py).
+# `mcc lint`, `mcc fmt` and `mcc ir` register themselves on `cli` (cli/lint.py, cli/ir.py).
 from mcc.cli import lint as _lint  # noqa: E402,F401  (imported last: it uses `cli`)
+from mcc.cli import ir as _ir  # noqa: E402,F401

@@ -12,20 +12,11 @@ from typing import Any
 
 from mcc.compiler import dialects
 from mcc.compiler import ir
+from mcc.compiler.analysis import Analysis
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler import profiles as profiles_mod
 from mcc.compiler.span import SourceFile, Span
-
-
-@dataclass
-class Analysis:
-    """What a frontend returns for one source file."""
-
-    source: SourceFile
-    tree: Any
-    module: ir.Module | None
-    diagnostics: Diagnostics
 
 
 @dataclass
@@ -94,6 +85,20 @@ def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile: Profi
         return None
     diags.extend(analysis.diagnostics)
     return analysis
+
+
+def verify_ir(result: FileResult) -> None:
+    """Run the IR verifier on a checked file and add each violation as a G010 diagnostic."""
+    from mcc.compiler import ir_verify
+
+    module = result.analysis.module if result.analysis is not None else None
+    if module is None:
+        return
+    diags = Diagnostics(result.diagnostics)
+    for violation in ir_verify.verify(module):
+        diags.add("G010", violation.span or file_span(result.path),
+                  f"IR contract broken ({violation.group}) at {violation.where}: {violation.message}")
+    result.diagnostics = diags.items
 
 
 def check_file(path: str, dialect: str | None = None, profile: Profile | None = None,

@@ -28,18 +28,32 @@ ALL_AXES = "*"
 
 
 class Unit(str, Enum):
-    NONE = ""
-    STEPS = "steps"
+    """The closed set of quantities the IR knows (docs/ARCHITECTURE.md, "Units").
+
+    A step is 1/`Module.steps_per_rev` of a motor revolution: the frontend converts the dialect's
+    own units (X150 revolutions, Arcus milliseconds, ...) into these with `mcc.compiler.units`,
+    and each backend converts back with its target profile.
+    """
+
+    NONE = ""  # a plain number: a count, a flag, a bit mask, an index
+    STEPS = "steps"  # position or distance
+    STEPS_PER_S = "steps/s"  # speed
+    STEPS_PER_S2 = "steps/s^2"  # acceleration or deceleration
+    S = "s"  # time: a delay, a timeout, a ramp time
+    DEGREES = "deg"  # an angle (arc interpolation)
+    PERCENT = "%"  # a share of a maximum (motor current)
+    # Legacy spellings of the dialects' own units. The verifier rejects them: a frontend that
+    # still produces one has not been converted yet (issue 8 migration).
     COUNTS = "counts"
     REVS = "revs"
-    STEPS_PER_S = "steps/s"
     REVS_PER_S = "revs/s"
-    STEPS_PER_S2 = "steps/s^2"
     REVS_PER_S2 = "revs/s^2"
     MS = "ms"
-    S = "s"
-    PERCENT = "%"
     MILLIDEGREES = "mdeg"
+
+
+IR_UNITS = frozenset({Unit.NONE, Unit.STEPS, Unit.STEPS_PER_S, Unit.STEPS_PER_S2, Unit.S, Unit.DEGREES,
+                      Unit.PERCENT})
 
 
 class VarType(str, Enum):
@@ -69,15 +83,28 @@ class Var:
 
 @dataclass(frozen=True, slots=True)
 class DeviceRef:
-    """A device register or status read (MCode `P`, Arcus `MSTX`, X150 `POS`).
+    """A device register in the dialect's own spelling (MCode `P`, Arcus `MSTX`, X150 `POS`).
 
-    `meaning` is the neutral reading when there is one (position, velocity, input, moving, ...),
-    `name` the dialect's own spelling, `axis` the logical axis and `index` a bit or channel number.
+    Allowed only inside a `Native` operation (a register no other dialect has). Everywhere else a
+    reading is a neutral `Status`; the verifier enforces it.
     """
 
     dialect: str
     name: str
     meaning: str = ""
+    axis: str = ""
+    index: int | None = None
+    span: Span | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Status:
+    """A neutral device reading: `meaning` is one of `ir_names.STATUS` (position, velocity,
+    moving, input, output, error, ...), `axis` the logical axis, `index` an input/output number or
+    a bit. The dialect's spelling (MCode `P`, Arcus `MSTX`, X150 `IN`) lives only in frontends and
+    backends."""
+
+    meaning: str
     axis: str = ""
     index: int | None = None
     span: Span | None = None
@@ -127,7 +154,7 @@ class Pattern:
     span: Span | None = None
 
 
-Expr = Union[Const, Var, DeviceRef, LabelRef, Text, BinOp, UnOp, Func, Pattern]
+Expr = Union[Const, Var, Status, DeviceRef, LabelRef, Text, BinOp, UnOp, Func, Pattern]
 
 
 @dataclass(frozen=True, slots=True)
@@ -176,18 +203,32 @@ Cond = Union[Compare, Logic, Truth, InputMatch, Not]
 
 
 class MotionParam(str, Enum):
-    INITIAL_SPEED = "initial_speed"
-    MAX_SPEED = "max_speed"
-    ACCEL = "accel"
-    DECEL = "decel"
-    PROFILE = "profile"
-    RESOLUTION = "resolution"
+    """A motion setting of one axis, and the unit its value carries (PARAM_UNITS)."""
+
+    INITIAL_SPEED = "initial_speed"  # steps/s: the speed a move starts from and stops at
+    MAX_SPEED = "max_speed"  # steps/s: the slew speed of a move
+    ACCEL = "accel"  # steps/s^2
+    DECEL = "decel"  # steps/s^2
+    ACCEL_TIME = "accel_time"  # s: the time to ramp from initial to maximum speed (Arcus ACC)
+    DECEL_TIME = "decel_time"  # s: the time to ramp down from maximum to initial speed
+    PROFILE = "profile"  # 0 trapezoidal, 1 S-curve (a plain number)
+    RESOLUTION = "resolution"  # motor steps per revolution (a plain number)
+
+
+PARAM_UNITS = {
+    MotionParam.INITIAL_SPEED: Unit.STEPS_PER_S, MotionParam.MAX_SPEED: Unit.STEPS_PER_S,
+    MotionParam.ACCEL: Unit.STEPS_PER_S2, MotionParam.DECEL: Unit.STEPS_PER_S2,
+    MotionParam.ACCEL_TIME: Unit.S, MotionParam.DECEL_TIME: Unit.S,
+    MotionParam.PROFILE: Unit.NONE, MotionParam.RESOLUTION: Unit.NONE,
+}
 
 
 class MoveMode(str, Enum):
     ABSOLUTE = "absolute"
     RELATIVE = "relative"
-    MODAL = "modal"  # Arcus X1000: absolute or incremental per the last ABS/INC
+    # Legacy: "whatever ABS/INC is in force". The verifier rejects it: frontends resolve the
+    # dialect's modes by data flow (mcc.compiler.move_modes) and write ABSOLUTE or RELATIVE.
+    MODAL = "modal"
 
 
 @dataclass(slots=True)
@@ -320,6 +361,18 @@ class SetHandler:
 
 
 @dataclass(slots=True)
+class Setting:
+    """A device setting with a neutral name from `ir_names.SETTINGS` (run current, hold current,
+    encoder enable, ...): each entry documents its meaning, its unit and the dialects that have it,
+    so a backend either writes its own spelling or refuses the setting by name."""
+
+    name: str
+    axis: str
+    value: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
 class Save:
     span: Span | None = None
 
@@ -337,7 +390,7 @@ class Native:
 
 
 Op = Union[Assign, SetMotion, Move, Arc, Slew, Home, Stop, SetPosition, WaitMotion, Delay,
-           SetOutput, WaitInput, Print, DriveEnable, Call, SetHandler, Save, Native]
+           SetOutput, WaitInput, Print, DriveEnable, Call, SetHandler, Setting, Save, Native]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -445,6 +498,12 @@ class Module:
     variables: dict[str, Variable] = field(default_factory=dict)
     routines: list[Routine] = field(default_factory=list)
     path: str = ""
+    # The size of the IR's step: steps per motor revolution in the source's terms (its profile,
+    # or the resolution the program sets). Backends scale positions by target/source.
+    steps_per_rev: int = 0
+    # Routines called but defined outside this file (an X150 sequence already stored on the
+    # controller): calls to them are resolved, and backends write the call without a body.
+    externals: list[str] = field(default_factory=list)
 
     def routine(self, name: str) -> Routine | None:
         for routine in self.routines:
@@ -511,7 +570,7 @@ def op_exprs(op: Op) -> tuple:
     """The expressions and conditions an operation reads."""
     if isinstance(op, Assign):
         return (op.value,)
-    if isinstance(op, (SetMotion, SetPosition)):
+    if isinstance(op, (SetMotion, SetPosition, Setting)):
         return (op.value,)
     if isinstance(op, Move):
         return tuple(e for _, e in op.targets) + tuple(e for _, e in op.options)

@@ -5,7 +5,7 @@ from __future__ import annotations
 from mcc.compiler.arcus import checks, parser
 from mcc.compiler.arcus.lower import Lowering
 from mcc.compiler.diagnostics import Diagnostics
-from mcc.compiler.driver import Analysis
+from mcc.compiler.analysis import Analysis
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
 

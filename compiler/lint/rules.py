@@ -19,7 +19,7 @@ from typing import Any, Callable
 from mcc.compiler import dialects
 from mcc.compiler.codes import CodeInfo, registry
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Fix
-from mcc.compiler.driver import Analysis
+from mcc.compiler.analysis import Analysis
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from mcc.compiler.diagnostics import Diagnostics
-from mcc.compiler.driver import Analysis
+from mcc.compiler.analysis import Analysis
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import checks, parser

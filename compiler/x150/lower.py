@@ -117,6 +117,7 @@ class Lowering:
         kinds = self.routine_kinds()
         for unit in self.units:
             self.lower_unit(unit, kinds)
+        self.module.externals = external_routines(self.module)
         return self.module
 
     def name_units(self) -> None:
@@ -578,3 +579,15 @@ class Lowering:
             mnemonic = "VAR"
         return ir.Native(DIALECT, mnemonic, self.native_args(command), form="B" if command.buffered else "",
                          axis=self.axis(command), span=command.span)
+
+
+def external_routines(module: ir.Module) -> list[str]:
+    """Sequences a program calls or jumps to without defining them (stored on the controller)."""
+    defined = {r.name for r in module.routines}
+    used: list[str] = []
+    for _, block in module.blocks():
+        names = [op.routine for op in block.ops if isinstance(op, (ir.Call, ir.SetHandler)) and op.routine]
+        if isinstance(block.terminator, ir.GotoRoutine):
+            names.append(block.terminator.routine)
+        used += [n for n in names if n not in defined and n not in used]
+    return used

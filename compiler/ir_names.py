@@ -1,0 +1,134 @@
+"""The IR's neutral vocabulary: every name an operation or expression may carry, with its meaning.
+
+The IR means one thing whatever the source dialect, so the names inside it are not any dialect's
+spelling: `!=` not MCode's `<>`, `position` not Arcus's `PX` or X150's `POS`. Frontends translate
+their spelling into these names and backends translate back (or refuse, naming the construct).
+The verifier (`mcc.compiler.ir_verify`) rejects any name not listed here; `Native` operations are
+the only place a dialect's own spelling may appear.
+
+Each table maps a neutral name to a one-line meaning; docs/ARCHITECTURE.md prints them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from mcc.compiler.ir import Unit
+
+BINARY_OPS: dict[str, str] = {
+    "+": "addition",
+    "-": "subtraction",
+    "*": "multiplication",
+    "/": "division; truncates toward zero when both operands are int32 variables or integers",
+    "%": "remainder of the truncating division (sign of the dividend)",
+    "&": "bitwise and (int32)",
+    "|": "bitwise or (int32)",
+    "^": "bitwise exclusive or (int32)",
+    "<<": "shift left (int32)",
+    ">>": "arithmetic shift right (int32)",
+}
+
+UNARY_OPS: dict[str, str] = {
+    "-": "negation",
+    "~": "bitwise not (int32)",
+    "!": "logical not: 1 when the operand is 0, else 0",
+}
+
+COMPARE_OPS: dict[str, str] = {
+    "=": "equal", "!=": "not equal", "<": "less than", "<=": "less than or equal",
+    ">": "greater than", ">=": "greater than or equal",
+}
+
+LOGIC_OPS: dict[str, str] = {
+    "and": "both conditions hold (both are evaluated)",
+    "or": "either condition holds (both are evaluated)",
+}
+
+FUNCTIONS: dict[str, str] = {
+    "abs": "absolute value",
+    "sqrt": "square root",
+    "sin": "sine of an angle in degrees",
+    "cos": "cosine of an angle in degrees",
+    "tan": "tangent of an angle in degrees",
+    "asin": "arc sine, in degrees",
+    "acos": "arc cosine, in degrees",
+    "atan": "arc tangent, in degrees",
+    "log": "natural logarithm",
+    "log10": "decimal logarithm",
+    "exp": "e to the power of the argument",
+    "pi": "the constant pi (no argument)",
+    "int": "the integer part (truncation toward zero)",
+}
+
+
+@dataclass(frozen=True)
+class Reading:
+    """A device reading (`ir.Status`): what it means, its unit, and whether it takes an index."""
+
+    meaning: str
+    unit: Unit = Unit.NONE
+    indexed: bool = False  # True: `index` is an input/output/channel number
+
+
+STATUS: dict[str, Reading] = {r.meaning: r for r in (
+    Reading("position", Unit.STEPS),  # commanded position of the axis
+    Reading("encoder", Unit.STEPS),  # encoder position, in steps
+    Reading("velocity", Unit.STEPS_PER_S),  # current speed, signed
+    Reading("moving"),  # 1 while the axis is moving, else 0
+    Reading("input", indexed=True),  # digital input n: 1 when active
+    Reading("inputs"),  # every digital input as a bit mask, input 1 in bit 0
+    Reading("output", indexed=True),  # digital output n: 1 when on
+    Reading("outputs"),  # every digital output as a bit mask, output 1 in bit 0
+    Reading("analog", indexed=True),  # analog input n, in the device's counts
+    Reading("error"),  # the device's error code (0: none)
+    Reading("fault"),  # 1 while the axis is in a fault state (limit hit, stall, drive fault)
+    Reading("limit_plus"),  # 1 while the positive limit switch is active
+    Reading("limit_minus"),  # 1 while the negative limit switch is active
+    Reading("home_switch"),  # 1 while the home switch is active
+    Reading("stalled"),  # 1 after a stall was detected
+    Reading("enabled"),  # 1 while the drive is enabled
+    Reading("timer", Unit.S, indexed=True),  # free-running timer n, in seconds
+    Reading("max_speed", Unit.STEPS_PER_S),  # the max speed in force
+    Reading("initial_speed", Unit.STEPS_PER_S),  # the initial speed in force
+    Reading("accel", Unit.STEPS_PER_S2),  # the acceleration in force
+    Reading("decel", Unit.STEPS_PER_S2),  # the deceleration in force
+)}
+
+# SetHandler events: what makes the handler run.
+EVENTS: dict[str, str] = {
+    "input": "a digital input reaches a level or edge (args: input number, level)",
+    "position": "the axis passes a position (args: position in steps)",
+    "capture": "a capture input latches the position",
+    "time": "a timer expires (args: seconds)",
+    "relative": "the axis has moved a distance since the handler was armed (args: steps)",
+    "hmt": "a closed-loop (hMT) event such as a lost position",
+    "power": "power-up: the handler runs when the device starts",
+    "error": "an error occurs while the program runs",
+    "fault": "the device enters a fault state",
+    "when": "a condition becomes true (args: the condition)",
+    "stall": "a stall is detected",
+}
+
+
+@dataclass(frozen=True)
+class SettingInfo:
+    """A device setting (`ir.Setting`): meaning, unit, and the dialects that have it."""
+
+    name: str
+    unit: Unit
+    meaning: str
+    dialects: tuple[str, ...]
+
+
+SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
+    SettingInfo("run_current", Unit.PERCENT, "motor current while moving, % of the maximum", ("mcode",)),
+    SettingInfo("hold_current", Unit.PERCENT, "motor current at rest, % of the maximum", ("mcode",)),
+    SettingInfo("hold_delay", Unit.S, "time after a move before the hold current applies", ("mcode",)),
+    SettingInfo("encoder_enable", Unit.NONE, "1: the encoder is used (closed loop), 0: open loop",
+                ("mcode",)),
+)}
+
+
+def status_unit(meaning: str) -> Unit:
+    reading = STATUS.get(meaning)
+    return reading.unit if reading else Unit.NONE
