@@ -19,10 +19,12 @@ again gives the same text.
 from __future__ import annotations
 
 import string
+from fractions import Fraction
 
 from mcc.backends.listing import Listing
-from mcc.compiler import ir
+from mcc.compiler import ir, units
 from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.in_force import InForce, lookup
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.profiles import Profile
 
@@ -36,6 +38,24 @@ FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", 
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
          "power": "TM"}
 UNIT_FACTORS = {ir.Unit.S: 1000}  # delays are written in ms
+MS_TO_S = 0.001
+FULL_STEPS_PER_REV = 200
+# IR readings -> MCode registers (the inverse of the frontend's READINGS); indexed ones take the number.
+READINGS = {"position": "P", "encoder": "C2", "velocity": "V", "moving": "MV", "inputs": "IN", "outputs": "OT",
+            "error": "ER", "stalled": "ST", "accel": "A", "decel": "D", "max_speed": "VM", "initial_speed": "VI",
+            "input_pending": "IF", "hmt_status": "AF", "moving_to_position": "MP"}
+INDEXED_READINGS = {"input": ("I", range(1, 5)), "output": ("O", range(1, 4)), "analog": ("I", range(5, 6))}
+# Neutral settings -> (MCode variable, factor from IR units to MCode units).
+SETTINGS = {"error_code": ("ER", 1), "run_current": ("RC", 1), "hold_current": ("HC", 1),
+            "settle_time": ("MT", 1000), "hold_delay": ("HT", 1000), "encoder_enable": ("EE", 1),
+            "input_debounce": ("D", 1000)}
+INPUT_TYPES = {"general": 0, "home": 1, "limit_plus": 2, "limit_minus": 3, "run_program": 4, "soft_stop": 5,
+               "pause": 6, "jog_plus": 7, "jog_minus": 8, "reset": 11, "capture": 12, "step_direction": 13,
+               "encoder_ab": 14, "step_up_down": 15}
+OUTPUT_TYPES = {"general": 16, "moving": 17, "error": 18, "stall": 19, "velocity_changing": 20, "locked_rotor": 21,
+                "moving_to_position": 23, "hmt_active": 24, "make_up_active": 25, "encoder_a": 26, "encoder_b": 27,
+                "trip": 28, "attention": 29}
+HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+1, 0): 3}
 
 
 class Unsupported(Exception):
@@ -57,12 +77,87 @@ class Writer:
         self.cat = cat.load()
         self.listing = Listing(DIALECT)
         self.diags: Diagnostics = self.listing.diagnostics
-        self.labels = self.allocate_labels()
         self.limit = int(profile.get("limits.line_length", 64))
+        self.foreign = module.dialect != DIALECT
+        self.factor = units.ratio(module.steps_per_rev, profile.steps_per_rev) if self.foreign else Fraction(1)
+        self.drive = profile.axes[0] if profile.axes else "1"
+        self.reserved = self.cat.commands.keys() | self.cat.functions.keys() | self.cat.legacy.keys()
+        self.taken = self.used_names()
+        self.names = self.allocate_variables()
+        self.labels = self.allocate_labels()
+        self.axis_map = self.map_axes()
+        self.states = self.settings_in_force() if self.uses_ramp_times() else {}
+        self.written_ramp: dict[str, float] = {}
+
+    # names ---------------------------------------------------------------------------------------
+    def fresh_name(self) -> str:
+        """A two-character user name (Z0, Z1, ...) no program name or mnemonic uses."""
+        for first in "ZYXWQJ":
+            for second in string.digits + string.ascii_uppercase:
+                name = first + second
+                if name not in self.taken and name not in self.reserved:
+                    self.taken.add(name)
+                    return name
+        raise Unsupported("more generated names than the two-character name space holds")
+
+    def allocate_variables(self) -> dict[str, str]:
+        """MCode names for the program's variables: a valid user name is kept, any other
+        (Arcus `V10`, X150 `VAR1`, a hidden loop counter) gets a fresh two-character name."""
+        names: dict[str, str] = {}
+        for name in self.variable_names():
+            ok = len(name) == 2 and name[0].isalpha() and name.isalnum() and name.isascii()
+            if ok and (not self.foreign or name.upper() not in self.reserved):
+                names[name] = name
+            elif self.cat.commands.get(name.upper()) is not None and not self.foreign:
+                names[name] = name  # a register (R1, F1) of an MCode source
+        for name in self.variable_names():
+            if name not in names:
+                names[name] = self.fresh_name()
+        return names
+
+    def variable_names(self) -> list[str]:
+        seen = dict.fromkeys(self.module.variables)
+        for _, block in self.module.blocks():
+            exprs = [e for op in block.ops for e in ir.op_exprs(op)] + list(ir.term_exprs(block.terminator))
+            exprs += [op.target for op in block.ops if isinstance(op, ir.Assign)]
+            for expr in exprs:
+                for node in ir.walk_expr(expr):
+                    if isinstance(node, ir.Var):
+                        seen.setdefault(node.name)
+        return list(seen)
+
+    def var(self, name: str) -> str:
+        return self.names.get(name, name)
+
+    def map_axes(self) -> dict[str, str]:
+        """Source axis -> party prefix. An MCode source keeps its party names; another dialect's
+        program must use one axis, which becomes this drive (no prefix)."""
+        if not self.foreign:
+            return {}
+        used: list[str] = []
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                for axis in op_axes(op):
+                    if axis != ir.ALL_AXES and axis not in used:
+                        used.append(axis)
+        return {used[0]: ""} if used else {}
+
+    # values in force (ramp times) ----------------------------------------------------------------
+    def uses_ramp_times(self) -> bool:
+        return any(isinstance(op, ir.SetMotion) and op.param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME)
+                   for _, block in self.module.blocks() for op in block.ops)
+
+    def settings_in_force(self) -> dict[int, dict]:
+        analysis = InForce(self.module)
+        states: dict[int, dict] = {}
+        for routine in self.module.routines:
+            for _, _, op, state in analysis.walk(routine):
+                states[id(op)] = state
+        return states
 
     # labels --------------------------------------------------------------------------------------
     def used_names(self) -> set[str]:
-        names = set(self.module.variables)
+        names = {name for name in self.module.variables if is_user_name(name, self.reserved)}
         for _, block in self.module.blocks():
             if not block.label.startswith(("%", "@")):
                 names.add(block.label)
@@ -79,35 +174,36 @@ class Writer:
             if isinstance(term, ir.Jump) and term.target != after:
                 needed.add(term.target)
             elif isinstance(term, ir.Branch):  # mirrors Writer.branch
-                if term.then == after and isinstance(term.cond, ir.Compare):
+                if term.then == after:
                     needed.add(term.otherwise)
                 else:
                     needed.add(term.then)
                     if term.otherwise != after:
                         needed.add(term.otherwise)
+            elif isinstance(term, ir.GotoRoutine):
+                target = self.module.routine(term.routine)
+                if target is not None and target.entry is not None:
+                    needed.add(target.entry.label)
             for op in block.ops:
                 if isinstance(op, ir.Call):
                     needed.add(op.routine)
         for routine in self.module.routines:
             if routine.kind in (ir.RoutineKind.SUBROUTINE, ir.RoutineKind.HANDLER) and routine.entry:
                 needed.add(routine.entry.label)
+            if routine.kind is ir.RoutineKind.POWERUP and routine.entry:
+                needed.add(routine.entry.label)
         return needed
 
     def allocate_labels(self) -> dict[str, str]:
-        """Deterministic two-character names for the blocks that need one (Z0, Z1, ... skipping taken names)."""
-        taken = self.used_names()
-        reserved = self.cat.commands.keys() | self.cat.functions.keys() | self.cat.legacy.keys()
-        candidates = (first + second for first in "ZYXWQJ" for second in string.digits + string.ascii_uppercase)
+        """Deterministic two-character names for the blocks that need one (Z0, Z1, ... skipping taken
+        names); in another dialect's program every block label is generated (theirs are not MCode names)."""
         mapping: dict[str, str] = {}
         for _, block in self.module.blocks():
             label = block.label
-            if not label.startswith("%") or label not in self.needed_blocks_cache():
+            valid = not label.startswith(("%", "@")) and (not self.foreign or is_user_name(label, self.reserved))
+            if valid or label not in self.needed_blocks_cache():
                 continue
-            for name in candidates:
-                if name not in taken and name not in reserved:
-                    mapping[label] = name
-                    taken.add(name)
-                    break
+            mapping[label] = self.fresh_name()
         return mapping
 
     _needed: set[str] | None = None
@@ -120,6 +216,8 @@ class Writer:
     def label(self, block_label: str) -> str:
         if block_label.startswith("@"):
             return block_label[1:]
+        if block_label not in self.labels and self.foreign and not is_user_name(block_label, self.reserved):
+            self.labels[block_label] = self.fresh_name()
         return self.labels.get(block_label, block_label)
 
     # output --------------------------------------------------------------------------------------
@@ -131,32 +229,75 @@ class Writer:
                                              f"{self.limit}: `{text[:40]}…`; split the expression in the source")
         self.listing.emit(text, *spans)
 
+    def header(self) -> None:
+        """The assumptions of a conversion from another dialect, as comment lines."""
+        source = self.module
+        lines = [f"' mcc: converted from {source.dialect} ({source.profile})",
+                 f"' steps/rev: source {source.steps_per_rev or '?'}, target {self.profile.steps_per_rev}"
+                 f" ({self.profile.name})"]
+        if self.axis_map:
+            axis = next(iter(self.axis_map))
+            lines.append(f"' source axis {axis} is this drive")
+        if self.states:
+            lines.append("' ramp times become A/D from the speeds in force")
+        for text in lines:
+            self.line(text[:self.limit])
+
     def run(self) -> Listing:
-        for var in self.module.variables.values():
-            if var.scope == "global":
+        if self.foreign:
+            self.header()
+        for name, var in self.module.variables.items():
+            if var.scope == "global" or self.foreign:
                 init = f"={self.expr(var.init)}" if var.init is not None else ""
-                self.line(f"VA {var.name}{init}", var.span)
+                self.line(f"VA {self.var(name)}{init}", var.span)
+        if self.foreign:
+            for name in self.names:
+                if name not in self.module.variables:
+                    self.line(f"VA {self.var(name)}")
         region_open = False
-        order = [(r, b) for r in self.module.routines for b in r.blocks]
+        order = [(r, b) for r in self.program_order() for b in r.blocks]
+        origin_given = any(r.origin is not None for r in self.module.routines)
         for index, (routine, block) in enumerate(order):
-            if routine.kind is ir.RoutineKind.IMMEDIATE:
+            if routine.kind is ir.RoutineKind.IMMEDIATE and not self.as_program(routine):
                 if region_open:
                     self.line("PG")
                     region_open = False
-                for op in block.ops:
-                    self.op(op)
+                index = 0
+                while index < len(block.ops):
+                    index += self.op_at(block.ops, index)
                 continue
-            if routine.origin is not None and block is routine.entry:
+            if block is routine.entry and (routine.origin is not None or not origin_given and not region_open):
                 if region_open:
                     self.line("PG")
-                self.line(f"PG {routine.origin}", routine.span)
+                self.line(f"PG {routine.origin if routine.origin is not None else 1}", routine.span)
                 region_open = True
             next_label = order[index + 1][1].label if index + 1 < len(order) else None
             self.block(block, next_label)
         if region_open:
             self.line("PG")
+        if self.foreign and any(self.as_program(r) for r in self.module.routines):
+            self.line("EX 1")  # the converted stream ran as it was sent: run the program now
         self.stats()
         return self.listing
+
+    def as_program(self, routine: ir.Routine) -> bool:
+        """Another dialect's immediate stream that branches, loops or calls cannot run outside a
+        program in MCode (BR, CL are program statements): it becomes the program at address 1."""
+        if not self.foreign or routine.kind is not ir.RoutineKind.IMMEDIATE:
+            return False
+        return len(routine.blocks) > 1 or any(isinstance(op, (ir.Call, ir.WaitInput)) for b in routine.blocks
+                                              for op in b.ops)
+
+    def program_order(self) -> list[ir.Routine]:
+        """Routines in source order; in a converted program the one that runs first leads the
+        region and subroutines follow (MCode runs a program from its PG address)."""
+        routines = list(self.module.routines)
+        if not self.foreign:
+            return routines
+        first = [r for r in routines if self.as_program(r) or r.kind in (ir.RoutineKind.MAIN,)]
+        rest = [r for r in routines if r not in first]
+        immediate = [r for r in rest if r.kind is ir.RoutineKind.IMMEDIATE]
+        return immediate + first + [r for r in rest if r not in immediate]
 
     def stats(self) -> None:
         text_lines = [line.text for line in self.listing.lines]
@@ -170,12 +311,21 @@ class Writer:
         }
 
     def block(self, block: ir.Block, next_label: str | None) -> None:
-        if block.named or block.label in self.labels:
+        if block.named and not self.foreign or block.label in self.labels:
             self.line(f"LB {self.label(block.label)}", block.span)
-        for op in block.ops:
-            self.op(op)
+        self.written_ramp.clear()  # a label can be reached from anywhere: nothing known written
+        ops = block.ops
+        index = 0
+        while index < len(ops):
+            index += self.op_at(ops, index)
         term = block.terminator
         span = getattr(term, "span", None)
+        try:
+            self.terminator(term, next_label, span)
+        except Unsupported as exc:
+            self.unsupported(span, str(exc))
+
+    def terminator(self, term, next_label: str | None, span) -> None:
         if isinstance(term, ir.Jump):
             if term.target != next_label:
                 self.line(f"BR {self.label(term.target)}", span)
@@ -187,74 +337,131 @@ class Writer:
             self.line("E", span)
         elif isinstance(term, ir.GotoRoutine):
             target = self.module.routine(term.routine)
-            self.line(f"BR {self.label(target.entry.label if target and target.entry else term.routine)}", span)
+            if target is None or target.entry is None:
+                raise Unsupported(f"a jump to {term.routine}, which is not in this program")
+            self.line(f"BR {self.label(target.entry.label)}", span)
+        elif isinstance(term, ir.FallOff) and self.foreign and next_label is not None:
+            self.line("E", span)  # another dialect's program stops at its end; MCode would run on
 
     def branch(self, term: ir.Branch, next_label: str | None) -> None:
-        try:
-            if term.then == next_label and isinstance(term.cond, ir.Compare):
-                negated = ir.Compare(NEGATE[term.cond.op], term.cond.left, term.cond.right, term.cond.span)
-                self.line(f"BR {self.label(term.otherwise)},{self.cond(negated)}", term.span)
-                return
-            self.line(f"BR {self.label(term.then)},{self.cond(term.cond)}", term.span)
-            if term.otherwise != next_label:
-                self.line(f"BR {self.label(term.otherwise)}", term.span)
-        except Unsupported as exc:
-            self.unsupported(term.span, str(exc))
+        if term.then == next_label:
+            self.jump_if(ir.Not(term.cond), self.label(term.otherwise), term.span)
+            return
+        self.jump_if(term.cond, self.label(term.then), term.span)
+        if term.otherwise != next_label:
+            self.line(f"BR {self.label(term.otherwise)}", term.span)
+
+    def jump_if(self, cond, target: str, span) -> None:
+        """BR lines that go to `target` when `cond` holds and fall through otherwise. MCode tests
+        one comparison per BR, so AND, OR, NOT and input patterns become several."""
+        cond = simplify(cond)
+        if isinstance(cond, ir.Logic) and cond.op == "or":
+            self.jump_if(cond.left, target, span)
+            self.jump_if(cond.right, target, span)
+        elif isinstance(cond, ir.Logic) and cond.op == "and":
+            skip = self.fresh_name()
+            self.jump_if(ir.Not(cond.left), skip, span)
+            self.jump_if(cond.right, target, span)
+            self.line(f"LB {skip}", span)
+        elif isinstance(cond, ir.InputMatch):
+            self.jump_if(pattern_cond(cond.pattern), target, span)
+        else:
+            self.line(f"BR {target},{self.cond(cond)}", span)
 
     def unsupported(self, span, what: str) -> None:
+        span = span or self.fallback_span()
         if span is not None:
             self.diags.add("G003", span, f"{what} cannot be written in MCode")
 
+    def fallback_span(self):
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                if op.span is not None:
+                    return op.span
+        return None
+
     # operations ----------------------------------------------------------------------------------
+    def op_at(self, ops: list, index: int) -> int:
+        """Write the operation at `index`; returns how many operations it used (IS/OS take two)."""
+        op = ops[index]
+        pair = ops[index + 1] if index + 1 < len(ops) else None
+        if isinstance(op, ir.Setting) and op.name in ("input_function", "output_function"):
+            try:
+                self.line(self.line_setup(op, pair), op.span)
+            except Unsupported as exc:
+                self.unsupported(op.span, str(exc))
+            return 2 if isinstance(pair, ir.Setting) and pair.index == op.index else 1
+        self.op(op)
+        return 1
+
     def op(self, op) -> None:
         try:
-            text = self.op_text(op)
+            for text in self.op_lines(op):
+                self.line(text, op.span)
         except Unsupported as exc:
             self.unsupported(op.span, str(exc))
-            return
-        if text is not None:
-            self.line(text, op.span)
+
+    def op_lines(self, op) -> list[str]:
+        """The lines of one operation: usually one; a converted ramp or a compound wait adds some."""
+        before: list[str] = []
+        if isinstance(op, (ir.Move, ir.Slew, ir.Home)) and self.states:
+            before = self.ramp_lines(op)
+        if isinstance(op, ir.WaitInput):
+            return self.wait_input(op)
+        if isinstance(op, ir.Call) and op.cond is not None and not isinstance(simplify(op.cond), (ir.Compare, ir.Truth)):
+            return self.guarded_call(op)
+        text = self.op_text(op)
+        return before + ([text] if text is not None else [])
 
     def prefix(self, axis: str) -> str:
-        return axis if axis and axis not in ("1", ir.ALL_AXES) else ("*" if axis == ir.ALL_AXES else "")
+        if self.foreign:
+            if axis == ir.ALL_AXES:
+                return ""
+            if axis not in self.axis_map:
+                raise Unsupported(f"an operation on axis {axis} (an MCode drive moves one axis: this program's "
+                                  f"axis is {next(iter(self.axis_map), '?')})")
+            return self.axis_map[axis]
+        if axis in ("", self.drive):
+            return ""
+        return axis if axis != ir.ALL_AXES else "*"
 
-    def op_text(self, op) -> str | None:
+    def op_text(self, op) -> str | None:  # noqa: C901 - one case per operation kind
         if isinstance(op, ir.Native):
             return self.native(op)
         if isinstance(op, ir.Assign):
             return self.assign(op)
         if isinstance(op, ir.SetMotion):
-            if op.param not in PARAM_NAMES:
-                raise Unsupported(f"the motion setting {op.param.value}")
-            if op.value and isinstance(op.value, ir.Const) and op.value.unit not in (ir.Unit.NONE, ir.Unit.STEPS_PER_S,
-                                                                                   ir.Unit.STEPS_PER_S2, ir.Unit.STEPS):
-                raise Unsupported(f"a {op.param.value} in {op.value.unit.value}")
-            return f"{self.prefix(op.axis)}{PARAM_NAMES[op.param]}={self.expr(op.value)}"
+            return self.motion_setting(op)
+        if isinstance(op, ir.Setting):
+            return self.setting(op)
         if isinstance(op, ir.Move):
-            if len(op.targets) != 1 or op.mode is ir.MoveMode.MODAL:
-                raise Unsupported("a multi-axis or modal move")
+            axes = {self.prefix(axis) for axis, _ in op.targets}
+            if len(op.targets) != 1 or len(axes) != 1:
+                raise Unsupported(f"a linear interpolation of {len(op.targets)} axes "
+                                  f"({', '.join(a for a, _ in op.targets)}): an MCode drive moves one axis")
+            if op.mode is ir.MoveMode.MODAL:
+                raise Unsupported("a move whose absolute or relative mode is not known")
             axis, target = op.targets[0]
             name = "MA" if op.mode is ir.MoveMode.ABSOLUTE else "MR"
-            args = [self.expr(target)] + [self.expr(value) for _, value in op.options]
+            args = [self.position(target)] + [self.expr(value) for _, value in op.options]
             return f"{self.prefix(axis)}{name} {','.join(args)}"
         if isinstance(op, ir.Slew):
             if op.velocity is None:
                 return f"{self.prefix(op.axis)}SL {'-' if op.direction < 0 else ''}VM"
-            return f"{self.prefix(op.axis)}SL {self.expr(op.velocity)}"
+            return f"{self.prefix(op.axis)}SL {self.rate(op.velocity)}"
         if isinstance(op, ir.Home):
-            name = {"switch": "HM", "index": "HI", "offset": "HF"}.get(op.method)
-            if name is None or op.mode is None:
-                raise Unsupported(f"homing by {op.method}")
-            return f"{self.prefix(op.axis)}{name} {self.expr(op.mode)}"
+            return self.home(op)
         if isinstance(op, ir.WaitMotion):
             return f"{self.prefix(op.axis)}H"
         if isinstance(op, ir.Delay):
             return f"H {self.delay(op.duration)}"
         if isinstance(op, ir.SetPosition):
-            return f"{self.prefix(op.axis)}P={self.expr(op.value)}"
+            return f"{self.prefix(op.axis)}P={self.position(op.value)}"
         if isinstance(op, ir.SetOutput):
             if op.index is None:
                 return f"OT={self.expr(op.value)}"
+            if op.index not in range(1, 4):
+                raise Unsupported(f"output {op.index} (the drive has outputs 1 to 3)")
             return f"O{op.index}={self.expr(op.value)}"
         if isinstance(op, ir.Print):
             items = ",".join(self.item(item) for item in op.items)
@@ -263,7 +470,7 @@ class Writer:
             return f"{self.prefix(op.axis)}DE={self.expr(op.on)}"
         if isinstance(op, ir.Call):
             target = self.call_label(op.routine)
-            return f"CL {target}" + (f",{self.cond(op.cond)}" if op.cond is not None else "")
+            return f"CL {target}" + (f",{self.cond(simplify(op.cond))}" if op.cond is not None else "")
         if isinstance(op, ir.SetHandler):
             return self.handler(op)
         if isinstance(op, ir.Save):
@@ -274,14 +481,113 @@ class Writer:
             raise Unsupported("an abort without deceleration (MCode stops with ESC, not a statement)")
         raise Unsupported(f"the operation {type(op).__name__}")
 
+    def motion_setting(self, op: ir.SetMotion) -> str | None:
+        if op.param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME):
+            self.prefix(op.axis)
+            return None  # written as A=/D= before each move, from the speeds in force (ramp_lines)
+        if op.param not in PARAM_NAMES:
+            raise Unsupported(f"the motion setting {op.param.value}")
+        if op.param is ir.MotionParam.RESOLUTION:
+            return f"{self.prefix(op.axis)}MS={self.resolution(op.value)}"
+        return f"{self.prefix(op.axis)}{PARAM_NAMES[op.param]}={self.rate(op.value)}"
+
+    def resolution(self, value) -> str:
+        full = int(self.profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
+        if isinstance(value, ir.Const):
+            microsteps = Fraction(value.value) / full
+            if microsteps.denominator != 1:
+                raise Unsupported(f"a resolution of {value.value} steps/rev ({full} full steps per rev)")
+            return str(int(microsteps))
+        if isinstance(value, ir.BinOp) and value.op == "*" and value.right == ir.Const(full):
+            return self.expr(value.left)
+        raise Unsupported("a resolution computed at run time")
+
+    def ramp_lines(self, op) -> list[str]:
+        """A/D for a move when the source gave ramp times: (max - initial speed) / ramp time,
+        from the settings in force (compiler/in_force.py); refused when they are not known."""
+        state = self.states.get(id(op), {})
+        axis = op.targets[0][0] if isinstance(op, ir.Move) else op.axis
+        lines = []
+        for time_param, name in ((ir.MotionParam.ACCEL_TIME, "A"), (ir.MotionParam.DECEL_TIME, "D")):
+            ramp = lookup(state, time_param, axis)
+            if ramp is None:
+                if any(k[0] is time_param for k in state) or self.ramp_set_anywhere(time_param):
+                    raise Unsupported(f"a move whose ramp time is only known at run time ({name}= needs it)")
+                continue
+            top = lookup(state, ir.MotionParam.MAX_SPEED, axis)
+            low = lookup(state, ir.MotionParam.INITIAL_SPEED, axis)
+            if top is None or low is None:
+                raise Unsupported("a move whose ramp time cannot become an acceleration: the initial and maximum "
+                                  "speeds in force are not known here")
+            accel = units.accel_from_ramp(float(ramp.value), float(low.value), float(top.value))
+            if accel is None:
+                raise Unsupported(f"a ramp time of {ramp.value} s")
+            value = round(float(units.scale_rate(accel, self.factor)))
+            if self.written_ramp.get(name) != value:
+                lines.append(f"{name}={max(value, 1)}")
+                self.written_ramp[name] = value
+        return lines
+
+    def ramp_set_anywhere(self, param) -> bool:
+        return any(isinstance(op, ir.SetMotion) and op.param is param
+                   for _, block in self.module.blocks() for op in block.ops)
+
+    def home(self, op: ir.Home) -> str:
+        name = {"switch": "HM", "index": "HI", "offset": "HF"}.get(op.method)
+        if name is None:
+            raise Unsupported(f"homing by {op.method}")
+        if op.mode is not None:
+            return f"{self.prefix(op.axis)}{name} {self.expr(op.mode)}"
+        kind = HOME_TYPES.get((op.direction, op.creep))
+        if kind is None:
+            raise Unsupported("homing without a seek direction")
+        return f"{self.prefix(op.axis)}{name} {kind}"
+
+    def setting(self, op: ir.Setting) -> str:
+        if op.name not in SETTINGS:
+            raise Unsupported(f"the setting {op.name}")
+        name, factor = SETTINGS[op.name]
+        if name == "D":  # D1-D4: one per input
+            if op.index not in range(1, 5):
+                raise Unsupported(f"a debounce time for input {op.index}")
+            name = f"D{op.index}"
+        value = op.value
+        if factor != 1:
+            value = units.from_ir(value, 1 / factor)
+        return f"{self.prefix(op.axis)}{name}={self.expr(value)}"
+
+    def line_setup(self, op: ir.Setting, pair) -> str:
+        table, name = (INPUT_TYPES, "IS") if op.name == "input_function" else (OUTPUT_TYPES, "OS")
+        function = op.value.value if isinstance(op.value, ir.Text) else None
+        if function not in table:
+            raise Unsupported(f"an {op.name} of {function}")
+        active = pair.value if isinstance(pair, ir.Setting) and pair.index == op.index else ir.Const(0)
+        return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
+
+    def wait_input(self, op: ir.WaitInput) -> list[str]:
+        """MCode has no wait-for-input statement: a loop that tests until the condition holds."""
+        here = self.fresh_name()
+        self.line(f"LB {here}", op.span)
+        self.jump_if(ir.Not(op.cond), here, op.span)
+        return []
+
+    def guarded_call(self, op: ir.Call) -> list[str]:
+        skip = self.fresh_name()
+        self.jump_if(ir.Not(op.cond), skip, op.span)
+        self.line(f"CL {self.call_label(op.routine)}", op.span)
+        self.line(f"LB {skip}", op.span)
+        return []
+
     def call_label(self, name: str) -> str:
         routine = self.module.routine(name)
         if routine is not None and routine.entry is not None:
             return self.label(routine.entry.label)
+        if self.foreign:
+            raise Unsupported(f"a call of {name}, which is not in this program")
         return self.label(name)
 
     def assign(self, op: ir.Assign) -> str:
-        target = op.target.name
+        target = self.var(op.target.name)
         value = op.value
         if isinstance(value, ir.BinOp) and value.op in "+-" and value.left == op.target \
                 and isinstance(value.right, ir.Const) and value.right.value == 1:
@@ -290,12 +596,12 @@ class Writer:
 
     def handler(self, op: ir.SetHandler) -> str:
         label = self.call_label(op.routine) if op.routine else ""
-        args = [self.expr(a) for a in op.args]
         if op.event == "error":
             return f"OE {label}"
         name = TRIPS.get(op.event)
         if name is None:
             raise Unsupported(f"a '{op.event}' event handler")
+        args = [self.trip_arg(name, i, a) for i, a in enumerate(op.args)]
         if name == "TI":
             return f"TI {','.join(args[:1] + [label])}"
         if name in ("TC", "TM"):
@@ -305,6 +611,13 @@ class Writer:
         if name == "TA":
             return f"TA={','.join([label] + args)}"
         return f"{name}={','.join(args + [label])}"
+
+    def trip_arg(self, name: str, index: int, value) -> str:
+        if index == 0 and name in ("TP", "TR"):
+            return self.position(value)
+        if index == 0 and name == "TT":
+            return self.expr(units.from_ir(value, MS_TO_S))
+        return self.expr(value)
 
     def native(self, op: ir.Native) -> str:
         if op.dialect != DIALECT:
@@ -319,13 +632,39 @@ class Writer:
         setting = command is not None and command.kind in (cat.VARIABLE, cat.FLAG)
         return f"{prefix}{op.mnemonic}{'=' if setting else ' '}{args}"
 
-    # expressions ---------------------------------------------------------------------------------
-    def delay(self, duration) -> str:
-        if isinstance(duration, ir.Const) and duration.unit in UNIT_FACTORS:
-            value = duration.value * UNIT_FACTORS[duration.unit]
-            return format_number(int(value) if float(value).is_integer() else value)
-        return self.expr(duration)
+    # quantities ----------------------------------------------------------------------------------
+    def position(self, value) -> str:
+        """A position or distance in this drive's steps, scaled from the source's."""
+        if self.factor == 1:
+            return self.expr(value)
+        if isinstance(value, ir.Const):
+            scaled = units.scale_steps(value.value, self.factor)
+            if not scaled.exact:
+                raise Unsupported(f"the position {value.value} steps (source {self.module.steps_per_rev} steps/rev) "
+                                  f"falls between two steps of the target ({self.profile.steps_per_rev} steps/rev): "
+                                  "give a profile whose steps_per_rev makes it exact (--profile)")
+            return format_number(scaled.value)
+        if self.factor.denominator == 1:
+            return f"{self.expr(value)}*{self.factor.numerator}"
+        raise Unsupported("a position computed at run time, which cannot be scaled exactly to this drive's steps")
 
+    def rate(self, value) -> str:
+        """A speed or acceleration in this drive's steps per second (per second)."""
+        if isinstance(value, ir.Const):
+            scaled = units.scale_rate(value.value, self.factor)
+            return format_number(round(scaled) if self.foreign else scaled)
+        if self.factor == 1:
+            return self.expr(value)
+        raise Unsupported("a speed computed at run time, which cannot be scaled to this drive's steps")
+
+    def delay(self, duration) -> str:
+        value = units.from_ir(duration, MS_TO_S)
+        if isinstance(value, ir.Const):
+            ms = value.value
+            return format_number(int(round(ms)) if not isinstance(ms, int) else ms)
+        return self.expr(value)
+
+    # expressions ---------------------------------------------------------------------------------
     def item(self, node) -> str:
         if isinstance(node, ir.Text):
             return f'"{node.value}"'
@@ -335,9 +674,15 @@ class Writer:
 
     def expr(self, node) -> str:
         if isinstance(node, ir.Const):
+            if node.unit is ir.Unit.STEPS and self.factor != 1:
+                return self.position(node)
+            if node.unit in (ir.Unit.STEPS_PER_S, ir.Unit.STEPS_PER_S2) and self.factor != 1:
+                return self.rate(node)
             return format_number(node.value)
         if isinstance(node, ir.Var):
-            return node.name
+            return self.var(node.name)
+        if isinstance(node, ir.Status):
+            return self.status(node)
         if isinstance(node, ir.DeviceRef):
             if node.dialect != DIALECT:
                 raise Unsupported(f"the {node.dialect} value {node.name}")
@@ -350,6 +695,8 @@ class Writer:
             operand = self.expr(node.operand)
             if isinstance(node.operand, ir.BinOp):
                 raise Unsupported("an operator applied to a whole expression")
+            if node.op == "!":
+                raise Unsupported("a logical NOT inside an expression")
             return ("-" if node.op == "-" else "!") + operand
         if isinstance(node, ir.BinOp):
             if isinstance(node.right, ir.BinOp):
@@ -367,12 +714,73 @@ class Writer:
             return f"{name} {self.expr(node.args[0])}"
         raise Unsupported(f"the value {type(node).__name__}")
 
+    def status(self, node: ir.Status) -> str:
+        if node.meaning in INDEXED_READINGS:
+            prefix, numbers = INDEXED_READINGS[node.meaning]
+            index = node.index if node.meaning != "analog" else (node.index or 1) + 4
+            if index not in numbers:
+                raise Unsupported(f"{node.meaning} {node.index} (the drive has no such line)")
+            return f"{prefix}{index}"
+        name = READINGS.get(node.meaning)
+        if name is None:
+            raise Unsupported(f"the reading {node.meaning}")
+        if self.foreign and node.axis not in ("", ir.ALL_AXES):
+            self.prefix(node.axis)  # refuses a reading of another axis
+        return name
+
     def cond(self, node) -> str:
+        node = simplify(node)
         if isinstance(node, ir.Compare):
             return f"{self.expr(node.left)}{COMPARE[node.op]}{self.expr(node.right)}"
         if isinstance(node, ir.Truth):
             return self.expr(node.expr)
-        raise Unsupported("a condition with AND/OR or an input pattern (MCode tests one condition)")
+        raise Unsupported("a condition with AND/OR or an input pattern here (MCode tests one condition)")
+
+
+def is_user_name(name: str, reserved) -> bool:
+    """A valid MCode user name: two characters, a letter then a letter or digit, not a mnemonic."""
+    return len(name) == 2 and name.isascii() and name[0].isalpha() and name[1].isalnum() \
+        and name.upper() == name and name not in reserved
+
+
+def op_axes(op) -> list[str]:
+    if isinstance(op, ir.Move):
+        return [axis for axis, _ in op.targets]
+    if isinstance(op, ir.Arc):
+        return list(op.axes)
+    axis = getattr(op, "axis", "")
+    return [axis] if axis else []
+
+
+def simplify(cond):
+    """Push NOT inward: into comparisons (negated operator) and through AND/OR (De Morgan)."""
+    if not isinstance(cond, ir.Not):
+        return cond
+    inner = cond.cond
+    if isinstance(inner, ir.Not):
+        return simplify(inner.cond)
+    if isinstance(inner, ir.Compare):
+        return ir.Compare(NEGATE[inner.op], inner.left, inner.right, inner.span)
+    if isinstance(inner, ir.Truth):
+        return ir.Compare("=", inner.expr, ir.Const(0), inner.span)
+    if isinstance(inner, ir.Logic):
+        flipped = "or" if inner.op == "and" else "and"
+        return ir.Logic(flipped, simplify(ir.Not(inner.left)), simplify(ir.Not(inner.right)), inner.span)
+    if isinstance(inner, ir.InputMatch):
+        return simplify(ir.Not(pattern_cond(inner.pattern)))
+    return cond
+
+
+def pattern_cond(pattern: ir.Pattern):
+    """An input pattern (bit n for input n+1; X: either) as a conjunction of input tests."""
+    tests = [ir.Compare("=", ir.Status("input", "", n + 1), ir.Const(int(bit)), pattern.span)
+             for n, bit in enumerate(pattern.bits) if bit in "01"]
+    if not tests:
+        return ir.Compare("=", ir.Const(0), ir.Const(0), pattern.span)
+    cond = tests[0]
+    for test in tests[1:]:
+        cond = ir.Logic("and", cond, test, pattern.span)
+    return cond
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:

@@ -101,6 +101,25 @@ def verify_ir(result: FileResult) -> None:
     result.diagnostics = diags.items
 
 
+def ir_keeps_contract(result: FileResult) -> bool:
+    """Another dialect's backend trusts the IR's meaning (units, modes, names): a module that
+    breaks the contract is refused (G011, naming the first violation) rather than converted into
+    a program that does something else."""
+    from mcc.compiler import ir_verify
+
+    violations = ir_verify.verify(result.analysis.module)
+    if not violations:
+        return True
+    first = violations[0]
+    diags = Diagnostics(result.diagnostics)
+    diags.add("G011", first.span or file_span(result.path),
+              f"cannot convert to {result.target}: {first.message} ({first.where}); "
+              f"{len(violations)} construct(s) of this {result.dialect} program are not yet expressed in the "
+              "IR's neutral terms")
+    result.diagnostics = diags.items
+    return False
+
+
 def check_file(path: str, dialect: str | None = None, profile: Profile | None = None,
                text: str | None = None) -> FileResult:
     """Parse, lower and check one file (the work of `mcc check`)."""
@@ -126,6 +145,8 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
     result.target = target or result.dialect
     analysis = result.analysis
     if analysis is None or analysis.module is None or result.has_errors:
+        return result
+    if result.target != result.dialect and not ir_keeps_contract(result):
         return result
     diags = Diagnostics(result.diagnostics)
     try:

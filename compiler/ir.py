@@ -279,11 +279,16 @@ class Slew:
 
 @dataclass(slots=True)
 class Home:
+    """Seek the home reference (`method`: switch | index | switch+index | offset) moving in
+    `direction` (+1/-1) at the max speed, then creep off it in `creep` (+1/-1, 0: the device's
+    default) at the initial speed; the position there becomes 0."""
+
     axis: str
     method: str  # switch | index | switch+index | offset
     direction: int = 0
-    mode: Expr | None = None  # dialect homing type (MCode HM 1..4)
+    mode: Expr | None = None  # legacy: a dialect homing type; the contract uses direction/creep
     span: Span | None = None
+    creep: int = 0
 
 
 @dataclass(slots=True)
@@ -370,6 +375,7 @@ class Setting:
     axis: str
     value: Expr
     span: Span | None = None
+    index: int | None = None  # an input or output number, for settings of one line
 
 
 @dataclass(slots=True)

@@ -75,6 +75,7 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("encoder", Unit.STEPS),  # encoder position, in steps
     Reading("velocity", Unit.STEPS_PER_S),  # current speed, signed
     Reading("moving"),  # 1 while the axis is moving, else 0
+    Reading("moving_to_position"),  # 1 while a move to a position (not a slew) runs
     Reading("input", indexed=True),  # digital input n: 1 when active
     Reading("inputs"),  # every digital input as a bit mask, input 1 in bit 0
     Reading("output", indexed=True),  # digital output n: 1 when on
@@ -92,6 +93,8 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("initial_speed", Unit.STEPS_PER_S),  # the initial speed in force
     Reading("accel", Unit.STEPS_PER_S2),  # the acceleration in force
     Reading("decel", Unit.STEPS_PER_S2),  # the deceleration in force
+    Reading("input_pending"),  # 1 while a value typed for an INPUT statement is waiting (MCode IF)
+    Reading("hmt_status"),  # the closed-loop (hMT) status bits (MCode AF)
 )}
 
 # SetHandler events: what makes the handler run.
@@ -124,9 +127,25 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("run_current", Unit.PERCENT, "motor current while moving, % of the maximum", ("mcode",)),
     SettingInfo("hold_current", Unit.PERCENT, "motor current at rest, % of the maximum", ("mcode",)),
     SettingInfo("hold_delay", Unit.S, "time after a move before the hold current applies", ("mcode",)),
+    SettingInfo("settle_time", Unit.S, "time the motor settles after a move before the next starts", ("mcode",)),
     SettingInfo("encoder_enable", Unit.NONE, "1: the encoder is used (closed loop), 0: open loop",
                 ("mcode",)),
+    SettingInfo("error_code", Unit.NONE, "the device's error code: writing 0 clears the error",
+                ("mcode",)),
+    SettingInfo("input_debounce", Unit.S, "time input `index` must hold a new level before it counts",
+                ("mcode",)),
+    SettingInfo("input_function", Unit.NONE, "what input `index` does: a name of INPUT_FUNCTIONS", ("mcode",)),
+    SettingInfo("input_active_high", Unit.NONE, "1: input `index` is active at a high level, 0: low", ("mcode",)),
+    SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS", ("mcode",)),
+    SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode",)),
 )}
+
+# The values of the input_function and output_function settings (an `ir.Text`).
+INPUT_FUNCTIONS = ("general", "home", "limit_plus", "limit_minus", "run_program", "soft_stop", "pause",
+                   "jog_plus", "jog_minus", "reset", "capture", "step_direction", "encoder_ab", "step_up_down")
+OUTPUT_FUNCTIONS = ("general", "moving", "error", "stall", "velocity_changing", "locked_rotor",
+                    "moving_to_position", "hmt_active", "make_up_active", "encoder_a", "encoder_b", "trip",
+                    "attention")
 
 
 def status_unit(meaning: str) -> Unit:

@@ -91,3 +91,63 @@ def round_to(value: float, step: float) -> float:
     if step <= 0:
         return value
     return round(round(value / step) * step, 10)
+
+
+# ---------------------------------------------------------------------------------------------
+# Quantities that are expressions: a delay of `R1` milliseconds is `R1 * 0.001 s` in the IR.
+
+
+def to_ir(expr, factor: float, unit):
+    """`expr` (in a dialect's unit) as an IR quantity: `factor` IR units per dialect unit.
+
+    A constant is converted; any other expression becomes `expr * factor` carrying the unit on
+    the factor, which `from_ir` recognises so a backend of the same dialect writes `expr` back.
+    """
+    from mcc.compiler import ir
+
+    if isinstance(expr, ir.Const):
+        value = expr.value * factor
+        if isinstance(value, float) and value.is_integer() and isinstance(expr.value, int) and factor >= 1:
+            value = int(value)
+        return ir.Const(_tidy(value), unit, expr.span)
+    return ir.BinOp("*", expr, ir.Const(factor, unit), getattr(expr, "span", None))
+
+
+def from_ir(expr, factor: float):
+    """The inverse of `to_ir`: `expr` in the dialect's unit when `factor` IR units make one.
+
+    Returns a constant, the original expression of a `to_ir` product, or `expr / factor`.
+    """
+    from mcc.compiler import ir
+
+    if isinstance(expr, ir.Const):
+        return ir.Const(_tidy(expr.value / factor), ir.Unit.NONE, expr.span)
+    if isinstance(expr, ir.BinOp) and expr.op == "*" and isinstance(expr.right, ir.Const) \
+            and expr.right.value == factor:
+        return expr.left
+    return ir.BinOp("/", expr, ir.Const(factor), getattr(expr, "span", None))
+
+
+def _tidy(value: int | float) -> int | float:
+    """Drop float noise from a unit conversion (0.1 * 1000 = 100.00000000000001 -> 100)."""
+    if isinstance(value, float):
+        rounded = round(value, 9)
+        return int(rounded) if rounded.is_integer() and abs(rounded) < 2 ** 53 else rounded
+    return value
+
+
+def typed_compare(compare):
+    """A comparison whose one side is a reading with a unit (a position, a speed) and whose other
+    side is a plain constant: the constant takes the reading's unit, so a backend that scales
+    positions scales it too (`P > 1000` compares 1000 steps)."""
+    from mcc.compiler import ir
+    from mcc.compiler.ir_names import status_unit
+
+    left, right = compare.left, compare.right
+    if isinstance(left, ir.Status) and isinstance(right, ir.Const) and right.unit is ir.Unit.NONE:
+        right = ir.Const(right.value, status_unit(left.meaning), right.span)
+    elif isinstance(right, ir.Status) and isinstance(left, ir.Const) and left.unit is ir.Unit.NONE:
+        left = ir.Const(left.value, status_unit(right.meaning), left.span)
+    else:
+        return compare
+    return ir.Compare(compare.op, left, right, compare.span)

@@ -20,9 +20,9 @@ from mcc.compiler.mcode.lower import TRIP_EVENTS
 
 MCODE = "mcode"
 # The position counters a program reads to know where the axis is (L656-L657, L1862-L1868).
-POSITION_REGISTERS = ("P", "C1", "C2")
+POSITION_REGISTERS = ("position", "encoder")  # readings of P, C1, C2
 # Flags a program polls to wait for the end of a move instead of H (L4207, L4427).
-MOTION_FLAGS = ("MV", "MP")
+MOTION_FLAGS = ("moving", "moving_to_position")  # MV, MP
 MOTION_OPS = (ir.Move, ir.Slew, ir.Home, ir.Arc)
 EVENT_TRIP = {event: name for name, event in TRIP_EVENTS.items()}  # "input" -> "TI"
 SUBROUTINE_KINDS = (ir.RoutineKind.SUBROUTINE, ir.RoutineKind.HANDLER)
@@ -46,16 +46,16 @@ def is_float_register(name: str) -> bool:
     return command is not None and command.is_float
 
 
-def reads_any(item, names: tuple[str, ...]) -> bool:
-    """Whether an operation or terminator reads one of the named device registers."""
+def reads_any(item, meanings: tuple[str, ...]) -> bool:
+    """Whether an operation or terminator reads one of the named device readings."""
     found = flow.op_reads(item) if not isinstance(item, (ir.Branch, ir.Jump, ir.Return, ir.End, ir.FallOff)) \
         else flow.term_reads(item)
-    return any(isinstance(n, ir.DeviceRef) and n.name in names for n in found)
+    return any(isinstance(n, ir.Status) and n.meaning in meanings for n in found)
 
 
 def reads_input(item) -> bool:
     found = flow.term_reads(item) if isinstance(item, ir.Branch) else flow.op_reads(item) if item is not None else ()
-    return any(isinstance(n, ir.DeviceRef) and n.meaning in ("input", "inputs") for n in found) or \
+    return any(isinstance(n, ir.Status) and n.meaning in ("input", "inputs") for n in found) or \
         isinstance(item, ir.WaitInput)
 
 

@@ -18,7 +18,7 @@ it when it leaves a handler).
 
 from __future__ import annotations
 
-from mcc.compiler import ir
+from mcc.compiler import ir, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
@@ -29,9 +29,31 @@ DIALECT = "mcode"
 TRIP_EVENTS = {"TI": "input", "TP": "position", "TC": "capture", "TT": "time", "TR": "relative",
                "TA": "hmt", "TM": "power"}
 HOME_METHODS = {"HM": "switch", "HI": "index", "HF": "offset"}
+HOME_TYPES = {1: (-1, +1), 2: (-1, -1), 3: (+1, -1), 4: (+1, +1)}  # type -> (seek, creep) (L3206-L3210)
 MOTION_PARAMS = {"accel": ir.MotionParam.ACCEL, "decel": ir.MotionParam.DECEL,
                  "initial_speed": ir.MotionParam.INITIAL_SPEED, "max_speed": ir.MotionParam.MAX_SPEED,
                  "resolution": ir.MotionParam.RESOLUTION}
+# What a register read means in the IR (the catalog's `ir` kind -> an ir_names.STATUS meaning).
+READINGS = {"set_position": "position", "counter": "position", "encoder": "encoder", "velocity": "velocity",
+            "moving": "moving", "input": "input", "inputs": "inputs", "output": "output", "outputs": "outputs",
+            "error_code": "error", "stalled": "stalled", "accel": "accel", "decel": "decel",
+            "max_speed": "max_speed", "initial_speed": "initial_speed", "analog_input": "analog",
+            "input_pending": "input_pending", "hmt_status": "hmt_status",
+            "moving_to_position": "moving_to_position"}
+# Settings with a neutral name (ir_names.SETTINGS): catalog `ir` kind -> (setting, factor to IR units).
+SETTINGS = {"error_code": ("error_code", 1, ir.Unit.NONE), "run_current": ("run_current", 1, ir.Unit.PERCENT),
+            "hold_current": ("hold_current", 1, ir.Unit.PERCENT),
+            "settle_time": ("settle_time", 0.001, ir.Unit.S), "hold_delay": ("hold_delay", 0.001, ir.Unit.S),
+            "input_debounce": ("input_debounce", 0.001, ir.Unit.S), "encoder_enable": ("encoder_enable", 1, ir.Unit.NONE)}
+# IS/OS type numbers (spec §6.6, L770-L831) -> ir_names.INPUT_FUNCTIONS / OUTPUT_FUNCTIONS.
+INPUT_TYPES = {0: "general", 1: "home", 2: "limit_plus", 3: "limit_minus", 4: "run_program", 5: "soft_stop",
+               6: "pause", 7: "jog_plus", 8: "jog_minus", 11: "reset", 12: "capture", 13: "step_direction",
+               14: "encoder_ab", 15: "step_up_down"}
+OUTPUT_TYPES = {16: "general", 17: "moving", 18: "error", 19: "stall", 20: "velocity_changing", 21: "locked_rotor",
+                23: "moving_to_position", 24: "hmt_active", 25: "make_up_active", 26: "encoder_a", 27: "encoder_b",
+                28: "trip", 29: "attention"}
+FULL_STEPS_PER_REV = 200  # a 1.8° motor (L645); profiles may say otherwise (`full_steps_per_rev`)
+MS_TO_S = 0.001
 COMPARE_OPS = {"=": "=", "<>": "!=", "<": "<", "<=": "<=", "=<": "<=", ">": ">", ">=": ">="}
 BINARY_OPS = {"+": "+", "-": "-", "*": "*", "/": "/", "&": "&", "|": "|", "^": "^"}
 FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "ln", "L_": "log10", "SI": "sin",
@@ -75,7 +97,9 @@ class Lowering:
         self.diags = diags
         self.resolver = Resolver(profile, diags)
         self.cat = self.resolver.cat
-        self.module = ir.Module(DIALECT, profile.name, path=tree.path)
+        self.module = ir.Module(DIALECT, profile.name, path=tree.path, steps_per_rev=profile.steps_per_rev)
+        self.full_steps = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
+        self.resolution_set = False
         self.resolved: list[tuple[st.Line, Resolved, bool]] = []  # (line, meaning, in_program)
         self.callees: set[str] = set()
         self.handlers: set[str] = set()
@@ -188,9 +212,7 @@ class Lowering:
         elif name == "E":
             self.terminate(ir.End(res.stmt.span))
         else:
-            op = self.op(res, in_program)
-            if op is not None:
-                self.block.ops.append(op)
+            self.append(self.op(res, in_program))
 
     # regions, routines, blocks -------------------------------------------------------------------
     def close_region(self) -> None:
@@ -315,17 +337,26 @@ class Lowering:
             self.module.routines.append(routine)
             self.routine = routine
             self.block = routine.blocks[0]
-        op = self.op(res, in_program=False)
-        if op is not None:
-            self.block.ops.append(op)
+        self.append(self.op(res, in_program=False))
 
     # operations ----------------------------------------------------------------------------------
+    def append(self, op) -> None:
+        """Add the operation(s) of one statement (a few statements lower to two operations)."""
+        if isinstance(op, list):
+            self.block.ops.extend(op)
+        elif op is not None:
+            self.block.ops.append(op)
+
     def axis(self, res: Resolved) -> str:
-        return res.party
+        """The statement's axis: its party prefix, or the drive itself (the profile's axis)."""
+        if res.party:
+            return res.party
+        return self.profile.axes[0] if self.profile.axes else "1"
 
     def op(self, res: Resolved, in_program: bool):
         op = self.neutral_op(res, in_program)
-        if res.party and op is not None and not hasattr(op, "axis") and res.command is not None:
+        if res.party and op is not None and not isinstance(op, (list, ir.Move)) and not hasattr(op, "axis") \
+                and res.command is not None:
             # A party prefix addresses the statement to one device; an operation without an axis
             # would lose it, so the statement stays native with the prefix as its axis.
             return ir.Native(DIALECT, res.command.name, tuple(self.native_arg(res.command, a) for a in res.args),
@@ -344,22 +375,35 @@ class Lowering:
         name, kind = command.name, command.ir
         args = res.args
         axis = self.axis(res)
+        if kind == "resolution" and args:
+            return self.resolution(axis, args[0], span)
         if kind in MOTION_PARAMS and args:
-            return ir.SetMotion(MOTION_PARAMS[kind], axis, self.expr(args[0]), span)
+            param = MOTION_PARAMS[kind]
+            return ir.SetMotion(param, axis, self.expr(args[0], ir.PARAM_UNITS[param]), span)
+        if kind in SETTINGS and args:
+            setting, factor, unit = SETTINGS[kind]
+            return ir.Setting(setting, axis, units.to_ir(self.expr(args[0]), factor, unit), span, command.index)
+        if name in ("IS", "OS") and len(args) == 3:
+            line_setup = self.line_setup(name, axis, args, span)
+            if line_setup is not None:
+                return line_setup
         if kind in ("move_absolute", "move_relative") and args:
             mode = ir.MoveMode.ABSOLUTE if kind == "move_absolute" else ir.MoveMode.RELATIVE
             options = tuple((key, self.expr(arg)) for key, arg in zip(("notify", "continuous"), args[1:]))
-            return ir.Move(mode, ((axis, self.expr(args[0])),), options, span)
+            return ir.Move(mode, ((axis, self.expr(args[0], ir.Unit.STEPS)),), options, span)
         if kind == "slew" and args:
-            return ir.Slew(axis, self.expr(args[0]), span=span)
+            return ir.Slew(axis, self.expr(args[0], ir.Unit.STEPS_PER_S), span=span)
         if name in HOME_METHODS and args:
-            return ir.Home(axis, HOME_METHODS[name], mode=self.expr(args[0]), span=span)
+            kind_of = self.expr(args[0])
+            if isinstance(kind_of, ir.Const) and kind_of.value in HOME_TYPES:
+                seek, creep = HOME_TYPES[kind_of.value]
+                return ir.Home(axis, HOME_METHODS[name], seek, span=span, creep=creep)
         if kind == "hold" or name == "H":
             if args:
-                return ir.Delay(self.expr(args[0], ir.Unit.MS), span)
+                return ir.Delay(units.to_ir(self.expr(args[0]), MS_TO_S, ir.Unit.S), span)
             return ir.WaitMotion(axis, span)
         if kind == "set_position" and args:
-            return ir.SetPosition(axis, self.expr(args[0]), span)
+            return ir.SetPosition(axis, self.expr(args[0], ir.Unit.STEPS), span)
         if kind == "output" and args and command.index is not None:
             return ir.SetOutput(command.index, self.expr(args[0]), span)
         if kind == "outputs" and args:
@@ -390,11 +434,48 @@ class Lowering:
             return ir.SetHandler("error", self.target_label(args[0]) if args else None, (), span)
         if name in TRIP_EVENTS:
             label_node = handler_label(res)
-            others = tuple(self.expr(a) for a in args if a is not label_node)
+            others = tuple(self.trip_arg(name, i, a) for i, a in enumerate(a for a in args if a is not label_node))
             label = self.target_label(label_node) if label_node is not None else None
             return ir.SetHandler(TRIP_EVENTS[name], label, others, span)
         return ir.Native(DIALECT, name, tuple(self.native_arg(command, a) for a in args),
                          form="=" if stmt.form == "assign" else (" " if args else ""), axis=axis, span=span)
+
+    def line_setup(self, name: str, axis: str, args, span):
+        """`IS=1,1,0` / `OS=1,17,1` with literal numbers: an input's or output's function and its
+        active level, as two neutral settings (returned as one list the caller flattens)."""
+        values = [self.expr(a) for a in args]
+        if not all(isinstance(v, ir.Const) for v in values):
+            return None
+        line, kind_of, active = (v.value for v in values)
+        table = INPUT_TYPES if name == "IS" else OUTPUT_TYPES
+        if kind_of not in table or not isinstance(line, int) or line not in range(1, 5) or active not in (0, 1):
+            return None
+        what = "input" if name == "IS" else "output"
+        return [ir.Setting(f"{what}_function", axis, ir.Text(table[kind_of], args[1].span), span, line),
+                ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, line)]
+
+    def resolution(self, axis: str, node: st.Node, span):
+        """`MS=256`: microsteps per full step. The IR counts steps per revolution, and a literal
+        resolution set before any program decides the size of the module's step."""
+        value = self.expr(node)
+        if isinstance(value, ir.Const):
+            steps = value.value * self.full_steps
+            if not self.resolution_set and not any(r.kind is not ir.RoutineKind.IMMEDIATE
+                                                   for r in self.module.routines):
+                self.module.steps_per_rev = steps
+                self.resolution_set = True
+            return ir.SetMotion(ir.MotionParam.RESOLUTION, axis, ir.Const(steps, ir.Unit.NONE, value.span), span)
+        return ir.SetMotion(ir.MotionParam.RESOLUTION, axis,
+                            ir.BinOp("*", value, ir.Const(self.full_steps)), span)
+
+    def trip_arg(self, name: str, index: int, node: st.Node):
+        """A trip's parameters in IR units: TP/TR positions in steps, TT a time in seconds."""
+        value = self.expr(node)
+        if index == 0 and name in ("TP", "TR"):
+            return self.expr(node, ir.Unit.STEPS)
+        if index == 0 and name == "TT":
+            return units.to_ir(value, MS_TO_S, ir.Unit.S)
+        return value
 
     def declare(self, res: Resolved, in_program: bool):
         arg = res.args[0] if res.args else None
@@ -443,6 +524,13 @@ class Lowering:
                 return ir.LabelRef(upper, node.span)
             meaning = command.ir if command is not None else ""
             index = command.index if command is not None else None
+            if meaning in READINGS:
+                reading = READINGS[meaning]
+                indexed = reading in ("input", "output", "analog")
+                if reading == "analog":
+                    index = 1  # I5, the one analog input
+                return ir.Status(reading, "" if indexed else self.drive_axis(), index if indexed else None,
+                                 node.span)
             return ir.DeviceRef(DIALECT, upper, meaning, "", index, node.span)
         if isinstance(node, st.Unary):
             operand = self.expr(node.operand)
@@ -461,9 +549,13 @@ class Lowering:
             return self.cond(node)
         raise TypeError(f"unexpected node {type(node).__name__}")
 
+    def drive_axis(self) -> str:
+        return self.profile.axes[0] if self.profile.axes else "1"
+
     def cond(self, node: st.Node):
         if isinstance(node, st.Comparison):
-            return ir.Compare(COMPARE_OPS.get(node.op, node.op), self.expr(node.left), self.expr(node.right), node.span)
+            return units.typed_compare(ir.Compare(COMPARE_OPS.get(node.op, node.op), self.expr(node.left),
+                                                  self.expr(node.right), node.span))
         return ir.Truth(self.expr(node), node.span)
 
 
