@@ -32,7 +32,7 @@ DIALECT = "mcode"
 PARAM_NAMES = {ir.MotionParam.ACCEL: "A", ir.MotionParam.DECEL: "D", ir.MotionParam.INITIAL_SPEED: "VI",
                ir.MotionParam.MAX_SPEED: "VM", ir.MotionParam.RESOLUTION: "MS"}
 COMPARE = {"=": "=", "!=": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
-NEGATE = {"=": "<>", "!=": "=", "<": ">=", "<=": ">", ">": "<=", ">=": "<"}
+NEGATE = {"=": "!=", "!=": "=", "<": ">=", "<=": ">", ">": "<=", ">=": "<"}  # in the IR's neutral names
 FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
              "sqrt": "SQ", "tan": "TG", "atan": "T_"}
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
@@ -86,7 +86,8 @@ class Writer:
         self.names = self.allocate_variables()
         self.labels = self.allocate_labels()
         self.axis_map = self.map_axes()
-        self.states = self.settings_in_force() if self.uses_ramp_times() else {}
+        self.ramps = self.uses_ramp_times()
+        self.states = self.settings_in_force() if self.foreign else {}
         self.written_ramp: dict[str, float] = {}
 
     # names ---------------------------------------------------------------------------------------
@@ -163,18 +164,38 @@ class Writer:
                 names.add(block.label)
         return names
 
+    def through(self, label: str) -> str:
+        """Where a jump to `label` really goes: past empty blocks that only jump on (an empty IF
+        arm, a loop's bare back edge), so the same branch is written however the CFG was built."""
+        seen = {label}
+        found = self.module.find_block(label) if self.foreign else None
+        while found is not None:
+            block = found[1]
+            if block.ops or block.named and not self.foreign or not isinstance(block.terminator, ir.Jump):
+                break
+            label = block.terminator.target
+            if label in seen:
+                break
+            seen.add(label)
+            found = self.module.find_block(label)
+        return label
+
     def needed_blocks(self) -> set[str]:
         """Unnamed blocks that something jumps to, calls, or names as a handler need a label."""
         needed: set[str] = set()
         order = [b.label for _, b in self.module.blocks()]
-        following = {label: order[i + 1] if i + 1 < len(order) else None for i, label in enumerate(order)}
+        following = {label: self.through(order[i + 1]) if i + 1 < len(order) else None
+                     for i, label in enumerate(order)}
         for _, block in self.module.blocks():
-            term = block.terminator
+            term = threaded(block.terminator, self.through)
             after = following.get(block.label)
             if isinstance(term, ir.Jump) and term.target != after:
                 needed.add(term.target)
             elif isinstance(term, ir.Branch):  # mirrors Writer.branch
-                if term.then == after:
+                if term.then == term.otherwise:
+                    if term.then != after:
+                        needed.add(term.then)
+                elif term.then == after:
                     needed.add(term.otherwise)
                 else:
                     needed.add(term.then)
@@ -238,7 +259,7 @@ class Writer:
         if self.axis_map:
             axis = next(iter(self.axis_map))
             lines.append(f"' source axis {axis} is this drive")
-        if self.states:
+        if self.ramps:
             lines.append("' ramp times become A/D from the speeds in force")
         for text in lines:
             self.line(text[:self.limit])
@@ -271,7 +292,7 @@ class Writer:
                     self.line("PG")
                 self.line(f"PG {routine.origin if routine.origin is not None else 1}", routine.span)
                 region_open = True
-            next_label = order[index + 1][1].label if index + 1 < len(order) else None
+            next_label = self.through(order[index + 1][1].label) if index + 1 < len(order) else None
             self.block(block, next_label)
         if region_open:
             self.line("PG")
@@ -318,7 +339,7 @@ class Writer:
         index = 0
         while index < len(ops):
             index += self.op_at(ops, index)
-        term = block.terminator
+        term = threaded(block.terminator, self.through)
         span = getattr(term, "span", None)
         try:
             self.terminator(term, next_label, span)
@@ -344,6 +365,10 @@ class Writer:
             self.line("E", span)  # another dialect's program stops at its end; MCode would run on
 
     def branch(self, term: ir.Branch, next_label: str | None) -> None:
+        if term.then == term.otherwise:  # both ways lead to one place: a jump
+            if term.then != next_label:
+                self.line(f"BR {self.label(term.then)}", term.span)
+            return
         if term.then == next_label:
             self.jump_if(ir.Not(term.cond), self.label(term.otherwise), term.span)
             return
@@ -404,7 +429,7 @@ class Writer:
     def op_lines(self, op) -> list[str]:
         """The lines of one operation: usually one; a converted ramp or a compound wait adds some."""
         before: list[str] = []
-        if isinstance(op, (ir.Move, ir.Slew, ir.Home)) and self.states:
+        if isinstance(op, (ir.Move, ir.Slew, ir.Home)) and self.ramps:
             before = self.ramp_lines(op)
         if isinstance(op, ir.WaitInput):
             return self.wait_input(op)
@@ -489,7 +514,20 @@ class Writer:
             raise Unsupported(f"the motion setting {op.param.value}")
         if op.param is ir.MotionParam.RESOLUTION:
             return f"{self.prefix(op.axis)}MS={self.resolution(op.value)}"
+        if op.param is ir.MotionParam.MAX_SPEED and self.foreign:
+            self.check_initial_speed(op)
         return f"{self.prefix(op.axis)}{PARAM_NAMES[op.param]}={self.rate(op.value)}"
+
+    def check_initial_speed(self, op: ir.SetMotion) -> None:
+        """MCode refuses VM not above VI (Error 22/23). A converted program that never set the initial
+        speed would run with MCode's default VI, which the source did not choose: refused."""
+        state = self.states.get(id(op), {})
+        if lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis) is None and isinstance(op.value, ir.Const):
+            default = float(self.profile.get("mcode.default_initial_speed", 1000))
+            if float(units.scale_rate(op.value.value, self.factor)) <= default:
+                raise Unsupported(f"a maximum speed of {op.value.value} steps/s before any initial speed is set "
+                                  f"(MCode's default initial speed {default:g} is not below it; set the initial "
+                                  "speed in the source first)")
 
     def resolution(self, value) -> str:
         full = int(self.profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
@@ -735,6 +773,15 @@ class Writer:
         if isinstance(node, ir.Truth):
             return self.expr(node.expr)
         raise Unsupported("a condition with AND/OR or an input pattern here (MCode tests one condition)")
+
+
+def threaded(term, through):
+    """A copy of a jump or branch with its targets followed through empty blocks."""
+    if isinstance(term, ir.Jump):
+        return ir.Jump(through(term.target), term.span)
+    if isinstance(term, ir.Branch):
+        return ir.Branch(term.cond, through(term.then), through(term.otherwise), term.span)
+    return term
 
 
 def is_user_name(name: str, reserved) -> bool:
