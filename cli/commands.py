@@ -118,8 +118,16 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="How to report diagnostics and statistics.")
 @click.option("--profile", help="Target profile: a built-in name or a path to a TOML file.")
+@click.option("-O0", "opt_level", flag_value="O0", help="No optimization: the program as written.")
+@click.option("-O1", "opt_level", flag_value="O1", default=True,
+              help="Local, safe optimizations (the default): folding, copies, dead stores, repeated settings, "
+                   "branches, unreachable blocks, block merging.")
+@click.option("-O2", "opt_level", flag_value="O2", help="-O1 across blocks and routines, plus tail merging.")
+@click.option("-Os", "opt_level", flag_value="Os",
+              help="-O2 plus procedural abstraction: repeated runs of operations become subroutines.")
+@click.option("--passes", help="Run exactly these passes, comma-separated (see docs/OPTIMIZER.md).")
 def compile_cmd(file: str, target: str | None, dialect: str | None, output: str | None, listing: str | None,
-                fmt: str, profile: str | None) -> None:
+                fmt: str, profile: str | None, opt_level: str, passes: str | None) -> None:
     """Compile FILE into a device-ready program.
 
     The program is checked first; nothing is written when it has errors. The output passes
@@ -134,7 +142,14 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     from mcc.compiler import driver
 
     prof = load_profile(profile)
-    result = driver.compile_file(file, dialect, target, prof)
+    if passes:
+        from mcc.compiler.opt import pass_names
+
+        try:
+            pass_names(opt_level, passes)
+        except ValueError as exc:
+            raise click.BadParameter(str(exc), param_hint="--passes") from None
+    result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes)
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
     if produced:
@@ -148,7 +163,9 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
 
     def extra(res) -> dict:
         data = {"output": res.output, "target": res.target,
-                "stats": res.listing.stats if res.listing is not None else {}}
+                "stats": dict(res.listing.stats) if res.listing is not None else {}}
+        if res.optimization is not None and res.listing is not None:
+            data["stats"]["optimization"] = res.optimization.to_json()
         if produced and not output:
             data["text"] = res.listing.text
         return data
@@ -168,6 +185,8 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
             stats = ", ".join(f"{k} {v}" for k, v in result.listing.stats.items())
             where = f" -> {output}" if output else ""
             writer.line(f"compiled {file} ({result.dialect} -> {result.target}){where}: {stats}", "bold")
+            if result.optimization is not None and result.optimization.passes:
+                writer.line(f"optimized {result.optimization.summary()}")
         else:
             writer.line(render.summary_line(diags, 1), "bold")
     sys.exit(EXIT_ERRORS if result.has_errors else EXIT_OK)

@@ -29,6 +29,7 @@ class FileResult:
     listing: Any = None  # backends.listing.Listing
     output: str | None = None
     target: str = ""
+    optimization: Any = None  # opt.OptStats of the compilation
 
     @property
     def has_errors(self) -> bool:
@@ -138,9 +139,14 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
     return result
 
 
+BUDGET_CODES = frozenset({"A201", "X203", "M116"})  # the program does not fit the target's memory
+
+
 def compile_file(path: str, dialect: str | None = None, target: str | None = None,
-                 profile: Profile | None = None, text: str | None = None) -> FileResult:
-    """Check one file and, when it has no errors, generate code for the target dialect."""
+                 profile: Profile | None = None, text: str | None = None, opt_level: str = "O1",
+                 passes: str | None = None) -> FileResult:
+    """Check one file and, when it has no errors, optimize its IR at `opt_level` (or run the
+    comma-separated `passes`) and generate code for the target dialect."""
     result = check_file(path, dialect, profile, text)
     result.target = target or result.dialect
     analysis = result.analysis
@@ -151,11 +157,61 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
     diags = Diagnostics(result.diagnostics)
     try:
         target_dialect = dialects.get(result.target)
-        backend = target_dialect.load_backend()
-        listing = backend.emit(analysis.module, profile_for(target_dialect, profile))
+        target_profile = profile_for(target_dialect, profile)
+        listing, stats = generate(analysis.module, target_dialect, target_profile, opt_level, passes)
+        result.optimization = stats
+        if opt_level != "O0" or passes:
+            baseline, _ = generate(analysis.module, target_dialect, target_profile, "O0", None)
+            if new_errors(listing, baseline):
+                # The optimized graph is one the target's structurer cannot write although the
+                # program as written can be: keep the program as written rather than fail.
+                listing, stats.fallback = baseline, True
+            stats.lines_before = len(baseline.lines)
+            stats.lines_after = len(listing.lines)
+        budget = [d for d in listing.diagnostics if d.code in BUDGET_CODES and d.severity.value == "error"]
+        if budget and not passes:
+            listing.diagnostics.items[:] = [d for d in listing.diagnostics
+                                            if d not in budget] + [with_level_note(d, fits_at(
+                                                analysis.module, target_dialect, target_profile, opt_level))
+                                                                   for d in budget]
+        level = f"; optimization: -{stats.level}" + (f" (passes {passes})" if passes else "")
+        listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)
         result.listing = listing
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, path, exc, f"generating {result.target} code")
     result.diagnostics = diags.items
     return result
+
+
+def generate(module: ir.Module, target: dialects.Dialect, profile: Profile, level: str, passes: str | None):
+    """The listing of `module` optimized at `level`; the analysis's own module is left untouched."""
+    from mcc.compiler import opt
+
+    work = ir.copy_module(module) if level != "O0" or passes else module
+    stats = opt.optimize(work, level, profile, passes)
+    return target.load_backend().emit(work, profile), stats
+
+
+def new_errors(listing, baseline) -> bool:
+    """Whether `listing` has an error code `baseline` (the same program at -O0) does not."""
+    before = {d.code for d in baseline.diagnostics if d.severity.value == "error"}
+    return any(d.severity.value == "error" and d.code not in before for d in listing.diagnostics)
+
+
+def fits_at(module: ir.Module, target: dialects.Dialect, profile: Profile, level: str) -> str:
+    """A note on whether a higher optimization level makes the program fit the target's memory."""
+    from mcc.compiler.opt import LEVELS
+
+    order = list(LEVELS)
+    for higher in order[order.index(level) + 1 if level in order else 1:]:
+        listing, _ = generate(module, target, profile, higher, None)
+        if not any(d.code in BUDGET_CODES and d.severity.value == "error" for d in listing.diagnostics):
+            return f"at -{higher} the program fits ({listing.stats.get('asm_lines', len(listing.lines))} lines)"
+    return "no optimization level makes it fit: shorten the program"
+
+
+def with_level_note(diag: Diagnostic, note: str) -> Diagnostic:
+    import dataclasses
+
+    return dataclasses.replace(diag, notes=diag.notes + (note,))

@@ -58,6 +58,8 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]]) -> No
             state[(op.param, op.axis)] = op.value
         else:
             state.pop((op.param, op.axis), None)
+    elif isinstance(op, ir.Native):
+        state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):
         for key in clobbers.get(op.routine, frozenset()):
             if key[1] == ALL:
@@ -157,6 +159,8 @@ def _clobbers(module: ir.Module) -> dict[str, frozenset[Key]]:
             for op in block.ops:
                 if isinstance(op, ir.SetMotion):
                     keys.add((op.param, op.axis))
+                elif isinstance(op, ir.Native):
+                    keys |= {(param, ALL) for param in ir.MotionParam}
                 elif isinstance(op, ir.Call):
                     called.add(op.routine)
             if isinstance(block.terminator, ir.GotoRoutine):

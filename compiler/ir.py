@@ -607,3 +607,19 @@ def term_exprs(term: Terminator | None) -> tuple:
     if isinstance(term, Branch):
         return (term.cond,)
     return ()
+
+
+def copy_module(module: Module) -> Module:
+    """A copy of `module` that passes may change freely: new routines, blocks, operation and
+    terminator objects; expressions are immutable and shared (so a deep expression costs nothing
+    and needs no recursion)."""
+    import copy
+    import dataclasses
+
+    routines = []
+    for routine in module.routines:
+        blocks = [dataclasses.replace(b, ops=[copy.copy(op) for op in b.ops], terminator=copy.copy(b.terminator))
+                  for b in routine.blocks]
+        routines.append(dataclasses.replace(routine, blocks=blocks))
+    variables = {name: copy.copy(v) for name, v in module.variables.items()}
+    return dataclasses.replace(module, variables=variables, routines=routines, externals=list(module.externals))

@@ -1,0 +1,77 @@
+"""Redundant motion settings.
+
+What it does: a speed, acceleration, ramp time or device setting that sets the value already in
+force is removed (`HSPD=5000` twice around a move keeps the first). -O1 looks within each block;
+-O2 uses the values in force on every path (compiler/in_force.py), across blocks and calls.
+
+Why it is safe: setting a value already in force changes nothing on the device. The values in
+force are known only where every path agrees; a call forgets what the callee may set; an event
+handler starts knowing nothing. When any event handler changes a motion setting (it may run
+between any two operations) the pass removes nothing. Move modes are not settings in the IR (each
+move says absolute or relative); the backends write the fewest mode switches themselves.
+
+Needs: values in force (at -O2).
+"""
+
+from __future__ import annotations
+
+from mcc.compiler import ir
+from mcc.compiler.in_force import lookup
+from mcc.compiler.opt.common import handler_writes, key
+
+NAME = "settings"
+NEEDS = ("in_force",)
+
+
+def run(module: ir.Module, context) -> int:
+    _, handlers_change_motion = handler_writes(module)
+    if handlers_change_motion:
+        return 0
+    removed = local(module)
+    if context.global_scope:
+        removed += across(module, context)
+    return removed
+
+
+def local(module: ir.Module) -> int:
+    removed = 0
+    for _, block in module.blocks():
+        last: dict[tuple, object] = {}
+        kept = []
+        for op in block.ops:
+            if isinstance(op, (ir.SetMotion, ir.Setting)) and isinstance(op.value, ir.Const):
+                slot = slot_of(op)
+                value = key(op.value)
+                if last.get(slot) == value:
+                    removed += 1
+                    continue
+                if getattr(op, "axis", "") == ir.ALL_AXES:
+                    last = {k: v for k, v in last.items() if k[0] != slot[0]}
+                last[slot] = value
+            elif isinstance(op, (ir.SetMotion, ir.Setting)):
+                last = {k: v for k, v in last.items() if k[0] != slot_of(op)[0]}
+            elif isinstance(op, (ir.Call, ir.Native)):
+                last.clear()
+            kept.append(op)
+        block.ops[:] = kept
+    return removed
+
+
+def slot_of(op) -> tuple:
+    if isinstance(op, ir.SetMotion):
+        return (op.param.value, op.axis)
+    return ("setting:" + op.name, op.axis, op.index)
+
+
+def across(module: ir.Module, context) -> int:
+    analysis = context.in_force()
+    redundant: set[int] = set()
+    for routine in module.routines:
+        for _, _, op, state in analysis.walk(routine):
+            if isinstance(op, ir.SetMotion) and isinstance(op.value, ir.Const) and op.axis != ir.ALL_AXES:
+                current = lookup(state, op.param, op.axis)
+                if current is not None and current.value == op.value.value and current.unit == op.value.unit:
+                    redundant.add(id(op))
+    for _, block in module.blocks():
+        block.ops[:] = [op for op in block.ops if id(op) not in redundant]
+    return len(redundant)
