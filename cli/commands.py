@@ -197,5 +197,6 @@ def profiles() -> None:
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
 
-# `mcc lint` and `mcc fmt` register themselves on `cli` (cli/lint.py).
+# `mcc lint` and `mcc fmt` register themselves on `cli` (cli/lint.py), `mcc lsp` too (cli/lsp.py).
 from mcc.cli import lint as _lint  # noqa: E402,F401  (imported last: it uses `cli`)
+from mcc.cli import lsp as _lsp  # noqa: E402,F401  (`mcc lsp`, same pattern)

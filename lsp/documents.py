@@ -1,0 +1,117 @@
+"""The open documents and their analyses: debounced, off the protocol thread, stale work dropped.
+
+Every edit bumps the document's generation. After a short quiet time (`debounce`, none on open
+and save) the newest text is analysed in a single worker thread: first the frontend's checks (which
+are published at once), then the lint rules, asked between rules whether a newer edit has
+arrived, in which case the old work stops and nothing stale is published. Requests (hover,
+completion, definition, ...) read `latest`, the last finished snapshot, and never wait.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import threading
+from concurrent.futures import ThreadPoolExecutor
+from typing import Callable
+
+from mcc.compiler import config
+from mcc.compiler.config import Resolver
+from mcc.lsp import analysis
+from mcc.lsp.analysis import Snapshot
+
+log = logging.getLogger(__name__)
+
+
+class Documents:
+    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.05):
+        self.publish = publish
+        self.debounce = debounce
+        self.latest: dict[str, Snapshot] = {}
+        self.generation: dict[str, int] = {}
+        self.timers: dict[str, asyncio.TimerHandle] = {}
+        self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcc-analysis")
+        self.lock = threading.Lock()
+        self.resolver = Resolver()
+        self.dialects: dict[str, str] = {}  # uri -> dialect, from the client's languageId
+        self.loop: asyncio.AbstractEventLoop | None = None
+
+    # -- scheduling (protocol thread) --------------------------------------------------------------
+    def changed(self, uri: str, path: str, read: Callable[[], tuple[str, int | None]], delay: float | None = None) -> None:
+        """A document was opened, edited or saved: analyse its newest text after `delay` seconds."""
+        if self.loop is None:
+            self.loop = asyncio.get_running_loop()
+        with self.lock:
+            generation = self.generation.get(uri, 0) + 1
+            self.generation[uri] = generation
+        timer = self.timers.pop(uri, None)
+        if timer is not None:
+            timer.cancel()
+        wait = self.debounce if delay is None else delay
+
+        def start() -> None:
+            self.timers.pop(uri, None)
+            if self.stale(uri, generation):
+                return
+            try:
+                text, version = read()
+            except Exception:  # noqa: BLE001 - the document was closed meanwhile
+                return
+            self.executor.submit(self.work, uri, path, version, text, generation)
+
+        if wait <= 0:
+            start()
+        else:
+            self.timers[uri] = self.loop.call_later(wait, start)
+
+    def closed(self, uri: str) -> None:
+        with self.lock:
+            self.generation[uri] = self.generation.get(uri, 0) + 1
+        timer = self.timers.pop(uri, None)
+        if timer is not None:
+            timer.cancel()
+        self.latest.pop(uri, None)
+
+    def configuration_changed(self) -> None:
+        """A configuration file changed: forget the cached ones (the next analysis reads them again)."""
+        config.find.cache_clear()
+        config.load.cache_clear()
+        config.load_profile.cache_clear()
+        self.resolver = Resolver()
+
+    def stale(self, uri: str, generation: int) -> bool:
+        with self.lock:
+            return self.generation.get(uri) != generation
+
+    # -- analysis (worker thread) ------------------------------------------------------------------
+    def work(self, uri: str, path: str, version: int | None, text: str, generation: int) -> None:
+        stop = lambda: self.stale(uri, generation)  # noqa: E731
+        try:
+            snap, checked = analysis.check(uri, path, version, text, self.resolver, self.dialects.get(uri))
+            if stop():
+                return
+            self.deliver(snap, generation)
+            done = analysis.complete(snap, checked, stop)
+            if done is not None and not stop():
+                self.deliver(done, generation)
+        except Exception:  # noqa: BLE001 - one bad analysis must not stop the server
+            log.exception("analysis of %s failed", uri)
+
+    def deliver(self, snap: Snapshot, generation: int) -> None:
+        def publish() -> None:
+            if self.stale(snap.uri, generation):
+                return
+            self.latest[snap.uri] = snap
+            try:
+                self.publish(snap)
+            except Exception:  # noqa: BLE001
+                log.exception("publishing diagnostics for %s failed", snap.uri)
+
+        if self.loop is not None and not self.loop.is_closed():
+            try:
+                self.loop.call_soon_threadsafe(publish)
+            except RuntimeError:  # the server is shutting down
+                pass
+
+    def shutdown(self) -> None:
+        self.executor.shutdown(wait=False, cancel_futures=True)
