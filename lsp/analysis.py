@@ -57,7 +57,7 @@ def settings_for(path: str, resolver: Resolver) -> Settings:
 
 def check(uri: str, path: str, version: int | None, text: str, resolver: Resolver,
           dialect: str | None = None) -> tuple[Snapshot, engine.Checked]:
-    """The frontend's checks and the editor model (first step)."""
+    """The frontend's checks (first step), without the editor model (see `with_index`)."""
     settings = settings_for(path, resolver)
     checked = engine.check_text(path, text, settings, dialect)
     result = checked.result
@@ -66,10 +66,16 @@ def check(uri: str, path: str, version: int | None, text: str, resolver: Resolve
     snap = Snapshot(uri, path, version, text, result.dialect, source, settings, checked.profile)
     if analysis is not None:
         snap.tree, snap.module = analysis.tree, analysis.module
-        snap.index = build_index(snap, result.diagnostics)
     snap.diagnostics = engine.settle(checked, settings, rules=False)
     snap.config_diagnostics = [(p, d) for p, d, _ in resolver.diagnostics()]
     return snap, checked
+
+
+def with_index(snap: Snapshot) -> Snapshot:
+    """The snapshot with its editor model (what hover, completion, ... answer from)."""
+    extra: list[Diagnostic] = []
+    index = build_index(snap, extra)
+    return Snapshot(**{**snap.__dict__, "index": index, "diagnostics": snap.diagnostics + extra})
 
 
 def build_index(snap: Snapshot, diags: list[Diagnostic]) -> model.Index:
@@ -113,6 +119,7 @@ def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resol
             dialect: str | None = None) -> Snapshot:
     """Both steps at once (for tests, the benchmark and one-off requests)."""
     snap, checked = check(uri, path, version, text, resolver or Resolver(), dialect)
+    snap = with_index(snap)
     return complete(snap, checked) or snap
 
 

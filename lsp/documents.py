@@ -1,9 +1,10 @@
 """The open documents and their analyses: debounced, off the protocol thread, stale work dropped.
 
 Every edit bumps the document's generation. After a short quiet time (`debounce`, none on open
-and save) the newest text is analysed in a single worker thread: first the frontend's checks (which
-are published at once), then the lint rules, asked between rules whether a newer edit has
-arrived, in which case the old work stops and nothing stale is published. Requests (hover,
+and save) the newest text is analysed off the protocol thread: first the frontend's checks (which
+are published at once), then the editor model, then, in a second thread, the lint rules, asked
+between rules whether a newer edit has arrived, in which case the old work stops and nothing
+stale is published. Requests (hover,
 completion, definition, ...) read `latest`, the last finished snapshot, and never wait.
 """
 
@@ -30,7 +31,8 @@ class Documents:
         self.latest: dict[str, Snapshot] = {}
         self.generation: dict[str, int] = {}
         self.timers: dict[str, asyncio.TimerHandle] = {}
-        self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcc-analysis")
+        self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcc-check")
+        self.lint_executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcc-lint")
         self.lock = threading.Lock()
         self.resolver = Resolver()
         self.dialects: dict[str, str] = {}  # uri -> dialect, from the client's languageId
@@ -83,25 +85,46 @@ class Documents:
         with self.lock:
             return self.generation.get(uri) != generation
 
-    # -- analysis (worker thread) ------------------------------------------------------------------
+    # -- analysis (worker threads) -----------------------------------------------------------------
     def work(self, uri: str, path: str, version: int | None, text: str, generation: int) -> None:
+        """The checks, published at once; then the editor model (queries use it from then on);
+        then the lint rules, in their own thread so that a new edit's checks never queue behind
+        an old edit's rules (which stop at the next rule once they are stale)."""
         stop = lambda: self.stale(uri, generation)  # noqa: E731
         try:
             snap, checked = analysis.check(uri, path, version, text, self.resolver, self.dialects.get(uri))
             if stop():
                 return
-            self.deliver(snap, generation)
-            done = analysis.complete(snap, checked, stop)
-            if done is not None and not stop():
-                self.deliver(done, generation)
+            self.deliver(snap, generation, queries=False)
+            snap = analysis.with_index(snap)
+            if stop():
+                return
+            self.deliver(snap, generation, publish=False)
+            self.lint_executor.submit(self.lint, snap, checked, generation)
         except Exception:  # noqa: BLE001 - one bad analysis must not stop the server
             log.exception("analysis of %s failed", uri)
 
-    def deliver(self, snap: Snapshot, generation: int) -> None:
-        def publish() -> None:
+    def lint(self, snap: Snapshot, checked, generation: int) -> None:
+        stop = lambda: self.stale(snap.uri, generation)  # noqa: E731
+        try:
+            if stop():
+                return
+            done = analysis.complete(snap, checked, stop)
+            if done is not None and not stop():
+                self.deliver(done, generation)
+        except Exception:  # noqa: BLE001
+            log.exception("linting %s failed", snap.uri)
+
+    def deliver(self, snap: Snapshot, generation: int, queries: bool = True, publish: bool = True) -> None:
+        """On the protocol thread: make `snap` what queries answer from (`queries`; a snapshot
+        without its editor model only when there is nothing better) and publish its diagnostics."""
+        def run() -> None:
             if self.stale(snap.uri, generation):
                 return
-            self.latest[snap.uri] = snap
+            if queries or snap.uri not in self.latest:
+                self.latest[snap.uri] = snap
+            if not publish:
+                return
             try:
                 self.publish(snap)
             except Exception:  # noqa: BLE001
@@ -109,9 +132,10 @@ class Documents:
 
         if self.loop is not None and not self.loop.is_closed():
             try:
-                self.loop.call_soon_threadsafe(publish)
+                self.loop.call_soon_threadsafe(run)
             except RuntimeError:  # the server is shutting down
                 pass
 
     def shutdown(self) -> None:
         self.executor.shutdown(wait=False, cancel_futures=True)
+        self.lint_executor.shutdown(wait=False, cancel_futures=True)
