@@ -36,41 +36,40 @@ TARGET_QUERY_MS = 50
 
 
 def generate(dialect: str, lines: int) -> str:
-    """A program of about `lines` lines in the style of the samples: setup, then many motion blocks."""
-    out: list[str] = []
-    i = 0
+    """A program of `lines` lines in the style of the samples (setup, then many motion blocks) that
+    `mcc check` accepts: the tail (routines, END, XT) is reserved first, the body fills the rest."""
+    head: list[str] = []
+    body: list[str] = []
+    tail: list[str] = []
     if dialect == "mcode":
-        out += ["' generated benchmark program", "VA Np=0", "MS=256", "VI=2000", "VM=400000", "A=800000", "D=A",
-                "PG 1", "LB SU", "  HM 1", "  H", "LB G1"]
         labels = [f"{a}{b}" for a in "JKNQW" for b in "0123456789"]
-        while len(out) < lines - 4:
-            label = labels[i % len(labels)]
-            out += [f"  BR {label},I1=0", f"  MA {1000 * (i % 50)}", "  H", f"  MR -{100 + i % 7}", "  H",
-                    "  O1=1", "  H 250", "  IC Np"]
-            i += 1
-        out += ["  BR G1"] + [line for label in labels for line in (f"LB {label}", "  RT")][:0] + ["  E"]
-        for label in labels:
-            out[-1:-1] = [f"LB {label}", "  PR Np", "  RT"]
-        out += ["PG", "S", "' end"]
+        head = ["' generated benchmark program", "VA Np=0", "MS=256", "VI=2000", "VM=400000", "A=800000", "D=A",
+                "PG 1", "LB SU", "  HM 1", "  H", "LB G1"]
+        tail = ["  BR G1", "  E"] + [line for label in labels for line in (f"LB {label}", "  PR Np", "  RT")] + \
+               ["PG", "S", "' end"]
+        block = lambda i: [f"  BR {labels[i % len(labels)]},I1=0", f"  MA {1000 * (i % 50)}", "  H",  # noqa: E731
+                           f"  MR -{100 + i % 7}", "  H", "  O1=1", "  H 250", "  IC Np"]
     elif dialect == "arcus":
-        out += ["; generated benchmark program", "ABS", "HSPD=30000", "LSPD=500", "ACC=250", "EO=1", "V1=0"]
-        while len(out) < lines - 12:
-            out += [f"X{1000 * (i % 50)}Y{200 * (i % 9)}", "WAITX", "WAITY", "DO1=1", "DELAY=250", "DO1=0",
-                    "V1=V1+1", "IF V1>=10", "GOSUB 1", "ENDIF"]
-            i += 1
-        out += ["END", "SUB 1", "V1=0", "DO2=1", "DELAY=100", "DO2=0", "ENDSUB"]
-    else:
-        out += ["; generated benchmark program", "1CUR4000", "1A10", "1V5", "1MN", "1MPI"]
-        sequence = 1
-        while len(out) < lines - 2:
-            out += [f"1XE{sequence}", f"1XD{sequence}"]
-            for _ in range(40):
-                out += [f"1D{1000 * (i % 50) + 10}", "1G", "1T0.2", "1O1"]
-                i += 1
-            out += ["1XT"]
-            sequence = sequence % 64 + 1
-        out += ["1XR1"]
-    return "\n".join(out[:lines]) + "\n"
+        head = ["; generated benchmark program", "ABS", "HSPD=30000", "LSPD=500", "ACC=250", "EO=1", "V1=0"]
+        tail = ["END", "SUB 1", "V1=0", "DO2=1", "DELAY=100", "DO2=0", "ENDSUB"]
+        block = lambda i: [f"X{1000 * (i % 50)}Y{200 * (i % 9)}", "WAITX", "WAITY", "DO1=1",  # noqa: E731
+                           "DELAY=250", "DO1=0", "V1=V1+1", "IF V1>=10", "GOSUB 1", "ENDIF"]
+    else:  # sequences of 24 commands on devices 1 to 8 (each device's store holds 8,000 bytes)
+        head = ["; generated benchmark program"] + [f"{d}CUR4000" for d in range(1, 9)]
+        tail = ["1SV", "1XR1"]
+        block = lambda i: [f"{i % 8 + 1}XE{i // 8 % 64 + 1}", f"{i % 8 + 1}XD{i // 8 % 64 + 1}"] + \
+            [c for k in range(6) for c in (f"{i % 8 + 1}D{1000 * ((i + k) % 50) + 10}", f"{i % 8 + 1}G",
+                                           f"{i % 8 + 1}T0.2", f"{i % 8 + 1}O1")] + [f"{i % 8 + 1}XT"]
+    i = 0
+    while True:
+        more = block(i)
+        if len(head) + len(body) + len(more) + len(tail) > lines:
+            break
+        body += more
+        i += 1
+    text = head + body + tail
+    text += [("' " if dialect == "mcode" else "; ") + "padding"] * (lines - len(text))
+    return "\n".join(text) + "\n"
 
 
 class Bench:

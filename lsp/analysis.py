@@ -9,7 +9,6 @@ does, so the editor and the command line never disagree.
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -122,9 +121,3 @@ def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resol
     snap = with_index(snap)
     return complete(snap, checked) or snap
 
-
-def display_path(path: str) -> str:
-    try:
-        return os.path.relpath(path)
-    except ValueError:
-        return path

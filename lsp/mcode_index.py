@@ -49,7 +49,7 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
             except Exception:  # noqa: BLE001 - a line the resolver cannot read is just not indexed
                 continue
     # pass 1: definitions
-    for line, res in resolved:
+    for _line, res in resolved:
         name = res.command.name if res.command else ""
         if name in ("LB", "VA") and res.args:
             arg = res.args[0]
@@ -60,7 +60,7 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
         elif res.user:
             index.symbol(f"variable:{res.user}", m.SYMBOL_VARIABLE, res.stmt.head.text)
     # pass 2: tokens
-    for line, res in resolved:
+    for _line, res in resolved:
         add_statement(index, cat, res)
     structure(index, tree, resolved, source)
     return index.finish()

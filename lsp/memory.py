@@ -44,14 +44,13 @@ def usage(snap) -> Usage | None:
         listing = dialect.load_backend().emit(snap.module, driver.profile_for(dialect, snap.profile))
     except Exception:  # noqa: BLE001 - no memory figures is better than no editor
         return None
-    if snap.dialect == "arcus":
-        rows = [(sources, 1) for _, sources in (listing.detail or [])]
-        result = Usage("assembly lines", int(listing.stats.get("asm_lines", len(rows))),
-                       int(listing.stats.get("asm_budget", 0)))
-    else:
+    if snap.dialect == "x150":
         result = Usage("bytes", int(listing.stats.get("sequence_bytes", 0)),
                        int(listing.stats.get("sequence_budget", 0)))
         return x150_sequences(snap, result)
+    rows = [(sources, 1) for _, sources in (listing.detail or [])]
+    result = Usage("assembly lines", int(listing.stats.get("asm_lines", len(rows))),
+                   int(listing.stats.get("asm_budget", 0)))
     routines = sorted(snap.index.routines, key=lambda r: r.span.line)
     starts = [r.span.line for r in routines]
     counts = [0] * len(routines)
@@ -62,9 +61,7 @@ def usage(snap) -> Usage | None:
         i = bisect.bisect_right(starts, line) - 1
         if i >= 0 and routines[i].span.line <= line <= routines[i].span.end_line:
             counts[i] += cost
-    for routine, count in zip(routines, counts):
-        if snap.dialect == "x150" and routine.kind != "sequence":
-            continue
+    for routine, count in zip(routines, counts, strict=True):
         result.routines.append(RoutineUsage(routine.name, routine.span.line, count))
     return result
 

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import asyncio
+
 import pytest
 from lsprotocol import types as t
 
@@ -357,3 +359,45 @@ async def test_program_memory_as_code_lens_and_inlay_hints(client, dialect, unit
     hints = await client.text_document_inlay_hint_async(t.InlayHintParams(
         doc.id(), t.Range(t.Position(0, 0), t.Position(100, 0))))
     assert len(hints) == len(routines) and all(unit in h.label for h in hints)
+
+
+async def test_signature_help_in_x150(client):
+    doc = await open_fixture(client, "x150")
+    position = doc.find("1D12000", offset=4)
+    help_ = await client.text_document_signature_help_async(t.SignatureHelpParams(doc.id(), position))
+    assert help_.signatures[0].label == "<a>D<s>n"
+
+
+async def test_code_action_fix_in_x150(client):
+    doc = await open_fixture(client, "x150")
+    x102 = next(d for d in await doc.settled() if d.code == "X102")
+    actions = await client.text_document_code_action_async(t.CodeActionParams(
+        doc.id(), x102.range, t.CodeActionContext(diagnostics=[x102])))
+    fix = next(a for a in actions if isinstance(a, t.CodeAction) and a.title.endswith("(X102)"))
+    [edit] = fix.edit.changes[doc.uri]
+    assert edit.new_text == "1G"
+    doc.edit(edit.range.start.line, edit.range.start.character, edit.range.end.character, edit.new_text)
+    assert "X102" not in codes(await doc.settled())
+
+
+@pytest.mark.parametrize("dialect,query,expected", [("mcode", "K", {"K1"}), ("x150", "sequence", {"sequence 2 (device 1)"})])
+async def test_workspace_symbols_in_mcode_and_x150(client, dialect, query, expected):
+    await open_fixture(client, dialect)
+    found = await client.workspace_symbol_async(t.WorkspaceSymbolParams(query=query))
+    assert expected <= {s.name for s in found}
+
+
+async def test_a_changed_configuration_is_read_again(client, tmp_path):
+    config = tmp_path / "mcc.toml"
+    config.write_text('ignore = ["M3"]\n')
+    doc = OpenAt(client, tmp_path / "feeder.mxt", fixture_text("mcode"))
+    assert codes(await doc.settled()) == set()
+    config.write_text('ignore = ["M306"]\n')
+    client.workspace_did_change_watched_files(t.DidChangeWatchedFilesParams(
+        changes=[t.FileEvent(uri=config.as_uri(), type=t.FileChangeType.Changed)]))
+    await doc.settled()
+    for _ in range(100):
+        if codes(client.diagnostics.get(doc.uri, [])) == EXPECTED["mcode"] - {"M306"}:
+            break
+        await asyncio.sleep(0.05)
+    assert codes(client.diagnostics[doc.uri]) == EXPECTED["mcode"] - {"M306"}
