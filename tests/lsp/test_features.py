@@ -401,3 +401,13 @@ async def test_a_changed_configuration_is_read_again(client, tmp_path):
             break
         await asyncio.sleep(0.05)
     assert codes(client.diagnostics[doc.uri]) == EXPECTED["mcode"] - {"M306"}
+
+
+async def test_x150_completion_offers_only_storable_commands_inside_a_sequence(client):
+    doc = await open_fixture(client, "x150")
+    inside = await client.text_document_completion_async(t.CompletionParams(doc.id(), doc.find("1T0.2")))
+    outside = await client.text_document_completion_async(t.CompletionParams(doc.id(), doc.find("1A10")))
+    inside_labels = {i.label for i in inside.items}
+    outside_labels = {i.label for i in outside.items}
+    assert "G" in inside_labels and "G" in outside_labels
+    assert "CER" in outside_labels and "CER" not in inside_labels  # not saveable in a sequence
