@@ -9,6 +9,7 @@ notification handlers here catch and log everything).
 from __future__ import annotations
 
 import functools
+import gc
 import logging
 import os
 
@@ -355,6 +356,10 @@ def on_shutdown(*_):
 
 
 def start(tcp: str | None = None, log_file: str | None = None, verbose: bool = False) -> None:
+    # An analysis allocates hundreds of thousands of small objects while the last snapshots stay
+    # alive; Python's default collection thresholds would rescan them many times per keystroke
+    # (about 15% of a 3,000-line analysis). Cycles are still collected, only less often.
+    gc.set_threshold(100_000, 50, 100)
     logging.basicConfig(filename=log_file, level=logging.DEBUG if verbose else logging.INFO,
                         format="%(asctime)s %(levelname)s %(name)s: %(message)s")
     if not verbose:  # pygls logs every message it sends at INFO

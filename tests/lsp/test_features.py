@@ -411,3 +411,17 @@ async def test_x150_completion_offers_only_storable_commands_inside_a_sequence(c
     outside_labels = {i.label for i in outside.items}
     assert "G" in inside_labels and "G" in outside_labels
     assert "CER" in outside_labels and "CER" not in inside_labels  # not saveable in a sequence
+
+
+async def test_saving_the_configuration_in_the_editor_reanalyses(client, tmp_path):
+    config = tmp_path / "mcc.toml"
+    config.write_text('ignore = ["M3"]\n')
+    doc = OpenAt(client, tmp_path / "feeder.mxt", fixture_text("mcode"))
+    assert codes(await doc.settled()) == set()
+    config.write_text('ignore = ["M301"]\n')
+    client.text_document_did_save(t.DidSaveTextDocumentParams(text_document=t.TextDocumentIdentifier(config.as_uri())))
+    for _ in range(200):
+        if codes(client.diagnostics.get(doc.uri, [])) == EXPECTED["mcode"] - {"M301"}:
+            break
+        await asyncio.sleep(0.05)
+    assert codes(client.diagnostics[doc.uri]) == EXPECTED["mcode"] - {"M301"}
