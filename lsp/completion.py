@@ -96,6 +96,26 @@ def allowed_here(snap, entry, line: int) -> bool:
 
 
 def commands(snap, line: int) -> list[t.CompletionItem]:
+    """The commands allowed at `line`; the items depend only on the dialect, the profile and the
+    kind of place, so they are built once per combination."""
+    if snap.dialect == "mcode":
+        place = region_mode(snap, line)
+    elif snap.dialect == "x150":
+        place = "sequence" if inside_sequence(snap, line) else "immediate"
+    else:
+        place = ""
+    key = (snap.dialect, getattr(snap.profile, "name", ""), getattr(snap.profile, "product", ""),
+           getattr(snap.profile, "firmware", ""), place)
+    found = COMMAND_ITEMS.get(key)
+    if found is None:
+        found = COMMAND_ITEMS[key] = build_commands(snap, line)
+    return list(found)
+
+
+COMMAND_ITEMS: dict[tuple, list[t.CompletionItem]] = {}
+
+
+def build_commands(snap, line: int) -> list[t.CompletionItem]:
     out = []
     for entry in catalog_info.entries(snap.dialect):
         if not allowed_here(snap, entry, line):
