@@ -1,11 +1,12 @@
 """The open documents and their analyses: debounced, off the protocol thread, stale work dropped.
 
-Every edit bumps the document's generation. After a short quiet time (`debounce`, none on open
-and save) the newest text is analysed off the protocol thread: first the frontend's checks (which
-are published at once), then the editor model, then, in a second thread, the lint rules, asked
-between rules whether a newer edit has arrived, in which case the old work stops and nothing
-stale is published. Requests (hover,
-completion, definition, ...) read `latest`, the last finished snapshot, and never wait.
+Every edit bumps the document's generation. The first edit after a quiet spell is analysed at
+once; edits that arrive while an analysis is under way wait for a short quiet time (`debounce`)
+and are coalesced. The newest text is analysed off the protocol thread: first the frontend's
+checks (published at once), then the editor model, then, in a second thread, the lint rules,
+asked between rules whether a newer edit has arrived, in which case the old work stops and
+nothing stale is published. Requests (hover, completion, definition, ...) read `latest`, the
+last finished snapshot, and never wait.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ class Documents:
         self.lock = threading.Lock()
         self.resolver = Resolver()
         self.dialects: dict[str, str] = {}  # uri -> dialect, from the client's languageId
+        self.checking: dict[str, int] = {}  # documents whose checks are queued or being computed
         self.loop: asyncio.AbstractEventLoop | None = None
 
     # -- scheduling (protocol thread) --------------------------------------------------------------
@@ -49,7 +51,11 @@ class Documents:
         timer = self.timers.pop(uri, None)
         if timer is not None:
             timer.cancel()
-        wait = self.debounce if delay is None else delay
+        with self.lock:
+            idle = timer is None and uri not in self.checking
+        # the first edit after a quiet spell starts at once; edits that follow it while it is
+        # analysed (typing) are debounced and coalesced
+        wait = delay if delay is not None else (0.0 if idle else self.debounce)
 
         def start() -> None:
             self.timers.pop(uri, None)
@@ -59,6 +65,8 @@ class Documents:
                 text, version = read()
             except Exception:  # noqa: BLE001 - the document was closed meanwhile
                 return
+            with self.lock:
+                self.checking[uri] = self.checking.get(uri, 0) + 1
             self.executor.submit(self.work, uri, path, version, text, generation)
 
         if wait <= 0:
@@ -91,6 +99,17 @@ class Documents:
         then the lint rules, in their own thread so that a new edit's checks never queue behind
         an old edit's rules (which stop at the next rule once they are stale)."""
         stop = lambda: self.stale(uri, generation)  # noqa: E731
+        try:
+            self.check_and_index(uri, path, version, text, generation, stop)
+        finally:
+            with self.lock:
+                left = self.checking.get(uri, 1) - 1
+                if left > 0:
+                    self.checking[uri] = left
+                else:
+                    self.checking.pop(uri, None)
+
+    def check_and_index(self, uri, path, version, text, generation, stop) -> None:
         try:
             snap, checked = analysis.check(uri, path, version, text, self.resolver, self.dialects.get(uri))
             if stop():
