@@ -220,6 +220,8 @@ def profiles() -> None:
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
 
-# `mcc lint`, `mcc fmt` and `mcc ir` register themselves on `cli` (cli/lint.py, cli/ir.py).
-from mcc.cli import lint as _lint  # noqa: E402,F401  (imported last: it uses `cli`)
+# `mcc lint`, `mcc fmt`, `mcc ir` and `mcc lsp` register themselves on `cli` (cli/lint.py, cli/ir.py,
+# cli/lsp.py), imported last because they use `cli`.
+from mcc.cli import lint as _lint  # noqa: E402,F401
 from mcc.cli import ir as _ir  # noqa: E402,F401
+from mcc.cli import lsp as _lsp  # noqa: E402,F401

@@ -58,16 +58,47 @@ class Outcome:
 
 def lint_text(path: str, text: str, settings: Settings, dialect: str | None = None) -> tuple[str, list[Diagnostic]]:
     """Lint one text: (dialect, diagnostics in file order)."""
+    checked = check_text(path, text, settings, dialect)
+    return checked.dialect, settle(checked, settings)
+
+
+@dataclass
+class Checked:
+    """One text through the frontend (the work of `mcc check`), before the lint rules and the
+    configuration are applied by `settle`. The editor server publishes the checks first and the
+    rules when they finish, from the same analysis."""
+
+    path: str
+    dialect: str
+    result: driver.FileResult
+    profile: object | None  # the Profile the text was checked against
+
+    @property
+    def analysis(self):
+        return self.result.analysis
+
+
+def check_text(path: str, text: str, settings: Settings, dialect: str | None = None) -> Checked:
     found = driver.resolve_dialect(path, dialect)
     profile = None
     if found is not None:  # resolved here (and cached) so the driver does not re-read the default
         profile = settings.profile(found.name) or load_profile(found.default_profile)
     result = driver.check_file(path, dialect, profile, text)
+    return Checked(path, result.dialect, result, profile)
+
+
+def settle(checked: Checked, settings: Settings, rules: bool = True,
+           stop: Callable[[], bool] | None = None) -> list[Diagnostic]:
+    """The checked text's diagnostics with the lint rules (unless `rules` is False), the selection,
+    severities and `noqa` applied, in file order. `stop` is asked between rules: when it answers
+    True the remaining rules are skipped (the editor server abandons stale work this way)."""
+    path, result = checked.path, checked.result
     diags = Diagnostics(list(result.diagnostics))
     analysis = result.analysis
     syntax_ok = not any(d.kind is Kind.SYNTAX for d in result.diagnostics)
-    if analysis is not None and analysis.module is not None and syntax_ok and found is not None:
-        run_rules(analysis, profile, found.name, settings, path, diags)
+    if rules and analysis is not None and analysis.module is not None and syntax_ok \
+            and result.dialect in dialects.DIALECTS:
+        run_rules(analysis, checked.profile, result.dialect, settings, path, diags, stop)
     kept = []
     for diag in diags.items:
         if not settings.enabled(diag.code, path):
@@ -75,19 +106,23 @@ def lint_text(path: str, text: str, settings: Settings, dialect: str | None = No
         diag.severity = settings.severity_of(diag.code, diag.severity) if diag.kind is not Kind.SYNTAX \
             and diag.kind is not Kind.INTERNAL else diag.severity
         kept.append(diag)
-    source = analysis.source if analysis is not None else SourceFile(path, text)
+    source = analysis.source if analysis is not None else SourceFile(path, result.source.text if result.source
+                                                                     else "")
     kept = suppress.apply(kept, source, result.dialect, lambda code: settings.enabled(code, path))
     for diag in kept:
         if diag.code in ("G101", "G104"):
             diag.severity = settings.severity_of(diag.code, diag.severity)
-    return result.dialect, sorted(kept, key=Diagnostic.sort_key)
+    return sorted(kept, key=Diagnostic.sort_key)
 
 
-def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, diags: Diagnostics) -> None:
+def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, diags: Diagnostics,
+              stop: Callable[[], bool] | None = None) -> None:
     ctx = Context(analysis, profile or load_profile(dialects.get(dialect).default_profile), dialect, diags)
     for rule in rules_for(dialect):
         if not settings.enabled(rule.code, path):
             continue
+        if stop is not None and stop():
+            return
         ctx.code = rule.code
         try:
             rule.check(ctx)

@@ -1,0 +1,230 @@
+"""Benchmark: `mcc lsp` on a generated 3,000-line program of each dialect, through the protocol.
+
+A real server process (stdio) is driven by pygls's client as an editor drives it. For each dialect:
+
+- edit → fresh diagnostics: the time from sending an incremental `didChange` (one number changed
+  on a random line) to the `publishDiagnostics` of that version. The server publishes twice: the
+  checks of `mcc check` as soon as the frontend is done ("checks"), then with the lint rules
+  ("lint"). The edits come one at a time, so each is the first after a quiet spell and is analysed
+  at once (no debounce). Target for the first: <= 150 ms.
+- hover and completion latency at random tokens, when the server is idle and while it is
+  re-analysing after an edit (requests answer from the latest finished analysis). Target: <= 50 ms.
+
+Medians and 95th percentiles of one run are printed next to the targets; the machine's load is
+printed too, since other processes compete for the CPUs.
+
+Run: .venv/bin/python bench/bench_lsp.py [--lines 3000] [--edits 10] [--requests 40]
+"""
+
+from __future__ import annotations
+
+import argparse
+import asyncio
+import os
+import random
+import statistics
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+from lsprotocol import types as t
+from pygls.lsp.client import LanguageClient
+
+EXTENSIONS = {"mcode": ".mxt", "arcus": ".prg", "x150": ".x150"}
+TARGET_DIAGNOSTICS_MS = 150
+TARGET_QUERY_MS = 50
+
+
+def generate(dialect: str, lines: int) -> str:
+    """A program of `lines` lines in the style of the samples (setup, then many motion blocks) that
+    `mcc check` accepts: the tail (routines, END, XT) is reserved first, the body fills the rest."""
+    head: list[str] = []
+    body: list[str] = []
+    tail: list[str] = []
+    if dialect == "mcode":
+        labels = [f"{a}{b}" for a in "JKNQW" for b in "0123456789"]
+        head = ["' generated benchmark program", "VA Np=0", "MS=256", "VI=2000", "VM=400000", "A=800000", "D=A",
+                "PG 1", "LB SU", "  HM 1", "  H", "LB G1"]
+        tail = ["  BR G1", "  E"] + [line for label in labels for line in (f"LB {label}", "  PR Np", "  RT")] + \
+               ["PG", "S", "' end"]
+        block = lambda i: [f"  BR {labels[i % len(labels)]},I1=0", f"  MA {1000 * (i % 50)}", "  H",  # noqa: E731
+                           f"  MR -{100 + i % 7}", "  H", "  O1=1", "  H 250", "  IC Np"]
+    elif dialect == "arcus":
+        head = ["; generated benchmark program", "ABS", "HSPD=30000", "LSPD=500", "ACC=250", "EO=1", "V1=0"]
+        tail = ["END", "SUB 1", "V1=0", "DO2=1", "DELAY=100", "DO2=0", "ENDSUB"]
+        block = lambda i: [f"X{1000 * (i % 50)}Y{200 * (i % 9)}", "WAITX", "WAITY", "DO1=1",  # noqa: E731
+                           "DELAY=250", "DO1=0", "V1=V1+1", "IF V1>=10", "GOSUB 1", "ENDIF"]
+    else:  # sequences of 24 commands on devices 1 to 8 (each device's store holds 8,000 bytes)
+        head = ["; generated benchmark program"] + [f"{d}CUR4000" for d in range(1, 9)]
+        tail = ["1SV", "1XR1"]
+        block = lambda i: [f"{i % 8 + 1}XE{i // 8 % 64 + 1}", f"{i % 8 + 1}XD{i // 8 % 64 + 1}"] + \
+            [c for k in range(6) for c in (f"{i % 8 + 1}D{1000 * ((i + k) % 50) + 10}", f"{i % 8 + 1}G",
+                                           f"{i % 8 + 1}T0.2", f"{i % 8 + 1}O1")] + [f"{i % 8 + 1}XT"]
+    i = 0
+    while True:
+        more = block(i)
+        if len(head) + len(body) + len(more) + len(tail) > lines:
+            break
+        body += more
+        i += 1
+    text = head + body + tail
+    text += [("' " if dialect == "mcode" else "; ") + "padding"] * (lines - len(text))
+    return "\n".join(text) + "\n"
+
+
+class Bench:
+    def __init__(self) -> None:
+        self.client = LanguageClient("mcc-bench", "1")
+        self.published: dict[tuple[str, int | None], list[float]] = {}
+        self.arrived = asyncio.Event()
+
+        @self.client.feature(t.TEXT_DOCUMENT_PUBLISH_DIAGNOSTICS)
+        def on_diagnostics(params: t.PublishDiagnosticsParams) -> None:
+            self.published.setdefault((params.uri, params.version), []).append(time.perf_counter())
+            self.arrived.set()
+
+    async def start(self, root: Path) -> None:
+        await self.client.start_io(sys.executable, "-m", "mcc", "lsp")
+        await self.client.initialize_async(t.InitializeParams(
+            capabilities=t.ClientCapabilities(), root_uri=root.as_uri()))
+        self.client.initialized(t.InitializedParams())
+
+    async def wait_published(self, uri: str, version: int, count: int, timeout: float = 120.0) -> list[float]:
+        deadline = time.perf_counter() + timeout
+        while len(self.published.get((uri, version), [])) < count:
+            self.arrived.clear()
+            remaining = deadline - time.perf_counter()
+            if remaining <= 0:
+                raise TimeoutError(f"no diagnostics for {uri} version {version}")
+            try:
+                await asyncio.wait_for(self.arrived.wait(), remaining)
+            except asyncio.TimeoutError:
+                pass
+        return self.published[(uri, version)]
+
+    async def stop(self) -> None:
+        await self.client.shutdown_async(None)
+        self.client.exit(None)
+        await self.client.stop()
+
+
+def positions(text: str, rng: random.Random, count: int) -> list[t.Position]:
+    lines = text.split("\n")
+    out = []
+    while len(out) < count:
+        line = rng.randrange(len(lines) - 1)
+        stripped = len(lines[line]) - len(lines[line].lstrip())
+        if lines[line].strip() and not lines[line].lstrip().startswith(("'", ";", "`")):
+            out.append(t.Position(line, stripped + rng.randrange(max(1, len(lines[line]) - stripped))))
+    return out
+
+
+def summary(values: list[float]) -> str:
+    values = sorted(values)
+    p95 = values[min(len(values) - 1, int(round(0.95 * (len(values) - 1))))]
+    return f"median {statistics.median(values):6.1f} ms, p95 {p95:6.1f} ms"
+
+
+async def timed(coroutine) -> float:
+    start = time.perf_counter()
+    await coroutine
+    return (time.perf_counter() - start) * 1000
+
+
+async def bench_dialect(bench: Bench, root: Path, dialect: str, lines: int, edits: int, requests: int) -> dict:
+    rng = random.Random(dialect)
+    text = generate(dialect, lines)
+    path = root / f"bench{EXTENSIONS[dialect]}"
+    uri = path.as_uri()
+    ident = t.TextDocumentIdentifier(uri=uri)
+    bench.client.text_document_did_open(t.DidOpenTextDocumentParams(
+        t.TextDocumentItem(uri=uri, language_id=dialect, version=1, text=text)))
+    await bench.wait_published(uri, 1, 2)
+    first, full = [], []
+    version = 1
+    busy_hover, busy_completion = [], []
+    numbered = [i for i, line in enumerate(text.split("\n")) if any(c.isdigit() for c in line)
+                and not line.lstrip().startswith(("'", ";"))]
+    for _ in range(edits):
+        line = rng.choice(numbered)
+        content = text.split("\n")[line]
+        column = next(i for i, c in enumerate(content) if c.isdigit())
+        version += 1
+        sent = time.perf_counter()
+        bench.client.text_document_did_change(t.DidChangeTextDocumentParams(
+            text_document=t.VersionedTextDocumentIdentifier(uri=uri, version=version),
+            content_changes=[t.TextDocumentContentChangePartial(
+                range=t.Range(t.Position(line, column), t.Position(line, column + 1)), text=content[column])]))
+        # while the server re-analyses: queries answer from the previous analysis
+        for position in positions(text, rng, 2):
+            busy_hover.append(await timed(bench.client.text_document_hover_async(t.HoverParams(ident, position))))
+            busy_completion.append(await timed(bench.client.text_document_completion_async(
+                t.CompletionParams(ident, t.Position(position.line, 0)))))
+        times = await bench.wait_published(uri, version, 2)
+        first.append((times[0] - sent) * 1000)
+        full.append((times[1] - sent) * 1000)
+    hover, completion = [], []
+    for position in positions(text, rng, requests):
+        hover.append(await timed(bench.client.text_document_hover_async(t.HoverParams(ident, position))))
+        completion.append(await timed(bench.client.text_document_completion_async(
+            t.CompletionParams(ident, t.Position(position.line, 0)))))
+    return {"first": first, "full": full, "hover": hover, "completion": completion,
+            "busy_hover": busy_hover, "busy_completion": busy_completion, "lines": text.count("\n"),
+            "frontend": frontend_alone(path, text, edits)}
+
+
+def frontend_alone(path: Path, text: str, repeat: int) -> list[float]:
+    """The floor, measured in this process in the same run: `mcc check`'s frontend on the same text."""
+    import gc
+
+    from mcc.compiler.config import Settings
+    from mcc.compiler.lint import engine
+
+    gc.set_threshold(100_000, 50, 100)  # as the server does (lsp/server.py)
+    engine.check_text(str(path), text, Settings())
+    times = []
+    for _ in range(max(3, repeat)):
+        start = time.perf_counter()
+        engine.check_text(str(path), text, Settings())
+        times.append((time.perf_counter() - start) * 1000)
+    return times
+
+
+async def main_async(options) -> None:
+    root = Path(tempfile.mkdtemp(prefix="mcc-bench-lsp-"))
+    bench = Bench()
+    await bench.start(root)
+    try:
+        print(f"mcc lsp (an edit after a quiet spell is analysed at once; edits during an analysis wait 50 ms "
+              f"of quiet), {options.edits} edits and {options.requests} queries per dialect")
+        for dialect in ("mcode", "arcus", "x150"):
+            r = await bench_dialect(bench, root, dialect, options.lines, options.edits, options.requests)
+            ok = "within" if statistics.median(r["first"]) <= TARGET_DIAGNOSTICS_MS else "OVER"
+            print(f"\n{dialect} ({r['lines']} lines)")
+            print(f"  edit -> diagnostics of mcc check : {summary(r['first'])}  "
+                  f"[target <= {TARGET_DIAGNOSTICS_MS} ms: {ok}]")
+            print(f"  edit -> diagnostics with lint    : {summary(r['full'])}")
+            floor = statistics.median(r["frontend"])
+            print(f"  the frontend alone (in-process)  : {summary(r['frontend'])}  -> server / frontend alone = "
+                  f"{statistics.median(r['first']) / floor:.2f} (the rest is protocol, document update, publishing)")
+            for name in ("hover", "completion"):
+                ok = "within" if statistics.median(r[name]) <= TARGET_QUERY_MS else "OVER"
+                print(f"  {name:10} idle                : {summary(r[name])}  [target <= {TARGET_QUERY_MS} ms: {ok}]")
+                print(f"  {name:10} during analysis     : {summary(r['busy_' + name])}")
+        load = ", ".join(f"{x:.2f}" for x in os.getloadavg()) if hasattr(os, "getloadavg") else "n/a"
+        print(f"\nCPUs: {os.cpu_count()}, load average {load}")
+    finally:
+        await bench.stop()
+
+
+def main() -> None:
+    args = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    args.add_argument("--lines", type=int, default=3000)
+    args.add_argument("--edits", type=int, default=10)
+    args.add_argument("--requests", type=int, default=40)
+    asyncio.run(main_async(args.parse_args()))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,123 @@
+"""One finished analysis of one document version: diagnostics, syntax tree, editor model, memory.
+
+`analyze` runs in a worker thread (see documents.py) in two steps, so the editor shows the
+checks of `mcc check` as soon as the frontend is done and the lint rules when they finish:
+`check` (the frontend and the editor model) and `complete` (lint rules, configuration, noqa,
+program memory). Both reuse the lint engine and the project configuration exactly as `mcc lint`
+does, so the editor and the command line never disagree.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+from mcc.compiler import dialects, driver
+from mcc.compiler.config import Resolver, Settings
+from mcc.compiler.diagnostics import Diagnostic
+from mcc.compiler.lint import engine
+from mcc.compiler.span import SourceFile
+from mcc.lsp import model
+
+INDEXERS = {"mcode": "mcc.lsp.mcode_index", "arcus": "mcc.lsp.arcus_index", "x150": "mcc.lsp.x150_index"}
+
+
+@dataclass
+class Snapshot:
+    """What the features answer from: never mutated once published."""
+
+    uri: str
+    path: str
+    version: int | None
+    text: str
+    dialect: str
+    source: SourceFile
+    settings: Settings
+    profile: object | None = None
+    tree: object | None = None
+    module: object | None = None
+    index: model.Index = field(default_factory=lambda: model.Index(""))
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+    complete: bool = False  # the lint rules have run
+    memory: object | None = None  # memory.Usage
+    config_diagnostics: list[tuple[str, list[Diagnostic]]] = field(default_factory=list)
+
+    @property
+    def known(self) -> bool:
+        return self.dialect in dialects.DIALECTS
+
+
+def settings_for(path: str, resolver: Resolver) -> Settings:
+    try:
+        return resolver.for_path(path)
+    except Exception:  # noqa: BLE001 - a broken configuration is reported on the TOML file, never fatal
+        return Settings()
+
+
+def check(uri: str, path: str, version: int | None, text: str, resolver: Resolver,
+          dialect: str | None = None) -> tuple[Snapshot, engine.Checked]:
+    """The frontend's checks (first step), without the editor model (see `with_index`)."""
+    settings = settings_for(path, resolver)
+    checked = engine.check_text(path, text, settings, dialect)
+    result = checked.result
+    analysis = result.analysis
+    source = analysis.source if analysis is not None else SourceFile(path, text)
+    snap = Snapshot(uri, path, version, text, result.dialect, source, settings, checked.profile)
+    if analysis is not None:
+        snap.tree, snap.module = analysis.tree, analysis.module
+    snap.diagnostics = engine.settle(checked, settings, rules=False)
+    snap.config_diagnostics = [(p, d) for p, d, _ in resolver.diagnostics()]
+    return snap, checked
+
+
+def with_index(snap: Snapshot) -> Snapshot:
+    """The snapshot with its editor model (what hover, completion, ... answer from)."""
+    extra: list[Diagnostic] = []
+    index = build_index(snap, extra)
+    return Snapshot(**{**snap.__dict__, "index": index, "diagnostics": snap.diagnostics + extra})
+
+
+def build_index(snap: Snapshot, diags: list[Diagnostic]) -> model.Index:
+    import importlib
+
+    if snap.dialect not in INDEXERS or snap.tree is None:
+        return model.Index(snap.dialect)
+    profile = snap.profile or driver.profile_for(dialects.get(snap.dialect), None)
+    try:
+        return importlib.import_module(INDEXERS[snap.dialect]).build(snap.tree, snap.source, profile)
+    except Exception as exc:  # noqa: BLE001 - the editor model must never cost the diagnostics
+        driver.internal_error(_Sink(diags), snap.path, exc, "building the editor model")
+        return model.Index(snap.dialect)
+
+
+class _Sink:
+    def __init__(self, items: list[Diagnostic]):
+        self.items = items
+
+    def add(self, code, span, message):
+        from mcc.compiler.diagnostics import Diagnostics
+
+        collected = Diagnostics()
+        collected.add(code, span, message)
+        self.items.extend(collected.items)
+
+
+def complete(snap: Snapshot, checked: engine.Checked, stop: Callable[[], bool] | None = None) -> Snapshot | None:
+    """The lint rules and program memory (second step); None when `stop` says the work is stale."""
+    diagnostics = engine.settle(checked, snap.settings, rules=True, stop=stop)
+    if stop is not None and stop():
+        return None
+    from mcc.lsp import memory
+
+    usage = memory.usage(snap)
+    done = Snapshot(**{**snap.__dict__, "diagnostics": diagnostics, "complete": True, "memory": usage})
+    return done
+
+
+def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resolver | None = None,
+            dialect: str | None = None) -> Snapshot:
+    """Both steps at once (for tests, the benchmark and one-off requests)."""
+    snap, checked = check(uri, path, version, text, resolver or Resolver(), dialect)
+    snap = with_index(snap)
+    return complete(snap, checked) or snap
+

@@ -1,0 +1,189 @@
+"""Completion and signature help.
+
+What is offered depends on where the cursor is, read from the text of the current line: a label
+after `BR`/`CL` (MCode), a subroutine number after `GOSUB` (Arcus), a sequence number after
+`XR`/`XG`/... (X150), a command at the start of a statement (as a snippet from the catalog's
+syntax, only what the target product has, and only what the program region allows), variables
+and readable registers elsewhere.
+"""
+
+from __future__ import annotations
+
+import re
+
+from lsprotocol import types as t
+
+from mcc.lsp import catalog_info, model
+
+MCODE_LABEL = re.compile(r"^\s*[!*^]?[A-Za-z]?(?:BR|CL|BP|EX|OE|TI|TP|TT|TR|TA|TM|TC)\s+(?:[^,\s]*,\s*)?([A-Za-z0-9]*)$",
+                         re.IGNORECASE)
+ARCUS_GOSUB = re.compile(r"^\s*GOSUB\s*(\d*)$", re.IGNORECASE)
+X150_SEQUENCE = re.compile(r"(?:^|\s)\d*(?:XRP|XR|XG|XE|XU|GOSUB|GOTO)\s*(\d*)$", re.IGNORECASE)
+STATEMENT_START = {
+    "mcode": re.compile(r"^\s*[!*^]?[A-Za-z]{0,3}$"),
+    "arcus": re.compile(r"^\s*[A-Za-z]*$"),
+    "x150": re.compile(r"(?:^|\s)\d*B?[A-Za-z]*$"),
+}
+WORD = re.compile(r"[A-Za-z0-9_]*$")
+COMMAND_KINDS = {"mcode": ("instruction", "variable", "flag"),
+                 "arcus": None, "x150": None}
+VALUE_KINDS = {"mcode": ("variable", "flag", "keyword", "function")}
+
+
+def complete(snap, line_text: str, character: int, line: int) -> t.CompletionList:
+    before = line_text[:character]
+    dialect = snap.dialect
+    items: list[t.CompletionItem] = []
+    if dialect == "mcode" and MCODE_LABEL.match(before):
+        items = symbols(snap, model.SYMBOL_LABEL)
+    elif dialect == "arcus" and ARCUS_GOSUB.match(before):
+        items = symbols(snap, model.SYMBOL_SUBROUTINE)
+    elif dialect == "x150" and X150_SEQUENCE.search(before):
+        items = symbols(snap, model.SYMBOL_SEQUENCE)
+    elif dialect in STATEMENT_START and STATEMENT_START[dialect].search(before) and not in_comment(snap, before):
+        items = commands(snap, line) + (symbols(snap, model.SYMBOL_VARIABLE) if dialect != "x150" else [])
+    elif not in_comment(snap, before):
+        items = symbols(snap, model.SYMBOL_VARIABLE) + values(snap)
+    return t.CompletionList(is_incomplete=False, items=items)
+
+
+def in_comment(snap, before: str) -> bool:
+    from mcc.compiler.lint.suppress import comment_start, markers
+
+    return comment_start(before, markers(snap.dialect)) is not None
+
+
+def symbols(snap, kind: str) -> list[t.CompletionItem]:
+    out = []
+    for symbol in snap.index.symbols.values():
+        if symbol.kind != kind:
+            continue
+        where = f"line {symbol.definitions[0].line}" if symbol.definitions else "not defined here"
+        out.append(t.CompletionItem(
+            label=symbol.name, kind=t.CompletionItemKind.Variable if kind == model.SYMBOL_VARIABLE
+            else t.CompletionItemKind.Reference,
+            detail=f"{symbol.kind} ({where}, used {len(symbol.references)}×)",
+            sort_text=f"0{symbol.name}"))
+    return out
+
+
+def region_mode(snap, line: int) -> str:
+    """MCode: "program" inside a PG … PG region, else "immediate"."""
+    for routine in snap.index.routines:
+        if routine.kind == "program" and routine.span.line <= line + 1 <= routine.span.end_line:
+            return "program"
+    return "immediate"
+
+
+def inside_sequence(snap, line: int) -> bool:
+    return any(r.kind == "sequence" and r.span.line < line + 1 < r.span.end_line for r in snap.index.routines)
+
+
+def allowed_here(snap, entry, line: int) -> bool:
+    ok, _ = catalog_info.availability(entry, snap.profile)
+    if not ok or entry.kind in catalog_info.UNAVAILABLE_KINDS:
+        return False
+    if snap.dialect == "mcode":
+        if entry.kind not in COMMAND_KINDS["mcode"]:
+            return False
+        mode = entry.get("mode", "both")
+        return mode == "both" or mode == region_mode(snap, line)
+    if snap.dialect == "x150" and inside_sequence(snap, line):
+        return entry.get("seq", "S") == "S"
+    if snap.dialect == "arcus":
+        return bool(entry.get("pattern"))
+    return True
+
+
+def commands(snap, line: int) -> list[t.CompletionItem]:
+    """The commands allowed at `line`; the items depend only on the dialect, the profile and the
+    kind of place, so they are built once per combination."""
+    if snap.dialect == "mcode":
+        place = region_mode(snap, line)
+    elif snap.dialect == "x150":
+        place = "sequence" if inside_sequence(snap, line) else "immediate"
+    else:
+        place = ""
+    key = (snap.dialect, getattr(snap.profile, "name", ""), getattr(snap.profile, "product", ""),
+           getattr(snap.profile, "firmware", ""), place)
+    found = COMMAND_ITEMS.get(key)
+    if found is None:
+        found = COMMAND_ITEMS[key] = build_commands(snap, line)
+    return list(found)
+
+
+COMMAND_ITEMS: dict[tuple, list[t.CompletionItem]] = {}
+
+
+def build_commands(snap, line: int) -> list[t.CompletionItem]:
+    out = []
+    for entry in catalog_info.entries(snap.dialect):
+        if not allowed_here(snap, entry, line):
+            continue
+        text, syntax = catalog_info.snippet(entry, snap.dialect)
+        out.append(t.CompletionItem(
+            label=entry.name, kind=t.CompletionItemKind.Function if entry.kind in ("instruction", "motion")
+            else t.CompletionItemKind.Keyword,
+            detail=f"{entry.title} — {syntax}",
+            documentation=t.MarkupContent(kind=t.MarkupKind.Markdown,
+                                          value=catalog_info.hover_markdown(entry, snap.profile)),
+            insert_text=text, insert_text_format=t.InsertTextFormat.Snippet,
+            sort_text=f"1{entry.name}"))
+    return out
+
+
+def values(snap) -> list[t.CompletionItem]:
+    kinds = VALUE_KINDS.get(snap.dialect)
+    out = []
+    for entry in catalog_info.entries(snap.dialect):
+        if kinds is not None and entry.kind not in kinds:
+            continue
+        if kinds is None and not (entry.get("read") or entry.get("operand") or entry.kind == "variable"):
+            continue
+        if not catalog_info.availability(entry, snap.profile)[0]:
+            continue
+        out.append(t.CompletionItem(label=entry.name, kind=t.CompletionItemKind.Constant,
+                                    detail=entry.title, sort_text=f"2{entry.name}"))
+    return out
+
+
+# -- signature help ------------------------------------------------------------------------------
+
+def signature(snap, line_text: str, character: int) -> t.SignatureHelp | None:
+    """The syntax of the command whose arguments are being typed, with the current argument."""
+    before = line_text[:character]
+    from mcc.compiler.lint.suppress import comment_start, markers
+
+    if comment_start(before, markers(snap.dialect)) is not None:
+        return None
+    entry, args_text = command_before(snap, before)
+    if entry is None or not entry.syntax:
+        return None
+    active = args_text.count(",")
+    signatures = []
+    for syntax in entry.syntax:
+        params = [t.ParameterInformation(label=p) for p in catalog_info.PLACEHOLDER.findall(syntax)]
+        signatures.append(t.SignatureInformation(
+            label=syntax, documentation=f"{entry.title}: {entry.summary}", parameters=params or None))
+    best = next((i for i, s in enumerate(entry.syntax) if len(catalog_info.PLACEHOLDER.findall(s)) > active), 0)
+    return t.SignatureHelp(signatures=signatures, active_signature=best, active_parameter=active)
+
+
+def command_before(snap, before: str):
+    if snap.dialect == "mcode":
+        match = re.match(r"^\s*[!*^]?([A-Za-z]{1,3}[0-9]?)(?:\s+|=)(.*)$", before)
+        if match:
+            return catalog_info.lookup("mcode", match.group(1)), match.group(2)
+    elif snap.dialect == "arcus":
+        match = re.match(r"^\s*([A-Za-z]+?)[XYZU]?(?:\s+|=|:)(.*)$", before)
+        if match:
+            return catalog_info.lookup("arcus", match.group(1)), match.group(2)
+    elif snap.dialect == "x150":
+        match = re.search(r"(?:^|\s)\d*B?([A-Za-z]+)([^\s]*)$", before)
+        if match:
+            word = match.group(1).upper()
+            for size in range(len(word), 0, -1):
+                entry = catalog_info.lookup("x150", word[:size])
+                if entry is not None:
+                    return entry, word[size:] + match.group(2)
+    return None, ""

@@ -1,0 +1,77 @@
+"""Hover: what a command is (from the catalog), where a name is defined and how often it is used,
+and a motion value in physical units under the target profile."""
+
+from __future__ import annotations
+
+from lsprotocol import types as t
+
+from mcc.lsp import catalog_info, model
+from mcc.lsp.convert import range_of
+
+STEP_UNITS = ("steps", "user steps", "pulses", "motor steps")
+TIME_RATES = ("", "/s", "/sec", "/s²", "/s^2")
+
+
+def hover(snap, offset: int) -> t.Hover | None:
+    token = snap.index.token_at(offset)
+    if token is None:
+        return None
+    text = ""
+    if token.symbol:
+        text = symbol_markdown(snap, snap.index.symbols.get(token.symbol))
+    elif token.entry is not None:
+        spelled = snap.source.text[token.span.start:token.span.end]
+        text = catalog_info.hover_markdown(token.entry, snap.profile, spelled)
+    elif token.kind == model.NUMBER and token.value is not None:
+        text = number_markdown(snap, token)
+    if not text:
+        return None
+    return t.Hover(contents=t.MarkupContent(kind=t.MarkupKind.Markdown, value=text), range=range_of(token.span))
+
+
+def symbol_markdown(snap, symbol: model.Symbol | None) -> str:
+    if symbol is None:
+        return ""
+    lines = [f"**{symbol.label}** — {symbol.kind}"]
+    if symbol.definitions:
+        where = ", ".join(f"line {s.line}" for s in symbol.definitions[:5])
+        verb = "assigned" if symbol.kind == model.SYMBOL_VARIABLE and snap.dialect != "mcode" else "defined"
+        lines.append(f"- {verb} at {where}" + (" …" if len(symbol.definitions) > 5 else ""))
+        first = symbol.definitions[0]
+        lines += ["", "```", snap.source.line_text(first.line).strip(), "```"]
+    else:
+        lines.append("- not defined in this file")
+    uses = len(symbol.references)
+    lines.append(f"- used {uses} time{'s' if uses != 1 else ''}")
+    return "\n".join(lines)
+
+
+def steps_per_rev(snap) -> float:
+    """The profile's steps per revolution; for MCode scaled by the file's own `MS=` (the profiles
+    give it at MS=256, a 1.8° motor)."""
+    profile = snap.profile
+    base = float(getattr(profile, "steps_per_rev", 0) or 0)
+    if base and snap.dialect == "mcode" and "MS" in snap.index.settings:
+        return base * snap.index.settings["MS"] / 256.0
+    return base
+
+
+def number_markdown(snap, token: model.Token) -> str:
+    entry = token.command
+    if entry is None:
+        return ""
+    unit = entry.unit or ""
+    base = unit.split("/")[0].strip()
+    per_rev = steps_per_rev(snap)
+    rest = unit[len(unit.split("/")[0]):].strip()  # "/sec", "/s²", ""
+    if base not in STEP_UNITS or not per_rev or rest not in TIME_RATES:
+        return ""
+    revs = token.value / per_rev
+    name = snap.source.text[token.span.start:token.span.end]
+    lines = [f"**{name} {unit}** = {revs:g} rev{rest}"]
+    if rest.strip() in ("/sec", "/s"):
+        lines[0] += f" = {revs * 60:g} rpm"
+    ms = f" at MS={snap.index.settings['MS']:g}" if "MS" in snap.index.settings else ""
+    lines.append(f"- {per_rev:g} {base} = 1 rev{ms} (target {snap.profile.name})")
+    lines.append(f"- argument of {entry.name} ({entry.title})")
+    return "\n".join(lines)

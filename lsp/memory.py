@@ -1,0 +1,92 @@
+"""Program memory as the user edits: what each routine costs on the device.
+
+Arcus stores the compiled program in assembly lines (the backend's cost model, the profile's
+budget); an X150 device stores each sequence as bytes (one per character and delimiter, L241)
+in an 8,000-byte store. The numbers come from the dialect's own backend (`Listing.detail` for
+Arcus, the listing's lines for X150), attributed to the routines of the editor model by the
+source lines they came from. MCode has no memory model in mcc, so it shows nothing.
+"""
+
+from __future__ import annotations
+
+import bisect
+from dataclasses import dataclass, field
+
+from mcc.compiler import dialects, driver
+
+
+@dataclass
+class RoutineUsage:
+    name: str
+    line: int  # 1-based line of the routine's head
+    used: int
+
+
+@dataclass
+class Usage:
+    unit: str  # "assembly lines" | "bytes"
+    total: int
+    budget: int
+    routines: list[RoutineUsage] = field(default_factory=list)
+
+    def describe(self, used: int) -> str:
+        share = f" ({100.0 * used / self.budget:.1f}% of {self.budget})" if self.budget else ""
+        return f"{used} {self.unit}{share}"
+
+
+def usage(snap) -> Usage | None:
+    if snap.dialect not in ("arcus", "x150") or snap.module is None:
+        return None
+    if any(d.severity.value == "error" for d in snap.diagnostics):
+        return None
+    try:
+        dialect = dialects.get(snap.dialect)
+        listing = dialect.load_backend().emit(snap.module, driver.profile_for(dialect, snap.profile))
+    except Exception:  # noqa: BLE001 - no memory figures is better than no editor
+        return None
+    if snap.dialect == "x150":
+        result = Usage("bytes", int(listing.stats.get("sequence_bytes", 0)),
+                       int(listing.stats.get("sequence_budget", 0)))
+        return x150_sequences(snap, result)
+    rows = [(sources, 1) for _, sources in (listing.detail or [])]
+    result = Usage("assembly lines", int(listing.stats.get("asm_lines", len(rows))),
+                   int(listing.stats.get("asm_budget", 0)))
+    routines = sorted(snap.index.routines, key=lambda r: r.span.line)
+    starts = [r.span.line for r in routines]
+    counts = [0] * len(routines)
+    for sources, cost in rows:
+        if not sources:
+            continue
+        line = sources[0].line
+        i = bisect.bisect_right(starts, line) - 1
+        if i >= 0 and routines[i].span.line <= line <= routines[i].span.end_line:
+            counts[i] += cost
+    for routine, count in zip(routines, counts, strict=True):
+        result.routines.append(RoutineUsage(routine.name, routine.span.line, count))
+    return result
+
+
+def x150_sequences(snap, result: Usage) -> Usage:
+    """Bytes per sequence as the X150 writer stores them (the figures of `mcc compile`)."""
+    from mcc.compiler.x150 import naming
+    from mcc.compiler.x150.writer import write
+
+    dialect = dialects.get("x150")
+    try:
+        stored = write(snap.module, driver.profile_for(dialect, snap.profile)).sequence_bytes
+    except Exception:  # noqa: BLE001
+        return result
+    by_key: dict[tuple[int, int | None], int] = {}
+    for name, size in stored.items():
+        number = naming.sequence_number(name)
+        if number is not None:
+            key = (number, naming.device_of(name))
+            by_key[key] = by_key.get(key, 0) + size
+    for routine in sorted(snap.index.routines, key=lambda r: r.span.line):
+        if routine.kind != "sequence":
+            continue
+        number = int(routine.symbol.split(":")[1])
+        device = routine.name.rsplit("device ", 1)[1].rstrip(")") if "(device " in routine.name else None
+        used = by_key.get((number, int(device) if device else None), 0)
+        result.routines.append(RoutineUsage(routine.name, routine.span.line, used))
+    return result

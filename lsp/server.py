@@ -1,0 +1,371 @@
+"""The language server: pygls 2 wiring of the documents and the feature modules.
+
+Every request answers from the document's latest finished analysis (documents.py) and never
+waits for a new one. A request that fails is logged and answered with a JSON-RPC error; the
+server itself goes on (pygls turns a handler's exception into an error response, and the
+notification handlers here catch and log everything).
+"""
+
+from __future__ import annotations
+
+import functools
+import gc
+import logging
+import os
+
+from lsprotocol import types as t
+from pygls.exceptions import JsonRpcException
+from pygls.lsp.server import LanguageServer
+from pygls.uris import to_fs_path
+
+from mcc import __version__
+from mcc.compiler import dialects
+from mcc.compiler.codes import registry
+from mcc.compiler.span import SourceFile
+from mcc.lsp import actions, completion, convert, formatting, hover, lenses, navigation, outline, semantic
+from mcc.lsp.documents import Documents
+
+log = logging.getLogger("mcc.lsp")
+CONFIG_NAMES = ("mcc.toml", "pyproject.toml")
+REQUEST_FAILED = -32803  # LSP's RequestFailed: the request was valid but cannot be done (a refused rename)
+
+
+class MccServer(LanguageServer):
+    def __init__(self) -> None:
+        super().__init__("mcc", __version__, text_document_sync_kind=t.TextDocumentSyncKind.Incremental)
+        self.documents = Documents(self.publish)
+        self.rules_url: str | None = None
+
+    def publish(self, snap) -> None:
+        diagnostics = [convert.diagnostic(d, snap.source, snap.uri, self.rules_url) for d in snap.diagnostics
+                       if d.span.file == snap.path or d.span.file == snap.source.path]
+        self.text_document_publish_diagnostics(
+            t.PublishDiagnosticsParams(uri=snap.uri, diagnostics=diagnostics, version=snap.version))
+
+    def report_server_error(self, error, source) -> None:  # log; never pop up a message per failure
+        log.warning("request failed (%s): %s", getattr(source, "__name__", source), error)
+
+    def snapshot(self, uri: str):
+        return self.documents.latest.get(uri)
+
+
+server = MccServer()
+
+
+def guarded(func):
+    """Log a failing handler with its traceback, then let pygls answer with an error."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except navigation.RenameError as exc:
+            raise JsonRpcException(str(exc), code=REQUEST_FAILED) from None
+        except JsonRpcException:
+            raise
+        except Exception:
+            log.exception("%s failed", func.__name__)
+            raise
+
+    return wrapper
+
+
+def quiet(func):
+    """Notification handlers: log and swallow, so a bad notification never stops the server."""
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except Exception:  # noqa: BLE001
+            log.exception("%s failed", func.__name__)
+
+    return wrapper
+
+
+def path_of(uri: str) -> str:
+    try:
+        return to_fs_path(uri) or uri
+    except Exception:  # noqa: BLE001
+        return uri
+
+
+def reader(uri: str):
+    def read():
+        document = server.workspace.get_text_document(uri)
+        return document.source, document.version
+
+    return read
+
+
+# -- lifecycle and synchronisation -----------------------------------------------------------------
+
+@server.feature(t.INITIALIZE)
+@quiet
+def initialize(params: t.InitializeParams) -> None:
+    options = params.initialization_options if isinstance(params.initialization_options, dict) else {}
+    if isinstance(options.get("debounce"), (int, float)):
+        server.documents.debounce = max(0.0, float(options["debounce"]) / 1000.0)
+    if isinstance(options.get("rulesUrl"), str):
+        server.rules_url = options["rulesUrl"]
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_OPEN)
+@quiet
+def did_open(params: t.DidOpenTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    if params.text_document.language_id in dialects.DIALECTS:
+        server.documents.dialects[uri] = params.text_document.language_id
+    server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_CHANGE)
+@quiet
+def did_change(params: t.DidChangeTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    server.documents.changed(uri, path_of(uri), reader(uri))
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_SAVE)
+@quiet
+def did_save(params: t.DidSaveTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    if os.path.basename(path_of(uri)) in CONFIG_NAMES:
+        reanalyse_all()
+        return
+    server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
+
+
+@server.feature(t.TEXT_DOCUMENT_DID_CLOSE)
+@quiet
+def did_close(params: t.DidCloseTextDocumentParams) -> None:
+    uri = params.text_document.uri
+    server.documents.closed(uri)
+    server.documents.dialects.pop(uri, None)
+    server.text_document_publish_diagnostics(t.PublishDiagnosticsParams(uri=uri, diagnostics=[]))
+
+
+@server.feature(t.WORKSPACE_DID_CHANGE_WATCHED_FILES)
+@quiet
+def watched_files(params: t.DidChangeWatchedFilesParams) -> None:
+    if any(os.path.basename(path_of(change.uri)) in CONFIG_NAMES for change in params.changes):
+        reanalyse_all()
+
+
+def reanalyse_all() -> None:
+    server.documents.configuration_changed()
+    for uri in list(server.workspace.text_documents):
+        server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
+
+
+# -- queries -------------------------------------------------------------------------------------
+
+def located(uri: str, position: t.Position):
+    snap = server.snapshot(uri)
+    if snap is None:
+        return None, 0
+    return snap, convert.offset_of(snap.source, position)
+
+
+@server.feature(t.TEXT_DOCUMENT_HOVER)
+@guarded
+def on_hover(params: t.HoverParams):
+    snap, offset = located(params.text_document.uri, params.position)
+    return hover.hover(snap, offset) if snap else None
+
+
+def current_line(uri: str, line: int) -> str:
+    document = server.workspace.get_text_document(uri)
+    lines = document.lines
+    return lines[line].rstrip("\r\n") if 0 <= line < len(lines) else ""
+
+
+@server.feature(t.TEXT_DOCUMENT_COMPLETION,
+                t.CompletionOptions(trigger_characters=[" ", ",", "="], resolve_provider=False))
+@guarded
+def on_completion(params: t.CompletionParams):
+    snap = server.snapshot(params.text_document.uri)
+    if snap is None:
+        return t.CompletionList(is_incomplete=True, items=[])
+    text = current_line(params.text_document.uri, params.position.line)
+    return completion.complete(snap, text, params.position.character, params.position.line)
+
+
+@server.feature(t.TEXT_DOCUMENT_SIGNATURE_HELP, t.SignatureHelpOptions(trigger_characters=[" ", ",", "="]))
+@guarded
+def on_signature(params: t.SignatureHelpParams):
+    snap = server.snapshot(params.text_document.uri)
+    if snap is None:
+        return None
+    text = current_line(params.text_document.uri, params.position.line)
+    return completion.signature(snap, text, params.position.character)
+
+
+@server.feature(t.TEXT_DOCUMENT_DEFINITION)
+@guarded
+def on_definition(params: t.DefinitionParams):
+    snap, offset = located(params.text_document.uri, params.position)
+    return navigation.definition(snap, offset) if snap else None
+
+
+@server.feature(t.TEXT_DOCUMENT_REFERENCES)
+@guarded
+def on_references(params: t.ReferenceParams):
+    snap, offset = located(params.text_document.uri, params.position)
+    return navigation.references(snap, offset, params.context.include_declaration) if snap else None
+
+
+@server.feature(t.TEXT_DOCUMENT_DOCUMENT_HIGHLIGHT)
+@guarded
+def on_highlight(params: t.DocumentHighlightParams):
+    snap, offset = located(params.text_document.uri, params.position)
+    return navigation.highlight(snap, offset) if snap else None
+
+
+@server.feature(t.TEXT_DOCUMENT_PREPARE_RENAME)
+@guarded
+def on_prepare_rename(params: t.PrepareRenameParams):
+    snap, offset = located(params.text_document.uri, params.position)
+    return navigation.prepare_rename(snap, offset) if snap else None
+
+
+@server.feature(t.TEXT_DOCUMENT_RENAME, t.RenameOptions(prepare_provider=True))
+@guarded
+def on_rename(params: t.RenameParams):
+    snap, offset = located(params.text_document.uri, params.position)
+    if snap is None:
+        return None
+    return navigation.rename(snap, offset, params.new_name)
+
+
+@server.feature(t.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+@guarded
+def on_document_symbol(params: t.DocumentSymbolParams):
+    snap = server.snapshot(params.text_document.uri)
+    return outline.document_symbols(snap) if snap else []
+
+
+@server.feature(t.WORKSPACE_SYMBOL)
+@guarded
+def on_workspace_symbol(params: t.WorkspaceSymbolParams):
+    return outline.workspace_symbols(list(server.documents.latest.values()), params.query)
+
+
+@server.feature(t.TEXT_DOCUMENT_FOLDING_RANGE)
+@guarded
+def on_folding(params: t.FoldingRangeParams):
+    snap = server.snapshot(params.text_document.uri)
+    return outline.folding_ranges(snap) if snap else []
+
+
+@server.feature(t.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL, semantic.LEGEND)
+@guarded
+def on_semantic_full(params: t.SemanticTokensParams):
+    snap = server.snapshot(params.text_document.uri)
+    return semantic.encode(snap) if snap else t.SemanticTokens(data=[])
+
+
+@server.feature(t.TEXT_DOCUMENT_SEMANTIC_TOKENS_RANGE, semantic.LEGEND)
+@guarded
+def on_semantic_range(params: t.SemanticTokensRangeParams):
+    snap = server.snapshot(params.text_document.uri)
+    if snap is None:
+        return t.SemanticTokens(data=[])
+    return semantic.encode(snap, params.range.start.line, params.range.end.line)
+
+
+@server.feature(t.TEXT_DOCUMENT_CODE_ACTION,
+                t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty]))
+@guarded
+def on_code_action(params: t.CodeActionParams):
+    snap = server.snapshot(params.text_document.uri)
+    return actions.code_actions(snap, params.range, params.context) if snap else []
+
+
+@server.command(actions.EXPLAIN)
+@guarded
+def explain(*arguments):
+    """The rule's explanation page: shown in the editor when it can show documents, and returned."""
+    args = arguments[0] if len(arguments) == 1 and isinstance(arguments[0], (list, tuple)) else arguments
+    code = str(args[0]).upper() if args else ""
+    info = registry().get(code)
+    if info is None:
+        raise JsonRpcException(f"unknown diagnostic code {code!r}", code=REQUEST_FAILED)
+    page = convert.rule_page(code, server.rules_url)
+    window = getattr(server.client_capabilities, "window", None)
+    if page and window is not None and getattr(window, "show_document", None):
+        server.window_show_document_async(t.ShowDocumentParams(uri=page, external=page.startswith("http")))
+    return info.page()
+
+
+def formatted(uri: str, first: int | None = None, last: int | None = None):
+    snap = server.snapshot(uri)
+    if snap is None:
+        return []
+    document = server.workspace.get_text_document(uri)
+    text = SourceFile(snap.path, document.source).text
+    return formatting.edits(snap, text, first, last)
+
+
+@server.feature(t.TEXT_DOCUMENT_FORMATTING)
+@guarded
+def on_formatting(params: t.DocumentFormattingParams):
+    return formatted(params.text_document.uri)
+
+
+@server.feature(t.TEXT_DOCUMENT_RANGE_FORMATTING)
+@guarded
+def on_range_formatting(params: t.DocumentRangeFormattingParams):
+    return formatted(params.text_document.uri, params.range.start.line, params.range.end.line)
+
+
+@server.feature(t.TEXT_DOCUMENT_CODE_LENS, t.CodeLensOptions(resolve_provider=False))
+@guarded
+def on_code_lens(params: t.CodeLensParams):
+    snap = server.snapshot(params.text_document.uri)
+    return lenses.code_lenses(snap) if snap else []
+
+
+@server.feature(t.TEXT_DOCUMENT_INLAY_HINT, t.InlayHintOptions(resolve_provider=False))
+@guarded
+def on_inlay_hint(params: t.InlayHintParams):
+    snap = server.snapshot(params.text_document.uri)
+    return lenses.inlay_hints(snap, params.range.start.line, params.range.end.line) if snap else []
+
+
+STATUS = "mcc/status"
+
+
+@server.feature(STATUS)
+@guarded
+def on_status(params):
+    """mcc's own request: which version of a document the latest finished analysis is of, and
+    whether its lint rules have run (editors can show it; the tests wait on it)."""
+    uri = params.get("uri") if isinstance(params, dict) else getattr(params, "uri", None)
+    snap = server.snapshot(str(uri)) if uri else None
+    if snap is None:
+        return {"uri": uri, "version": None, "complete": False, "dialect": None}
+    return {"uri": uri, "version": snap.version, "complete": snap.complete, "dialect": snap.dialect,
+            "diagnostics": len(snap.diagnostics)}
+
+
+@server.feature(t.SHUTDOWN)
+@quiet
+def on_shutdown(*_):
+    server.documents.shutdown()
+
+
+def start(tcp: str | None = None, log_file: str | None = None, verbose: bool = False) -> None:
+    # An analysis allocates hundreds of thousands of small objects while the last snapshots stay
+    # alive; Python's default collection thresholds would rescan them many times per keystroke
+    # (about 15% of a 3,000-line analysis). Cycles are still collected, only less often.
+    gc.set_threshold(100_000, 50, 100)
+    logging.basicConfig(filename=log_file, level=logging.DEBUG if verbose else logging.INFO,
+                        format="%(asctime)s %(levelname)s %(name)s: %(message)s")
+    if not verbose:  # pygls logs every message it sends at INFO
+        logging.getLogger("pygls").setLevel(logging.WARNING)
+    if tcp:
+        host, _, port = tcp.rpartition(":")
+        server.start_tcp(host or "127.0.0.1", int(port))
+    else:
+        server.start_io()
