@@ -8,12 +8,13 @@ Layout (the convention of every sample in the manual, L7617-L7658):
       subroutines and handlers, each ending in RT
     PG
     S                (when the source saved)
+    ' comment        (after a final S: the manual asks for it so the S line's end is sent, L5269)
 
 Every line fits the 64-character device buffer (a longer one is an error, M201). Blocks the source
 did not name get generated labels that follow the naming rules (two characters, a letter first,
 never an MCode name) and never collide with the program's own names. Output is canonical (upper
-case, `NAME=value` for settings, `MA 100` for instructions, no comments), so compiling the output
-again gives the same text.
+case, `NAME=value` for settings, `MA 100` for instructions, no comments but the one after a final
+`S`), so compiling the output again gives the same text.
 """
 
 from __future__ import annotations
@@ -36,6 +37,7 @@ FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", 
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
          "power": "TM"}
 UNIT_FACTORS = {ir.Unit.S: 1000}  # delays are written in ms
+SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
 
 class Unsupported(Exception):
@@ -155,8 +157,15 @@ class Writer:
             self.block(block, next_label)
         if region_open:
             self.line("PG")
+        self.end_save()
         self.stats()
         return self.listing
+
+    def end_save(self) -> None:
+        """A listing that ends with `S` gets a comment line after it: the manual asks for one so the
+        `S` line's <CR/LF> is sent (L5269); without it a downloader may leave the save unsent."""
+        if self.listing.lines and self.listing.lines[-1].text == "S":
+            self.line(SAVE_TRAILER, *self.listing.lines[-1].sources)
 
     def stats(self) -> None:
         text_lines = [line.text for line in self.listing.lines]
