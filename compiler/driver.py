@@ -26,6 +26,9 @@ class Analysis:
     tree: Any
     module: ir.Module | None
     diagnostics: Diagnostics
+    # program memory against the target's budget, from the same model as the backend's listing
+    # (X150 sequence bytes, Arcus assembly lines); filled by the frontend or by `measure_memory`
+    memory: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -49,6 +52,8 @@ class FileResult:
             "dialect": self.dialect,
             "diagnostics": [d.to_json() for d in sorted(self.diagnostics, key=Diagnostic.sort_key)],
         }
+        if self.analysis is not None and self.analysis.memory:
+            data["memory"] = self.analysis.memory
         return data
 
 
@@ -92,13 +97,49 @@ def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile: Profi
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, source.path, exc, "checking")
         return None
+    if analysis.diagnostics.has_errors:
+        analysis = neighbour_language(analysis, dialect)
     diags.extend(analysis.diagnostics)
     return analysis
 
 
+def neighbour_language(analysis: Analysis, dialect: dialects.Dialect) -> Analysis:
+    """A file in a neighbouring controller's language (6K, another indexer's X-code, an Arcus DMX
+    program) gets one diagnostic naming it instead of an error per line (compiler/neighbours.py)."""
+    from mcc.compiler import neighbours
+
+    items = list(analysis.diagnostics)
+    found = neighbours.recognise(analysis.source, dialect.name, items)
+    if found is None:
+        return analysis
+    errors = sum(1 for d in items if d.severity.value == "error")
+    diags = neighbours.report(analysis.source, dialect.name, dialect.title, found, errors)
+    return Analysis(analysis.source, analysis.tree, None, diags)
+
+
+def measure_memory(analysis: Analysis, dialect: dialects.Dialect, profile: Profile | None,
+                   diags: Diagnostics) -> None:
+    """Program memory for `mcc check`, `lint` and the editor, when the frontend has not measured it:
+    the dialect's backend prices the program with the cost model of `mcc compile` (its `memory`
+    function) and reports only what concerns memory (over or near a budget)."""
+    if analysis.memory or analysis.module is None:
+        return
+    try:
+        backend = dialect.load_backend()
+        measure = getattr(backend, "memory", None)
+        if measure is None:
+            return
+        analysis.memory, found = measure(analysis.module, profile_for(dialect, profile))
+    except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
+        internal_error(diags, analysis.source.path, exc, "measuring program memory")
+        return
+    diags.extend(found)
+
+
 def check_file(path: str, dialect: str | None = None, profile: Profile | None = None,
-               text: str | None = None) -> FileResult:
-    """Parse, lower and check one file (the work of `mcc check`)."""
+               text: str | None = None, memory: bool = True) -> FileResult:
+    """Parse, lower and check one file (the work of `mcc check`); with `memory`, also the program
+    memory against the target's budget (compile measures it in the backend instead)."""
     diags = Diagnostics()
     found = resolve_dialect(path, dialect)
     if found is None:
@@ -110,6 +151,8 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
     result = FileResult(path, found.name, source=source)
     if source is not None:
         result.analysis = analyze_source(source, found, profile, diags)
+        if memory and result.analysis is not None and not diags.has_errors:
+            measure_memory(result.analysis, found, profile, diags)
     result.diagnostics = diags.items
     return result
 
@@ -117,7 +160,7 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
 def compile_file(path: str, dialect: str | None = None, target: str | None = None,
                  profile: Profile | None = None, text: str | None = None) -> FileResult:
     """Check one file and, when it has no errors, generate code for the target dialect."""
-    result = check_file(path, dialect, profile, text)
+    result = check_file(path, dialect, profile, text, memory=False)
     result.target = target or result.dialect
     analysis = result.analysis
     if analysis is None or analysis.module is None or result.has_errors:

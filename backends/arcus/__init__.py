@@ -22,7 +22,7 @@ from __future__ import annotations
 from mcc.backends.arcus import costmodel, move_modes, temporaries
 from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.legalize import Legalizer
-from mcc.backends.arcus.target import DIALECT
+from mcc.backends.arcus.target import DIALECT, Config
 from mcc.backends.arcus.writer import Writer
 from mcc.backends.listing import Listing
 from mcc.backends.structure import EndNode, structure
@@ -31,7 +31,9 @@ from mcc.compiler.arcus import modes
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
-__all__ = ["emit", "DIALECT"]
+__all__ = ["emit", "memory", "DIALECT"]
+
+MEMORY_CODES = ("A201", "A204", "A240")  # what `mcc check` reports of the cost model
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
@@ -59,6 +61,20 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
     return listing(ctx, stmts, dispatched)
+
+
+def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:
+    """Program memory as `mcc check` reports it: the program priced exactly as `emit` prices it
+    (the same passes and cost model), and the budget diagnostics only; the rest of what the backend
+    reports is about writing the listing and belongs to `mcc compile`."""
+    result = emit(module, profile)
+    stats = result.stats
+    config = Config.from_profile(profile)
+    usage = {"unit": "assembly lines", "used": stats["asm_lines"], "budget": stats["asm_budget"],
+             "percent": stats["asm_percent"], "cost_model": stats["cost_model"]}
+    if config.gui_limit and config.gui_limit < config.budget:
+        usage["gui_limit"] = config.gui_limit
+    return usage, [d for d in result.diagnostics if d.code in MEMORY_CODES]
 
 
 def compile_routine(ctx: Context, routine: ir.Routine, moved: set[str]) -> tuple[list, Span | None, bool]:

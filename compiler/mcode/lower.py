@@ -119,6 +119,12 @@ class Lowering:
                 target = arg.left if isinstance(arg, st.Comparison) else arg
                 if var and isinstance(target, st.Name) and var not in names.variables:
                     names.variables[var] = target
+                elif var and isinstance(target, st.Name) and names.variables.get(var) is not target:
+                    first = names.variables[var]
+                    self.diags.add("M141", target.span,
+                                   f"VA {target.text} again: {first.text} is already declared at line "
+                                   f"{first.span.line}, and the device refuses to redefine a user variable "
+                                   f"(Error 28, L8472): set it with `{target.text}=value` instead")
             ir_kind = command.ir
             if ir_kind in ("call", "branch", "execute") or name in ("BP", "L", "CP"):
                 target = res.args[0] if res.args else None

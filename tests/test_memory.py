@@ -1,0 +1,71 @@
+"""Program memory is reported by `mcc check` (so by lint and the editor), from the cost model of
+`mcc compile`: Arcus assembly lines against the profile's budget and the Windows software's limit,
+X150 sequence bytes against the sequence store."""
+
+from __future__ import annotations
+
+import json
+
+from conftest import run_mcc
+from mcc.compiler import driver, profiles
+
+
+def arcus_program(loops: int) -> str:
+    body = ["V1=0"]
+    for _ in range(loops):  # 13 assembly lines per loop under the default h-estimate model
+        body += ["WHILE V1<10", "IF DI1=1", "X1000Y2000", "ELSE", "V2=V2+1", "ENDIF", "V1=V1+1", "ENDWHILE"]
+    return "\n".join(body + ["END"]) + "\n"
+
+
+def codes(result) -> list[str]:
+    return [d.code for d in result.diagnostics]
+
+
+def test_check_reports_the_same_count_as_compile() -> None:
+    text = arcus_program(20)
+    checked = driver.check_file("p.prg", text=text)
+    compiled = driver.compile_file("p.prg", text=text)
+    assert checked.analysis.memory["used"] == compiled.listing.stats["asm_lines"] > 0
+    assert checked.analysis.memory["budget"] == 3230
+
+
+def test_near_the_windows_software_limit_is_a_warning_in_check() -> None:
+    used = driver.check_file("p.prg", text=arcus_program(130)).analysis.memory["used"]
+    assert 0.9 * 1785 < used <= 3230  # between the two limits
+    result = driver.check_file("p.prg", text=arcus_program(130))
+    assert codes(result) == ["A240"] and not result.has_errors
+    assert "1785" in result.diagnostics[0].message
+
+
+def test_the_windows_limit_can_be_switched_off(tmp_path) -> None:
+    path = tmp_path / "host.toml"
+    path.write_text('extends = "pmx-4ex-sa"\nname = "host"\n[arcus.cost]\ngui_limit = 0\n', encoding="utf-8")
+    result = driver.check_file("p.prg", profile=profiles.load(str(path)), text=arcus_program(130))
+    assert codes(result) == []
+
+
+def test_over_the_budget_is_an_error_in_check_and_once_in_compile() -> None:
+    text = arcus_program(260)
+    assert codes(driver.check_file("p.prg", text=text)) == ["A201"]
+    assert codes(driver.compile_file("p.prg", text=text)) == ["A201"]
+
+
+def test_the_gui_profile_has_1785_as_its_budget() -> None:
+    result = driver.check_file("p.prg", profile=profiles.load("pmx-4ex-sa-gui"), text=arcus_program(140))
+    assert codes(result) == ["A201"]
+
+
+def test_x150_sequence_bytes_in_check_json() -> None:
+    text = "1XE3\n1XD3\n1A10\n1G\n1XT\n"
+    result = driver.check_file("p.x150", text=text)
+    compiled = driver.compile_file("p.x150", text=text)
+    assert result.analysis.memory["used"] == compiled.listing.stats["sequence_bytes"] == len("1A10\n1G\n1XT\n")
+    assert result.to_json()["memory"]["budget"] == 8000
+
+
+def test_check_json_shows_memory(tmp_path) -> None:
+    path = tmp_path / "p.prg"
+    path.write_text(arcus_program(2), encoding="utf-8")
+    out = json.loads(run_mcc("check", "--format", "json", str(path)).stdout)
+    memory = out["files"][0]["memory"]
+    assert memory["unit"] == "assembly lines" and memory["used"] > 0 and memory["budget"] == 3230

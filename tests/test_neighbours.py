@@ -1,0 +1,42 @@
+"""A file in a neighbouring controller's language gets one diagnostic naming it (G010), not a
+cascade; a program of the right dialect with many mistakes keeps its own diagnostics."""
+
+from __future__ import annotations
+
+from conftest import GOLDEN, run_mcc
+from mcc.compiler import driver
+
+SIX_K = (GOLDEN / "x150" / "neighbour-6k" / "input.x150").read_text(encoding="utf-8")
+
+
+def codes(path: str, text: str) -> list[str]:
+    return [d.code for d in driver.check_file(path, text=text).diagnostics]
+
+
+def test_a_6k_program_is_one_diagnostic_in_every_reader() -> None:
+    assert len(SIX_K.splitlines()) >= 35
+    for path in ("cell.x150", "cell.mxt", "cell.prg"):
+        assert codes(path, SIX_K) == ["G010"], path
+
+
+def test_the_diagnostic_names_the_language_and_the_lines() -> None:
+    diag = driver.check_file("cell.x150", text=SIX_K).diagnostics[0]
+    assert "Parker 6K" in diag.message and diag.span.line == 2 and len(diag.notes) >= 3
+
+
+def test_a_broken_x150_program_keeps_its_own_diagnostics() -> None:
+    text = "1XD1\n1A10\n1FOO5\n1BAR\n1QQQ\n1D4000\n1G\n1ZZZ2\n1XT\n"
+    found = codes("p.x150", text)
+    assert "G010" not in found and len([c for c in found if c.startswith("X")]) >= 6
+
+
+def test_two_prg_blocks_alone_stay_per_line() -> None:
+    assert codes("p.prg", "PRG 0\nX1000\nEND\nPRG 1\nY1000\nEND\n") == ["A121", "A121", "A110"]
+
+
+def test_nothing_is_compiled_and_the_exit_code_is_1(tmp_path) -> None:
+    path = tmp_path / "cell.x150"
+    path.write_text(SIX_K, encoding="utf-8")
+    result = run_mcc("compile", str(path))
+    assert result.returncode == 1 and "G010" in result.stdout + result.stderr
+    assert result.stdout.count("error[") + result.stderr.count("error[") == 1
