@@ -22,7 +22,7 @@ from __future__ import annotations
 from mcc.backends.arcus import costmodel, move_modes, temporaries
 from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.legalize import Legalizer
-from mcc.backends.arcus.target import DIALECT, Config
+from mcc.backends.arcus.target import DIALECT
 from mcc.backends.arcus.writer import Writer
 from mcc.backends.listing import Listing
 from mcc.backends.structure import EndNode, structure
@@ -38,6 +38,13 @@ MEMORY_CODES = ("A201", "A204", "A240")  # what `mcc check` reports of the cost 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
     """Canonical Arcus standalone text and its assembly-level listing for an IR module."""
+    ctx, stmts, dispatched = program(module, profile)
+    return listing(ctx, stmts, dispatched)
+
+
+def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
+    """Passes 1-4: the program's statements in layout order (not yet priced), the context and
+    how many routines became dispatch loops."""
     ctx = Context(module, profile)
     moved = modes.changers(module, explicit_moves=True)
     ctx.number_subroutines()
@@ -60,21 +67,22 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
             main += code
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
-    return listing(ctx, stmts, dispatched)
+    return ctx, stmts, dispatched
 
 
 def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:
     """Program memory as `mcc check` reports it: the program priced exactly as `emit` prices it
     (the same passes and cost model), and the budget diagnostics only; the rest of what the backend
     reports is about writing the listing and belongs to `mcc compile`."""
-    result = emit(module, profile)
-    stats = result.stats
-    config = Config.from_profile(profile)
-    usage = {"unit": "assembly lines", "used": stats["asm_lines"], "budget": stats["asm_budget"],
-             "percent": stats["asm_percent"], "cost_model": stats["cost_model"]}
+    ctx, stmts, _ = program(module, profile)
+    config = ctx.config
+    total = costmodel.price(stmts, config)
+    costmodel.check_budget(ctx, stmts, total)  # the listing's text and rows are not needed here
+    usage = {"unit": "assembly lines", "used": total, "budget": config.budget,
+             "percent": round(costmodel.share(total, config), 1), "cost_model": config.model}
     if config.gui_limit and config.gui_limit < config.budget:
         usage["gui_limit"] = config.gui_limit
-    return usage, [d for d in result.diagnostics if d.code in MEMORY_CODES]
+    return usage, [d for d in ctx.diags if d.code in MEMORY_CODES]
 
 
 def compile_routine(ctx: Context, routine: ir.Routine, moved: set[str]) -> tuple[list, Span | None, bool]:
