@@ -3,7 +3,11 @@ cascade; a program of the right dialect with many mistakes keeps its own diagnos
 
 from __future__ import annotations
 
-from conftest import GOLDEN, run_mcc
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from conftest import EXTENSIONS, GOLDEN, run_mcc, sample_files
 from mcc.compiler import driver
 
 SIX_K = (GOLDEN / "x150" / "neighbour-6k" / "input.x150").read_text(encoding="utf-8")
@@ -40,3 +44,23 @@ def test_nothing_is_compiled_and_the_exit_code_is_1(tmp_path) -> None:
     result = run_mcc("compile", str(path))
     assert result.returncode == 1 and "G010" in result.stdout + result.stderr
     assert result.stdout.count("error[") + result.stderr.count("error[") == 1
+
+
+@pytest.mark.parametrize("dialect", sorted(EXTENSIONS))
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_mutated_samples_of_the_right_dialect_are_never_another_language(dialect: str, data) -> None:
+    """Deleting, duplicating and truncating lines of a real sample makes errors, never a G010."""
+    lines = data.draw(st.sampled_from(sample_files(dialect))).read_text(encoding="utf-8").splitlines()
+    for _ in range(data.draw(st.integers(0, 6))):
+        if not lines:
+            break
+        i = data.draw(st.integers(0, len(lines) - 1))
+        action = data.draw(st.sampled_from(["delete", "duplicate", "truncate"]))
+        if action == "delete":
+            del lines[i]
+        elif action == "duplicate":
+            lines.insert(i, lines[i])
+        else:
+            lines[i] = lines[i][: data.draw(st.integers(0, len(lines[i])))]
+    assert "G010" not in codes("p" + EXTENSIONS[dialect], "\n".join(lines) + "\n")
