@@ -69,3 +69,22 @@ def test_check_json_shows_memory(tmp_path) -> None:
     out = json.loads(run_mcc("check", "--format", "json", str(path)).stdout)
     memory = out["files"][0]["memory"]
     assert memory["unit"] == "assembly lines" and memory["used"] > 0 and memory["budget"] == 3230
+
+
+def x150_sequences(count: int, lines: int) -> str:
+    out = []
+    for n in range(1, count + 1):
+        out += [f"1XE{n}", f"1XD{n}"] + ["1VAR1=VAR1+12345"] * lines + ["1XT"]
+    return "\n".join(out) + "\n"
+
+
+def test_x150_near_the_sequence_store_is_a_warning(tmp_path) -> None:
+    near = driver.check_file("p.x150", text=x150_sequences(3, 150))
+    assert 0.9 * 8000 < near.analysis.memory["used"] <= 8000
+    assert [c for c in codes(near) if c in ("X123", "X141")] == ["X141"] and not near.has_errors
+    path = tmp_path / "roomy.toml"
+    path.write_text('extends = "x150-pdhx"\nname = "roomy"\n[x150]\nstore_warn_ratio = 0.99\n', encoding="utf-8")
+    relaxed = driver.check_file("p.x150", profile=profiles.load(str(path)), text=x150_sequences(3, 150))
+    assert "X141" not in codes(relaxed)
+    over = driver.check_file("p.x150", text=x150_sequences(4, 150))
+    assert "X123" in codes(over) and "X141" not in codes(over)

@@ -393,20 +393,30 @@ class Checker:
                 self.diags.add("X124", unit.start.span,
                                f"sequence {unit.number} is {size} bytes, {over} the {buffer}-byte command buffer it is "
                                "downloaded through (L241, L4904): split it into sequences that call each other")
+        store_ratio = float(self.profile.get("x150.store_warn_ratio", 0.9))
         devices = sorted({address for _, address in latest if address is not None})
         for device in devices or [None]:
             total = 0
+            last = None
+            who = f"device {device}" if device is not None else "each device"
             for (number, address), (unit, size) in sorted(latest.items(), key=lambda kv: kv[1][0].start.span.start):
                 if address is not None and address != device:
                     continue
                 total += size
+                last = (number, unit)
                 if total > store:
-                    who = f"device {device}" if device is not None else "each device"
                     self.diags.add("X123", unit.start.span,
                                    f"with sequence {number} the sequences for {who} need {total} bytes; the sequence "
                                    f"store holds {store} (L4871, 1 byte per character and delimiter, L241): shorten "
                                    "or remove sequences")
                     break
+            else:
+                if last is not None and total > store_ratio * store:
+                    number, unit = last
+                    self.diags.add("X141", unit.start.span,
+                                   f"the sequences for {who} need {total} of the {store} bytes of the sequence store "
+                                   f"({100 * total / store:.1f} %, L4871): little room is left for changes; the "
+                                   "count assumes 1 byte per character and delimiter (L241)")
 
 
 def upper_outside_quotes(text: str) -> str:
