@@ -88,3 +88,13 @@ def test_x150_near_the_sequence_store_is_a_warning(tmp_path) -> None:
     assert "X141" not in codes(relaxed)
     over = driver.check_file("p.x150", text=x150_sequences(4, 150))
     assert "X123" in codes(over) and "X141" not in codes(over)
+
+
+def test_arcus_memory_in_check_can_be_left_to_compile(tmp_path) -> None:
+    path = tmp_path / "fast.toml"
+    path.write_text('extends = "pmx-4ex-sa"\nname = "fast"\n[arcus.cost]\nin_check = false\n', encoding="utf-8")
+    profile = profiles.load(str(path))
+    text = arcus_program(260)
+    checked = driver.check_file("p.prg", profile=profile, text=text)
+    assert codes(checked) == [] and checked.analysis.memory == {}
+    assert codes(driver.compile_file("p.prg", profile=profile, text=text)) == ["A201"]
