@@ -64,3 +64,18 @@ def test_mutated_samples_of_the_right_dialect_are_never_another_language(dialect
         else:
             lines[i] = lines[i][: data.draw(st.integers(0, len(lines[i])))]
     assert "G010" not in codes("p" + EXTENSIONS[dialect], "\n".join(lines) + "\n")
+
+
+@pytest.mark.parametrize("sample,reader", [
+    ("mcode/pick_and_place.mxt", "p.x150"), ("mcode/trip_on_input.mxt", "p.prg"),
+    ("arcus/sorting_station.prg", "p.mxt"), ("arcus/pick_and_place.prg", "p.x150"),
+    ("x150/03_part_sorter.x150", "p.mxt"), ("x150/06_rp240_menu.x150", "p.prg"),
+])
+def test_a_file_of_another_mcc_dialect_names_the_option(sample: str, reader: str) -> None:
+    from conftest import SAMPLES
+
+    text = (SAMPLES / sample).read_text(encoding="utf-8")
+    diags = driver.check_file(reader, text=text).diagnostics
+    dialect = sample.split("/")[0]
+    assert [d.code for d in diags] == ["G010"]
+    assert f"--dialect {dialect}" in diags[0].message
