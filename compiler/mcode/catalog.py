@@ -145,9 +145,10 @@ class McodeCatalog:
         """The function `name` if the target's firmware has it. The math functions came with firmware
         6.0.01: programs for older MDrive firmware use AB, LO, ... as plain names (`VA LO=12200`)."""
         function = self.functions.get(name.upper())
-        if function is None or not function.firmware or not firmware:
+        version = firmware_tuple(firmware)
+        if function is None or not function.firmware or not version:  # no version given: the newest
             return function
-        return function if firmware_tuple(firmware) >= firmware_tuple(function.firmware) else None
+        return function if version >= firmware_tuple(function.firmware) else None
 
 
 def firmware_tuple(text: str) -> tuple[int, ...]:
