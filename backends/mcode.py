@@ -8,12 +8,13 @@ Layout (the convention of every sample in the manual, L7617-L7658):
       subroutines and handlers, each ending in RT
     PG
     S                (when the source saved)
+    ' comment        (after a final S: the manual asks for it so the S line's end is sent, L5269)
 
 Every line fits the 64-character device buffer (a longer one is an error, M201). Blocks the source
 did not name get generated labels that follow the naming rules (two characters, a letter first,
 never an MCode name) and never collide with the program's own names. Output is canonical (upper
-case, `NAME=value` for settings, `MA 100` for instructions, no comments), so compiling the output
-again gives the same text.
+case, `NAME=value` for settings, `MA 100` for instructions, no comments but the one after a final
+`S`), so compiling the output again gives the same text.
 """
 
 from __future__ import annotations
@@ -43,7 +44,8 @@ FULL_STEPS_PER_REV = 200
 # IR readings -> MCode registers (the inverse of the frontend's READINGS); indexed ones take the number.
 READINGS = {"position": "P", "encoder": "C2", "velocity": "V", "moving": "MV", "inputs": "IN", "outputs": "OT",
             "error": "ER", "stalled": "ST", "accel": "A", "decel": "D", "max_speed": "VM", "initial_speed": "VI",
-            "input_pending": "IF", "hmt_status": "AF", "moving_to_position": "MP"}
+            "input_pending": "IF", "hmt_status": "AF", "moving_to_position": "MP",
+            "locked_rotor": "LR"}
 INDEXED_READINGS = {"input": ("I", range(1, 5)), "output": ("O", range(1, 4)), "analog": ("I", range(5, 6))}
 # Neutral settings -> (MCode variable, factor from IR units to MCode units).
 SETTINGS = {"error_code": ("ER", 1), "run_current": ("RC", 1), "hold_current": ("HC", 1),
@@ -56,6 +58,7 @@ OUTPUT_TYPES = {"general": 16, "moving": 17, "error": 18, "stall": 19, "velocity
                 "moving_to_position": 23, "hmt_active": 24, "make_up_active": 25, "encoder_a": 26, "encoder_b": 27,
                 "trip": 28, "attention": 29}
 HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+1, 0): 3}
+SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
 
 class Unsupported(Exception):
@@ -298,8 +301,15 @@ class Writer:
             self.line("PG")
         if self.foreign and any(self.as_program(r) for r in self.module.routines):
             self.line("EX 1")  # the converted stream ran as it was sent: run the program now
+        self.end_save()
         self.stats()
         return self.listing
+
+    def end_save(self) -> None:
+        """A listing that ends with `S` gets a comment line after it: the manual asks for one so the
+        `S` line's <CR/LF> is sent (L5269); without it a downloader may leave the save unsent."""
+        if self.listing.lines and self.listing.lines[-1].text == "S":
+            self.line(SAVE_TRAILER, *self.listing.lines[-1].sources)
 
     def as_program(self, routine: ir.Routine) -> bool:
         """Another dialect's immediate stream that branches, loops or calls cannot run outside a
@@ -490,7 +500,8 @@ class Writer:
             return f"O{op.index}={self.expr(op.value)}"
         if isinstance(op, ir.Print):
             items = ",".join(self.item(item) for item in op.items)
-            return f"PR {items}{'' if op.newline else ';'}"
+            prefix = self.prefix(op.axis) if op.axis else ""
+            return f"{prefix}PR {items}{'' if op.newline else ';'}"
         if isinstance(op, ir.DriveEnable):
             return f"{self.prefix(op.axis)}DE={self.expr(op.on)}"
         if isinstance(op, ir.Call):

@@ -6,7 +6,7 @@ It lives apart from the driver so that frontends depend on it without depending 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 from mcc.compiler import ir
@@ -20,3 +20,6 @@ class Analysis:
     tree: Any
     module: ir.Module | None
     diagnostics: Diagnostics
+    # program memory against the target's budget, from the same model as the backend's listing
+    # (X150 sequence bytes, Arcus assembly lines); filled by the frontend or by `measure_memory`
+    memory: dict = field(default_factory=dict)

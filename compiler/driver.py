@@ -41,6 +41,8 @@ class FileResult:
             "dialect": self.dialect,
             "diagnostics": [d.to_json() for d in sorted(self.diagnostics, key=Diagnostic.sort_key)],
         }
+        if self.analysis is not None and self.analysis.memory:
+            data["memory"] = self.analysis.memory
         return data
 
 
@@ -84,6 +86,8 @@ def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile: Profi
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, source.path, exc, "checking")
         return None
+    if analysis.diagnostics.has_errors:
+        analysis = neighbour_language(analysis, dialect)
     diags.extend(analysis.diagnostics)
     return analysis
 
@@ -121,9 +125,43 @@ def ir_keeps_contract(result: FileResult) -> bool:
     return False
 
 
+def neighbour_language(analysis: Analysis, dialect: dialects.Dialect) -> Analysis:
+    """A file in a neighbouring controller's language (6K, another indexer's X-code, an Arcus DMX
+    program) gets one diagnostic naming it instead of an error per line (compiler/neighbours.py)."""
+    from mcc.compiler import neighbours
+
+    items = list(analysis.diagnostics)
+    found = neighbours.recognise(analysis.source, dialect.name, items)
+    if found is None:
+        return analysis
+    errors = sum(1 for d in items if d.severity.value == "error")
+    diags = neighbours.report(analysis.source, dialect.name, dialect.title, found, errors)
+    return Analysis(analysis.source, analysis.tree, None, diags)
+
+
+def measure_memory(analysis: Analysis, dialect: dialects.Dialect, profile: Profile | None,
+                   diags: Diagnostics) -> None:
+    """Program memory for `mcc check`, `lint` and the editor, when the frontend has not measured it:
+    the dialect's backend prices the program with the cost model of `mcc compile` (its `memory`
+    function) and reports only what concerns memory (over or near a budget)."""
+    if analysis.memory or analysis.module is None:
+        return
+    try:
+        backend = dialect.load_backend()
+        measure = getattr(backend, "memory", None)
+        if measure is None:
+            return
+        analysis.memory, found = measure(analysis.module, profile_for(dialect, profile))
+    except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
+        internal_error(diags, analysis.source.path, exc, "measuring program memory")
+        return
+    diags.extend(found)
+
+
 def check_file(path: str, dialect: str | None = None, profile: Profile | None = None,
-               text: str | None = None) -> FileResult:
-    """Parse, lower and check one file (the work of `mcc check`)."""
+               text: str | None = None, memory: bool = True) -> FileResult:
+    """Parse, lower and check one file (the work of `mcc check`); with `memory`, also the program
+    memory against the target's budget (compile measures it in the backend instead)."""
     diags = Diagnostics()
     found = resolve_dialect(path, dialect)
     if found is None:
@@ -135,6 +173,8 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
     result = FileResult(path, found.name, source=source)
     if source is not None:
         result.analysis = analyze_source(source, found, profile, diags)
+        if memory and result.analysis is not None and not diags.has_errors:
+            measure_memory(result.analysis, found, profile, diags)
     result.diagnostics = diags.items
     return result
 
@@ -147,7 +187,7 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
                  passes: str | None = None) -> FileResult:
     """Check one file and, when it has no errors, optimize its IR at `opt_level` (or run the
     comma-separated `passes`) and generate code for the target dialect."""
-    result = check_file(path, dialect, profile, text)
+    result = check_file(path, dialect, profile, text, memory=False)
     result.target = target or result.dialect
     analysis = result.analysis
     if analysis is None or analysis.module is None or result.has_errors:

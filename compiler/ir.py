@@ -332,9 +332,13 @@ class WaitInput:
 
 @dataclass(slots=True)
 class Print:
+    """Send text and values to the host. `axis` names the device that sends them when the line is
+    addressed to one (an MCode party address); empty for the device the program runs on."""
+
     items: tuple[Expr, ...]
     newline: bool = True
     span: Span | None = None
+    axis: str = ""
 
 
 @dataclass(slots=True)

@@ -95,6 +95,7 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("decel", Unit.STEPS_PER_S2),  # the deceleration in force
     Reading("input_pending"),  # 1 while a value typed for an INPUT statement is waiting (MCode IF)
     Reading("hmt_status"),  # the closed-loop (hMT) status bits (MCode AF)
+    Reading("locked_rotor"),  # 1 after a closed-loop drive detected a locked rotor (MCode LR)
 )}
 
 # SetHandler events: what makes the handler run.

@@ -83,7 +83,8 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
         return f"wait until {cond_text(op.cond)}"
     if isinstance(op, ir.Print):
         items = ", ".join(expr_text(item) for item in op.items)
-        return f"print {items}{'' if op.newline else ' no-newline'}"
+        device = f" on {op.axis}" if op.axis else ""
+        return f"print{device} {items}{'' if op.newline else ' no-newline'}"
     if isinstance(op, ir.DriveEnable):
         return f"enable {op.axis} = {expr_text(op.on)}"
     if isinstance(op, ir.Call):

@@ -3,7 +3,8 @@
 - `input.<ext>`: the program;
 - `expected.diag`: one diagnostic per line, `LINE:COLUMN CODE` (empty file: no diagnostics);
 - `expected.out` (optional): the compiled program, when the input compiles;
-- `expected.lst` (optional): the listing, source map included.
+- `expected.lst` (optional): the listing, source map included;
+- `profile.toml` (optional): the target profile to check against (default: the dialect's).
 
 Regenerate after an intended change with `MCC_UPDATE_GOLDEN=1 pytest tests/test_golden.py` and
 review the diff before committing it.
@@ -17,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from conftest import EXTENSIONS, GOLDEN, dialects_with
-from mcc.compiler import driver
+from mcc.compiler import driver, profiles
 
 UPDATE = os.environ.get("MCC_UPDATE_GOLDEN") == "1"
 
@@ -44,7 +45,9 @@ def check_or_update(path: Path, actual: str) -> None:
 def test_golden(case: Path) -> None:
     dialect = case.parent.name
     source = case / f"input{EXTENSIONS[dialect]}"
-    result = driver.compile_file(str(source), dialect)
+    profile_path = case / "profile.toml"
+    profile = profiles.load(str(profile_path)) if profile_path.exists() else None
+    result = driver.compile_file(str(source), dialect, profile=profile)
     for diag in result.diagnostics:
         assert diag.kind.value != "internal", diag.message
     check_or_update(case / "expected.diag", render_diags(result))

@@ -31,11 +31,20 @@ from mcc.compiler.arcus import modes
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
-__all__ = ["emit", "DIALECT"]
+__all__ = ["emit", "memory", "DIALECT"]
+
+MEMORY_CODES = ("A201", "A204", "A240")  # what `mcc check` reports of the cost model
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
     """Canonical Arcus standalone text and its assembly-level listing for an IR module."""
+    ctx, stmts, dispatched = program(module, profile)
+    return listing(ctx, stmts, dispatched)
+
+
+def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
+    """Passes 1-4: the program's statements in layout order (not yet priced), the context and
+    how many routines became dispatch loops."""
     ctx = Context(module, profile)
     moved = modes.changers(module, explicit_moves=True)
     ctx.number_subroutines()
@@ -58,7 +67,24 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
             main += code
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
-    return listing(ctx, stmts, dispatched)
+    return ctx, stmts, dispatched
+
+
+def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:
+    """Program memory as `mcc check` reports it: the program priced exactly as `emit` prices it
+    (the same passes and cost model), and the budget diagnostics only; the rest of what the backend
+    reports is about writing the listing and belongs to `mcc compile`."""
+    if not bool((profile.get("arcus.cost", {}) or {}).get("in_check", True)):
+        return {}, []  # the profile leaves memory to `mcc compile` (a faster check)
+    ctx, stmts, _ = program(module, profile)
+    config = ctx.config
+    total = costmodel.price(stmts, config)
+    costmodel.check_budget(ctx, stmts, total)  # the listing's text and rows are not needed here
+    usage = {"unit": "assembly lines", "used": total, "budget": config.budget,
+             "percent": round(costmodel.share(total, config), 1), "cost_model": config.model}
+    if config.gui_limit and config.gui_limit < config.budget:
+        usage["gui_limit"] = config.gui_limit
+    return usage, [d for d in ctx.diags if d.code in MEMORY_CODES]
 
 
 def compile_routine(ctx: Context, routine: ir.Routine, moved: set[str]) -> tuple[list, Span | None, bool]:

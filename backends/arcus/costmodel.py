@@ -6,7 +6,8 @@ estimate per statement kind (docs/arcus-cost-model.md has the calibration). The 
 numbered from 0 like the controller's program counter, each expanded into exactly as many listing
 rows as it costs (so the listing's row numbers are addresses) and mapped back to the source; a
 program over the budget is an error (A201) that names the model, the budget, the count and the
-costliest source lines, and one close to it a warning (A204).
+costliest source lines, and one close to it a warning (A204). Near or over the Windows software's
+lower limit of compiled lines (`gui_limit`, 1785, L1079) is a warning (A240).
 """
 
 from __future__ import annotations
@@ -97,7 +98,25 @@ def header(ctx: Context, total: int, statements: int) -> str:
     ])
 
 
+def check_gui_limit(ctx: Context, total: int) -> None:
+    """The second limit: the Arcus Windows software compiles at most 1785 lines (L1079), below the
+    controller's 3230 (L827). It applies only to programs downloaded with that software, so it is a
+    warning (A240) near or over it; a profile whose budget is already that limit does not repeat it."""
+    config = ctx.config
+    limit = config.gui_limit
+    if not limit or (config.budget and (limit >= config.budget or total > config.budget)) \
+            or total <= config.warn_fraction * limit:
+        return  # no second limit, or the budget's own A201 already says more
+    where = "over" if total > limit else "close to"
+    ctx.diags.add("A240", ctx.file_span(),
+                  f"the program needs {total} assembly lines under the cost model '{config.model}', {where} the "
+                  f"{limit} compiled lines the Arcus Windows software accepts (L1079; the controller holds "
+                  f"{config.budget}, L827): download it with another tool, shorten it, or set "
+                  "`[arcus.cost] gui_limit = 0` if you do not use that software")
+
+
 def check_budget(ctx: Context, stmts: list[Stmt], total: int) -> None:
+    check_gui_limit(ctx, total)
     config = ctx.config
     if not config.budget:
         return

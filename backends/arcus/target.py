@@ -26,6 +26,7 @@ class Config:
     model: str
     calibrated: bool
     warn_fraction: float
+    gui_limit: int  # the Windows software's limit on compiled lines (L1079); 0: not checked
     costs: dict[str, int]
     default_cost: int
     temporaries: list[int]
@@ -43,6 +44,7 @@ class Config:
         return cls(budget=int(cost.get("budget", 3230)), model=str(cost.get("model", "h-estimate")),
                    calibrated=bool(cost.get("calibrated", False)),
                    warn_fraction=float(cost.get("warn_fraction", 0.9)),
+                   gui_limit=int(cost.get("gui_limit", 1785)),
                    costs={str(k).upper(): int(v) for k, v in (cost.get("statements") or {}).items()},
                    default_cost=int(cost.get("default", 1)), temporaries=temps,
                    sub_range=(int(rng[0]), int(rng[1])),

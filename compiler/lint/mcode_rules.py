@@ -188,16 +188,8 @@ def missing_return(ctx: Context) -> None:
                                          f"{line_of(term.span)}) without RT: add RT before that label")
 
 
-@rule("M323", MCODE)
-def falls_into_subroutine(ctx: Context) -> None:
-    for routine in ctx.module.routines:
-        if routine.kind not in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP):
-            continue
-        for block, label, target, fallthrough in flow.foreign_jumps(ctx.module, routine):
-            if fallthrough and target.kind in SUBROUTINE_KINDS and block in flow.reachable(routine):
-                ctx.report(block.terminator.span,
-                           f"the program {routine.name} runs on into {target.kind.value} {label} without E: its RT "
-                           "returns with no call on the stack; end the program with E (or BR back to its loop)")
+# M323 (the program runs on into a subroutine) is a check of the frontend since issue 12, so that
+# `mcc check` reports it too: compiler/mcode/checks.py, check_fall_into_subroutine.
 
 
 # M303 / M317 / M322 / M315 / M319 / M318 — trips -------------------------------------------------

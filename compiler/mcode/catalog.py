@@ -7,6 +7,7 @@ mcode-legacy.toml (commands of the older MDrivePlus/MForce family), expands inde
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -52,6 +53,7 @@ class Command:
     name: str
     entry: generic.Entry
     index: int | None = None
+    derived: tuple[str, ...] = ()  # derived products that have it too ([derived_products])
 
     @property
     def kind(self) -> str:
@@ -75,7 +77,7 @@ class Command:
 
     @property
     def products(self) -> tuple[str, ...]:
-        return tuple(self.entry.products or ())
+        return tuple(self.entry.products or ()) + self.derived
 
     @property
     def values(self) -> tuple[Any, ...] | None:
@@ -124,31 +126,68 @@ class McodeCatalog:
     legacy: dict[str, Legacy]
     products: dict[str, str]
     functions: dict[str, Command]
+    increment_groups: frozenset[str] = frozenset()  # [increment] groups: what IC/DC may step
 
     def lookup(self, name: str) -> Command | None:
         return self.commands.get(name.upper())
 
-    def is_reserved(self, name: str) -> bool:
+    def steppable(self, command: Command) -> bool:
+        """Whether IC/DC may step a factory variable (not a mode or configuration one, Error 26)."""
+        return command.kind == VARIABLE and command.values is None and \
+            command.entry.get("group", "") in self.increment_groups
+
+    def is_reserved(self, name: str, firmware: str = "") -> bool:
+        """Whether `name` is an MCode name on a target running `firmware` ("" = the newest)."""
         upper = name.upper()
-        return upper in self.commands or upper in self.functions
+        return upper in self.commands or self.target_function(upper, firmware) is not None
+
+    def target_function(self, name: str, firmware: str = "") -> Command | None:
+        """The function `name` if the target's firmware has it. The math functions came with firmware
+        6.0.01: programs for older MDrive firmware use AB, LO, ... as plain names (`VA LO=12200`)."""
+        function = self.functions.get(name.upper())
+        version = firmware_tuple(firmware)
+        if function is None or not function.firmware or not version:  # no version given: the newest
+            return function
+        return function if version >= firmware_tuple(function.firmware) else None
+
+
+def firmware_tuple(text: str) -> tuple[int, ...]:
+    """'6.0.01' -> (6, 0, 1): firmware versions compare part by part."""
+    return tuple(int(part) for part in re.findall(r"\d+", text))
+
+
+def derived_products(entry: generic.Entry, rules: dict[str, Any]) -> tuple[str, ...]:
+    """The derived products that have `entry`: those `like` a product listed, and those whose
+    `groups` give the entry's group to a product listed."""
+    listed = set(entry.products or ())
+    if not listed:
+        return ()
+    found = []
+    for code, rule in rules.items():
+        group_base = (rule.get("groups") or {}).get(entry.get("group", ""))
+        if rule.get("like") in listed or group_base in listed:
+            found.append(code)
+    return tuple(c for c in found if c not in listed)
 
 
 @lru_cache(maxsize=1)
 def load() -> McodeCatalog:
     cat = generic.load("mcode")
+    rules = dict(cat.table("derived_products"))
     commands: dict[str, Command] = {}
     functions: dict[str, Command] = {}
     for entry in cat.entries:
         index = entry.get("index")
         if entry.kind == OPERATOR:
             continue
+        derived = derived_products(entry, rules)
         if isinstance(index, list) and len(index) == 2:
             for i in range(int(index[0]), int(index[1]) + 1):
                 name = f"{entry.name.upper()}{i}"
-                commands[name] = Command(name, entry, i)
+                commands[name] = Command(name, entry, i, derived)
         else:
             name = entry.name.upper()
-            command = Command(name, entry)
+            command = Command(name, entry, None, derived)
             if entry.kind == FUNCTION:
                 functions[name] = command
             else:
@@ -157,4 +196,5 @@ def load() -> McodeCatalog:
     legacy = {raw["name"].upper(): Legacy(raw["name"].upper(), raw["family"], raw["summary"], raw["lexium"],
                                           raw.get("io_point"))
               for raw in legacy_raw.get("legacy", [])}
-    return McodeCatalog(commands, legacy, dict(cat.table("products")), functions)
+    return McodeCatalog(commands, legacy, dict(cat.table("products")), functions,
+                        frozenset(cat.table("increment").get("groups", ())))

@@ -1,4 +1,5 @@
-"""Whole-program checks of an MCode file: labels, user names, VI/VM, line length.
+"""Whole-program checks of an MCode file: labels, user names, VI/VM, line length, a program that
+runs on into a subroutine.
 
 Per-statement checks (unknown commands, arguments, ranges, modes, products) happen while resolving
 statements (resolve.py); these need the whole file.
@@ -43,9 +44,13 @@ def check_user_names(lowering: Lowering, diags: Diagnostics) -> None:
         for key, node in table.items():
             if key == "SU" and kind == "label":
                 continue
-            if cat.is_reserved(key) or key in cat.legacy:
+            if cat.is_reserved(key, profile.firmware) or key in cat.legacy:
                 entry = cat.lookup(key) or cat.functions.get(key)
                 what = f"the MCode {entry.kind} {key} ({entry.entry.title})" if entry else f"the command {key}"
+                if entry is not None and entry.kind == "function" and entry.firmware:
+                    targets = profile.firmware or "the newest"
+                    what += (f" from firmware {entry.firmware} on (the profile targets {targets}; on older "
+                             "firmware it is a plain name: use a profile with `firmware = \"5.0\"`, see docs/PROFILES.md)")
                 diags.add("M104", node.span, f"{kind} name {node.text} is {what}: user names must not be "
                                              "MCode names; choose another")
             elif not pattern.match(node.text):
@@ -119,3 +124,43 @@ def diags_error():
     from mcc.compiler.diagnostics import Severity
 
     return Severity.ERROR
+
+
+def check_fall_into_subroutine(lowering: Lowering, diags: Diagnostics) -> None:
+    """The main (or SU) program runs past its last line into a subroutine or handler: its RT then
+    returns with no call on the stack (L8489). Reported by `mcc check` (M323), not only by lint.
+
+    The lowering joins one label's code to the next label's with a Jump carrying the span of the
+    `LB` it runs into (the target block's own span); a written `BR` carries its own span."""
+    module = lowering.module
+    owner = {block.label: (routine, block) for routine in module.routines for block in routine.blocks}
+    for routine in module.routines:
+        if routine.kind not in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP) or routine.entry is None:
+            continue
+        for block in reachable(routine):
+            term = block.terminator
+            if not isinstance(term, ir.Jump) or term.target not in owner:
+                continue
+            target_routine, target = owner[term.target]
+            if target_routine is routine or target_routine.kind not in (ir.RoutineKind.SUBROUTINE,
+                                                                        ir.RoutineKind.HANDLER):
+                continue
+            if term.span is None or term.span != target.span:
+                continue  # a written BR into a subroutine is another matter (M302 and friends)
+            diags.add("M323", term.span,
+                      f"the program {routine.name} runs on into {target_routine.kind.value} {target.label} "
+                      "without E: its RT returns with no call on the stack; end the program with E (or BR "
+                      "back to its loop)")
+
+
+def reachable(routine: ir.Routine) -> list[ir.Block]:
+    """The routine's blocks reachable from its entry, in routine order."""
+    blocks = {block.label: block for block in routine.blocks}
+    seen = {routine.entry.label}
+    todo = [routine.entry]
+    while todo:
+        for label in ir.successors(todo.pop().terminator):
+            if label in blocks and label not in seen:
+                seen.add(label)
+                todo.append(blocks[label])
+    return [block for block in routine.blocks if block.label in seen]

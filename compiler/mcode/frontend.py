@@ -19,4 +19,5 @@ def analyze(source: SourceFile, profile: Profile) -> Analysis:
     checks.check_user_names(lowering, diags)
     checks.check_speeds(lowering, diags)
     checks.check_line_lengths(source, tree, lowering, diags)
+    checks.check_fall_into_subroutine(lowering, diags)
     return Analysis(source, tree, module, diags)

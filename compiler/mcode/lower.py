@@ -39,7 +39,7 @@ READINGS = {"set_position": "position", "counter": "position", "encoder": "encod
             "error_code": "error", "stalled": "stalled", "accel": "accel", "decel": "decel",
             "max_speed": "max_speed", "initial_speed": "initial_speed", "analog_input": "analog",
             "input_pending": "input_pending", "hmt_status": "hmt_status",
-            "moving_to_position": "moving_to_position"}
+            "moving_to_position": "moving_to_position", "locked_rotor": "locked_rotor"}
 # Settings with a neutral name (ir_names.SETTINGS): catalog `ir` kind -> (setting, factor to IR units).
 SETTINGS = {"error_code": ("error_code", 1, ir.Unit.NONE), "run_current": ("run_current", 1, ir.Unit.PERCENT),
             "hold_current": ("hold_current", 1, ir.Unit.PERCENT),
@@ -143,6 +143,12 @@ class Lowering:
                 target = arg.left if isinstance(arg, st.Comparison) else arg
                 if var and isinstance(target, st.Name) and var not in names.variables:
                     names.variables[var] = target
+                elif var and isinstance(target, st.Name) and names.variables.get(var) is not target:
+                    first = names.variables[var]
+                    self.diags.add("M141", target.span,
+                                   f"VA {target.text} again: {first.text} is already declared at line "
+                                   f"{first.span.line}, and the device refuses to redefine a user variable "
+                                   f"(Error 28, L8472): set it with `{target.text}=value` instead")
             ir_kind = command.ir
             if ir_kind in ("call", "branch", "execute") or name in ("BP", "L", "CP"):
                 target = res.args[0] if res.args else None
@@ -355,8 +361,9 @@ class Lowering:
 
     def op(self, res: Resolved, in_program: bool):
         op = self.neutral_op(res, in_program)
-        if res.party and op is not None and not isinstance(op, (list, ir.Move)) and not hasattr(op, "axis") \
-                and res.command is not None:
+        native_read = op is not None and not isinstance(op, (list, ir.Native)) and reads_register(op)
+        if (native_read or res.party and op is not None and not isinstance(op, (list, ir.Move))
+                and not hasattr(op, "axis")) and res.command is not None:
             # A party prefix addresses the statement to one device; an operation without an axis
             # would lose it, so the statement stays native with the prefix as its axis.
             return ir.Native(DIALECT, res.command.name, tuple(self.native_arg(res.command, a) for a in res.args),
@@ -415,7 +422,7 @@ class Lowering:
             for arg in args:  # a text and the item glued to it (comma missing) are two items
                 items += [self.item(arg.first), self.item(arg.second)] if isinstance(arg, st.Juxtaposed) \
                     else [self.item(arg)]
-            return ir.Print(tuple(items), newline=stmt.suffix != ";", span=span)
+            return ir.Print(tuple(items), newline=stmt.suffix != ";", span=span, axis=res.party)
         if kind == "call" and args:
             cond = self.cond(args[1]) if len(args) > 1 else None
             return ir.Call(self.target_label(args[0]), cond, span)
@@ -557,6 +564,12 @@ class Lowering:
             return units.typed_compare(ir.Compare(COMPARE_OPS.get(node.op, node.op), self.expr(node.left),
                                                   self.expr(node.right), node.span))
         return ir.Truth(self.expr(node), node.span)
+
+
+def reads_register(op) -> bool:
+    """Whether an operation reads a register with no neutral meaning (kept in MCode's spelling):
+    then the whole statement stays Native, so the dialect's spelling never leaks into the IR."""
+    return any(isinstance(node, ir.DeviceRef) for expr in ir.op_exprs(op) for node in ir.walk_expr(expr))
 
 
 def first_node_key(node: st.Node) -> str:

@@ -22,7 +22,7 @@ GRAMMAR = Path(__file__).resolve().parent.parent.parent / "grammars" / "mcode.la
 TOKEN_NAMES = {
     "WORD": "a name", "NUMBER": "a number", "STRING": "a string", "COMMENT": "a comment",
     "_NL": "the end of the line", "$END": "the end of the file", "COMMA": "','", "EQUAL": "'='",
-    "BINOP": "an operator", "RELOP": "a comparison", "MINUS": "'-'", "FUNC": "a function",
+    "BINOP": "an operator", "RELOP": "a comparison", "MINUS": "'-'",
     "PARTY_ALL": "'*'", "PARTY_QUEUED": "'^'", "PARTY_DEFAULT": "'!'",
 }
 
@@ -117,7 +117,19 @@ class Builder(recovery.PositionedBuilder):
         left, op, right = children
         return st.Binary(str(op), left, right, left.span.to(right.span))
 
-    binary = minus = xor = times = bang = _binary
+    binary = xor = times = bang = _binary
+
+    def minus(self, children):
+        """`AB -12` is the function AB of -12 (spaced like a prefix operand), `R2-5` and `R2 - 5` are a
+        subtraction. The grammar cannot tell them apart by tokens (no word is reserved for functions),
+        so the spacing of a function name decides (docs/dialects/mcode.md)."""
+        left, op, right = children
+        op_span = self.span(op)
+        if isinstance(left, st.Name) and left.key in function_names() and left.span.end < op_span.start \
+                and op_span.end == right.span.start:
+            operand = st.Unary("-", right, op_span.to(right.span))
+            return st.FuncCall(left.key, operand, left.span.to(right.span))
+        return self._binary(children)
 
     def neg(self, children):
         op, operand = children
@@ -136,6 +148,13 @@ class Builder(recovery.PositionedBuilder):
 
     def name(self, children):
         return st.Name(str(children[0]), self.span(children[0]))
+
+
+@lru_cache(maxsize=1)
+def function_names() -> frozenset[str]:
+    from mcc.compiler.mcode import catalog
+
+    return frozenset(catalog.load().functions)
 
 
 @lru_cache(maxsize=1)

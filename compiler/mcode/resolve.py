@@ -286,7 +286,16 @@ class Resolver:
             if isinstance(arg, st.Name):
                 upper = arg.key
                 command_ref = self.cat.commands.get(upper)
-                if upper in self.names.variables or (command_ref and command_ref.writable):
+                if upper in self.names.variables:
+                    return True
+                if command_ref and command_ref.writable and command.name in ("IC", "DC") \
+                        and not self.cat.steppable(command_ref):
+                    self.diags.add("M140", arg.span,
+                                   f"{arg.text} is a mode or configuration {command_ref.kind} ({command_ref.entry.title}): "
+                                   f"{command.name} of it is refused with Error 26 (L3375); set it with "
+                                   f"`{arg.text}=value`")
+                    return False
+                if command_ref and command_ref.writable:
                     return True
                 if command_ref is not None:
                     self.diags.add("M107", arg.span, f"{arg.text} is read-only and cannot be changed by {command.name}")
@@ -345,8 +354,14 @@ class Resolver:
             return self.check_value(node.left, kind) & self.check_value(node.right, kind)
         if isinstance(node, st.FuncCall):
             command = self.cat.functions.get(node.name)
-            if command is not None:
+            if command is not None and command.entry.get("arity", 1) != 0:
                 self.check_product_of(command, node.span)
+            else:
+                functions = " ".join(sorted(n for n, f in self.cat.functions.items() if f.entry.get("arity", 1)))
+                self.diags.add("M119", node.span, f"{node.name} is not an MCode function ({functions}), so "
+                                                  "two values stand side by side: put an operator between them")
+                self.check_value(node.operand, kind)
+                return False
             return self.check_value(node.operand, kind)
         if isinstance(node, st.Comparison):
             self.diags.add("M119", node.span, "a comparison is only allowed as the condition of BR or CL")
@@ -358,18 +373,26 @@ class Resolver:
 
     def check_product_of(self, command: cat.Command, span) -> None:
         if command.firmware and self.firmware and self.firmware < firmware_tuple(command.firmware):
-            self.diags.add("M115", span, f"{command.name} needs firmware {command.firmware} or later")
+            self.diags.add("M115", span, f"{command.name} needs firmware {command.firmware} or later; the profile "
+                                         f"targets {self.profile.firmware}")
 
     def check_read(self, name: st.Name) -> bool:
         upper = name.key
         if upper in self.names.variables:
             return True
-        command = self.cat.commands.get(upper) or self.cat.functions.get(upper)
+        command = self.cat.commands.get(upper) or self.cat.target_function(upper, self.profile.firmware)
         if command is not None:
+            if command.kind == cat.FUNCTION and command.entry.get("arity", 1) == 0:
+                return True  # PI: a constant
             if command.kind == cat.FUNCTION:
-                return True
+                self.diags.add("M119", name.span, f"{command.name} is the {command.entry.title.lower()} function "
+                                                  f"from firmware {command.firmware} on (the profile targets "
+                                                  f"{self.profile.firmware or 'the newest'}): it needs a value, "
+                                                  f"`{command.name} P`; for a program written for older firmware "
+                                                  "use a profile with its `firmware` (docs/PROFILES.md)")
+                return False
             if command.kind in (cat.VARIABLE, cat.FLAG, cat.KEYWORD) and command.readable:
-                return True
+                return self.check_read_available(command, name)
             if command.kind in (cat.VARIABLE, cat.FLAG):
                 self.diags.add("M119", name.span, f"{command.name} is write-only and cannot be read")
                 return False
@@ -380,6 +403,21 @@ class Resolver:
             return False
         self.diags.add("M117", name.span, f"{name.text} is not declared: declare it with `VA {name.text}`")
         return False
+
+    def check_read_available(self, command: cat.Command, name: st.Name) -> bool:
+        """Reading a variable or flag the product or firmware lacks is Error 37 too, like writing it."""
+        products = command.products
+        if products and self.product not in products:
+            names = ", ".join(self.cat.products.get(p, p) for p in products)
+            self.diags.add("M114", name.span,
+                           f"{command.name} cannot be read on {self.cat.products.get(self.product, self.product)} "
+                           f"(profile '{self.profile.name}'): the device answers Error 37; it exists on: {names}")
+            return False
+        if command.firmware and self.firmware and self.firmware < firmware_tuple(command.firmware):
+            self.diags.add("M115", name.span, f"{command.name} needs firmware {command.firmware} or later; the "
+                                              f"profile targets {self.profile.firmware}")
+            return False
+        return True
 
     def check_range(self, node: st.Node, rng, values, what: str, unit: str) -> None:
         value = constant_value(node)

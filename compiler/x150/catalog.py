@@ -75,6 +75,15 @@ class Command:
         return self.entry.range
 
     @property
+    def intervals(self) -> tuple[tuple[Any, Any], ...] | None:
+        """The allowed values as closed intervals: `ranges` when the catalog gives a union (a range
+        with a hole, "0, or 0.060 up"), else the one `range`."""
+        union = self._get("ranges", None)
+        if isinstance(union, list) and union:
+            return tuple((low, high) for low, high in union)
+        return (tuple(self.range),) if self.range is not None else None
+
+    @property
     def values(self) -> tuple[Any, ...] | None:
         vals = self._get("values", None)
         return tuple(vals) if isinstance(vals, list) else None
@@ -119,10 +128,10 @@ class Command:
         values = self.values
         if values is not None:
             return value in values
-        if self.range is None:
+        intervals = self.intervals
+        if intervals is None:
             return True
-        low, high = self.range
-        return low <= value <= high
+        return any(low <= value <= high for low, high in intervals)
 
 
 @lru_cache(maxsize=None)

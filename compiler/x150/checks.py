@@ -15,6 +15,7 @@ from mcc.compiler.diagnostics import Diagnostics, Edit, Fix, Severity
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 from mcc.compiler.x150 import catalog as cat
+from mcc.compiler.x150 import naming
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.lower import OPENERS, Lowering, Site
 from mcc.compiler.x150.structure import Unit
@@ -48,6 +49,7 @@ class Checker:
         low, high = profile.get("limits.addresses", [1, 16])
         self.addresses = (int(low), int(high))
         self.nesting = lowering.nesting
+        self.memory: dict = {}  # sequence memory, for `mcc check --format json` and the editor
 
     def run(self) -> None:
         for unit in self.lowering.units:
@@ -163,9 +165,9 @@ class Checker:
     def describe_range(self, info: cat.Command) -> str:
         if info.values is not None:
             return "one of " + ", ".join(str(v) for v in info.values)
-        low, high = info.range
+        parts = [str(low) if low == high else f"{low} to {high}" for low, high in info.intervals]
         special = f" (or {', '.join(str(s) for s in info.special)})" if info.special else ""
-        return f"{low} to {high}" + (f" {info.entry.unit}" if info.entry.unit else "") + special
+        return ", or ".join(parts) + (f" {info.entry.unit}" if info.entry.unit else "") + special
 
     def check_sequence_number(self, command: st.Command, arg: st.Number) -> None:
         info = command.info
@@ -315,7 +317,8 @@ class Checker:
                                f"{needed} as its first command, or close the IF before jumping")
 
     def check_call_nesting(self) -> None:
-        """The device's construct and call stacks are shared by a sequence and those it calls (L1750, L5140)."""
+        """Sequence calls nest at most 16 deep (L1750, L5140: X110). That the construct stacks are shared
+        by a sequence and the sequences it calls is mcc's inference, reported as the warning X140."""
         limit = self.nesting
         kinds = tuple(OPENERS.values())
         local = self.lowering.max_depth
@@ -357,10 +360,13 @@ class Checker:
             total = context.get(kind, 0) + depth
             if total > limit and (target, kind) not in reported:
                 reported.add((target, kind))
-                self.diags.add("X110", site.command.span,
+                self.diags.add("X140", site.command.span,
                                f"{site.command.text} runs sequence {site.number}, which opens {kind} {depth} deep, "
-                               f"while {context[kind]} are already open: {total} > {limit} "
-                               "(the controller's nesting is shared across XR calls)")
+                               f"while {context[kind]} are already open: {total} > {limit} if the controller "
+                               "counts a called sequence's constructs with its caller's. This is inferred, not "
+                               f"stated: the manual limits {kind} nesting to {limit} (L2011, L2332, L3441, L4849) "
+                               "and sequence calls to 16 (L1750, L5140), but not the two together; move loops out "
+                               "of the called sequence to be safe, or ignore X140 if your controller runs it")
 
     def check_memory(self) -> None:
         lowering = self.lowering
@@ -369,6 +375,14 @@ class Checker:
         ratio = float(self.profile.get("x150.buffer_warn_ratio", 0.9))
         latest: dict[tuple[int, int | None], tuple[Unit, int]] = {}
         sizes = sequence_sizes(lowering.module, self.profile)
+        per_device: dict[str, int] = {}
+        for name, size in sizes.items():
+            device = naming.device_of(name)
+            key = str(device) if device is not None else "*"
+            per_device[key] = per_device.get(key, 0) + size
+        self.memory = {"unit": "bytes", "used": max(per_device.values(), default=0), "budget": store,
+                       "by_device": per_device, "command_buffer": buffer,
+                       "largest_sequence": max(sizes.values(), default=0)}
         for unit, routine in zip(lowering.units, lowering.module.routines):
             if not unit.is_sequence or unit.start is None:
                 continue
@@ -379,20 +393,30 @@ class Checker:
                 self.diags.add("X124", unit.start.span,
                                f"sequence {unit.number} is {size} bytes, {over} the {buffer}-byte command buffer it is "
                                "downloaded through (L241, L4904): split it into sequences that call each other")
+        store_ratio = float(self.profile.get("x150.store_warn_ratio", 0.9))
         devices = sorted({address for _, address in latest if address is not None})
         for device in devices or [None]:
             total = 0
+            last = None
+            who = f"device {device}" if device is not None else "each device"
             for (number, address), (unit, size) in sorted(latest.items(), key=lambda kv: kv[1][0].start.span.start):
                 if address is not None and address != device:
                     continue
                 total += size
+                last = (number, unit)
                 if total > store:
-                    who = f"device {device}" if device is not None else "each device"
                     self.diags.add("X123", unit.start.span,
                                    f"with sequence {number} the sequences for {who} need {total} bytes; the sequence "
                                    f"store holds {store} (L4871, 1 byte per character and delimiter, L241): shorten "
                                    "or remove sequences")
                     break
+            else:
+                if last is not None and total > store_ratio * store:
+                    number, unit = last
+                    self.diags.add("X141", unit.start.span,
+                                   f"the sequences for {who} need {total} of the {store} bytes of the sequence store "
+                                   f"({100 * total / store:.1f} %, L4871): little room is left for changes; the "
+                                   "count assumes 1 byte per character and delimiter (L241)")
 
 
 def upper_outside_quotes(text: str) -> str:
@@ -423,5 +447,8 @@ def variables(arg) -> list[st.VarRef]:
     return []
 
 
-def run(lowering: Lowering, profile: Profile, diags: Diagnostics) -> None:
-    Checker(lowering, profile, diags).run()
+def run(lowering: Lowering, profile: Profile, diags: Diagnostics) -> dict:
+    """Every whole-program check; returns the sequence memory used (empty when not measured)."""
+    checker = Checker(lowering, profile, diags)
+    checker.run()
+    return checker.memory

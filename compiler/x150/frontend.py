@@ -15,5 +15,5 @@ def analyze(source: SourceFile, profile: Profile) -> Analysis:
     tree = parser.parse(source, diags)
     lowering = Lowering(tree, profile, diags)
     module = lowering.run()
-    checks.run(lowering, profile, diags)
-    return Analysis(source, tree, module, diags)
+    memory = checks.run(lowering, profile, diags)
+    return Analysis(source, tree, module, diags, memory)

@@ -193,6 +193,11 @@ class Lowering:
         self.close_all(end, "XT" if unit.is_sequence else "the end of the stream")
         if self.block.terminator is None:
             self.block.terminator = ir.FallOff(unit.end.span if unit.end is not None else self.block.span)
+        if unit.is_sequence and unit.start is not None and unit.end is not None:
+            # a sequence's span is its whole definition, XEn (when sent) through XT, so the listing
+            # maps XE and XT to their own lines even when XT follows an XG (the entry block keeps XD's)
+            first = unit.erase.span if unit.erase is not None else unit.start.span
+            self.routine.span = first.to(unit.end.span)
 
     def label(self) -> str:
         self.generated += 1

@@ -143,7 +143,7 @@ class Structurer:
         if then != i + 1 or other <= i or other > stop:
             raise Unstructured("a conditional branch that is not an IF(...) ... NIF", span)
         if then == other:
-            self.steps += [Step("IF", term.cond, span), Step("NIF", None, span)]
+            self.steps += [Step("IF", term.cond, span), Step("NIF", None, self.closing_span(other, span))]
             return other
         last = self.blocks[other - 1].terminator
         join = other
@@ -157,10 +157,16 @@ class Structurer:
         self.steps.append(Step("IF", term.cond, span))
         self.region(then, other, join_label, None)
         if has_else:
-            self.steps.append(Step("ELSE", None, span))
+            self.steps.append(Step("ELSE", None, getattr(last, "span", None) or span))
             self.region(other, join, join_label, None)
-        self.steps.append(Step("NIF", None, span))
+        self.steps.append(Step("NIF", None, self.closing_span(join, span)))
         return join
+
+    def closing_span(self, join: int, span):
+        """Where an IF ends: the block after NIF starts at the NIF (X150 lowering), else the jump into it."""
+        if join < len(self.blocks) and self.blocks[join].span is not None:
+            return self.blocks[join].span
+        return getattr(self.blocks[join - 1].terminator, "span", None) or span
 
     def loop(self, head: int, back: list[int], stop: int) -> int:
         latch = max(back)
@@ -173,7 +179,7 @@ class Structurer:
         counter = counter_test(term)
         if counter is not None and term.then == block.label:
             self.expect(term.otherwise, after, span)
-            self.steps.append(Step("L", self.counts.get(counter), span))
+            self.steps.append(Step("L", self.counts.get(counter), block.span or span))
             self.region(head, after, None, latch, skip_head=head)
             self.steps.append(Step("N", None, span))
             return after

@@ -163,8 +163,9 @@ class Writer:
             if not 1 <= n <= 64:
                 self.out.diagnostics.add("X203", routine.span or self.fallback_span(),
                                          f"routine {routine.name} needs a sequence number, but all 64 are in use")
-            self.emit(f"{prefix}XE{n}", routine.span, stored=False)
-            self.emit(f"{prefix}XD{n}", routine.span, stored=False)
+            first, _ = ends(routine.span)
+            self.emit(f"{prefix}XE{n}", first, stored=False)
+            self.emit(f"{prefix}XD{n}", getattr(routine.entry, "span", None) or first, stored=False)
         try:
             steps = Structurer(routine, self.entries).run()
         except Unstructured as exc:
@@ -176,8 +177,16 @@ class Writer:
         for step in steps:
             self.write_step(step)
         if self.in_sequence:
-            end = routine.blocks[-1].terminator if routine.blocks else None
-            self.emit(f"{prefix}XT", getattr(end, "span", None) or routine.span)
+            self.emit(f"{prefix}XT", self.definition_end(routine))
+
+    def definition_end(self, routine: ir.Routine) -> Span | None:
+        """The source of XT: the end of an X150 sequence's definition span (XEn..XT), else the last
+        terminator (a routine of another dialect ends where its last statement is)."""
+        span = routine.span
+        if span is not None and span.end_line > span.line:
+            return ends(span)[1]
+        end = routine.blocks[-1].terminator if routine.blocks else None
+        return getattr(end, "span", None) or span
 
     def fallback_span(self) -> Span:
         return Span(self.module.path or "<module>", 1, 1, 1, 1)

@@ -76,7 +76,8 @@ def test_program_just_under_the_budget_compiles() -> None:
     result = compile_text(program_of(3229))  # 3230 assembly lines: exactly the budget
     assert not result.has_errors
     assert result.listing.stats["asm_lines"] == 3230
-    assert [d.code for d in result.diagnostics] == ["A204"]  # near the budget: a warning only
+    # near the budget, and over the Windows software's 1785 lines: warnings only
+    assert sorted(d.code for d in result.diagnostics) == ["A204", "A240"]
 
 
 def test_the_gui_profile_has_the_1785_line_budget() -> None:

@@ -9,7 +9,7 @@ import pytest
 from mcc.compiler import driver, profiles
 from mcc.compiler.diagnostics import Diagnostic
 
-from x150_helpers import check, codes, src
+from x150_helpers import check, codes, compile_, src
 
 PROFILES = ["x150-blhx", "x150-pdhx", "x150-x150ds", "x150e-bdhxe", "x150e-pdhxe"]
 
@@ -151,3 +151,13 @@ def test_pathological_inputs_never_raise():
         for result in (check(text), driver.compile_file("p.x150", "x150", text=text)):
             assert not [d for d in result.diagnostics if d.kind.value == "internal"]
     assert "X110" in codes(deep) and "X111" in codes(wide)
+
+
+def test_nesting_summed_across_calls_is_an_inferred_warning_not_an_error() -> None:
+    loops = lambda n: "\n".join(["1L2"] * n)  # noqa: E731
+    ends = lambda n: "\n".join(["1N"] * n)  # noqa: E731
+    text = f"1XE2\n1XD2\n{loops(8)}\n1G\n{ends(8)}\n1XT\n1XE1\n1XD1\n{loops(10)}\n1XR2\n{ends(10)}\n1XT\n1XR1\n"
+    found = [d for d in check(text).diagnostics if d.code == "X140"]
+    assert len(found) == 1 and found[0].severity.value == "warning"
+    assert "inferred" in found[0].message and "L1750" in found[0].message
+    assert compile_(text).listing is not None  # a warning: the program still compiles

@@ -1,0 +1,26 @@
+; PMX-2ED standalone program with two PRG blocks and variables above V63
+PRG 0
+HSPD=20000
+LSPD=500
+ACC=300
+EO=1
+V10=0
+V70=0
+WHILE V10<5
+  X10000
+  WAITX
+  Y5000
+  WAITY
+  V10=V10+1
+  V70=V70+V10
+ENDWHILE
+V80=DI1
+IF V80=1
+  DO=1
+ENDIF
+END
+PRG 1
+V99=0
+X0
+WAITX
+END
