@@ -97,14 +97,22 @@ class Version:
         analysis = self.result.analysis
         return analysis.module if analysis is not None else None
 
+    @property
+    def errors(self) -> list[str]:
+        """The codes of the errors, in order: what `mcc check` would reject the text for."""
+        return sorted(d.code for d in self.result.diagnostics if d.severity.value == "error")
+
 
 def fix_is_safe(before: Version, after: Version) -> bool:
     """Whether `after` provably does what `before` does, so the change may be applied as safe.
 
     - When `before` compiles, `after` must compile to the identical device program.
     - When `before` has errors (nothing can be compiled), the IR of both must be equal, positions
-      ignored, as `mcc fmt` requires: then a fix that removes an error removed a problem of
-      form, not of meaning. A text that does not even lower is never proved.
+      ignored, as `mcc fmt` requires, and the errors must be the same codes: a statement with an
+      error is left out of the IR, so deleting or rewriting it would look like no change at all.
+      A fix that removes an error is therefore never safe: it changes a program the device would
+      reject, or run in a way mcc cannot tell, into one it accepts. A text that does not even
+      lower is never proved.
 
     The integrator adds the simulator here: once `mcc.sim` exists, the traces of `before` and
     `after` (the same inputs, the same run) must be equal as well.
@@ -116,7 +124,7 @@ def fix_is_safe(before: Version, after: Version) -> bool:
         return False
     from mcc.compiler.ir_compare import equivalent
 
-    return equivalent(before.module, after.module)
+    return before.errors == after.errors and equivalent(before.module, after.module)
 
 
 def key(fix: Fix) -> tuple:
