@@ -206,3 +206,22 @@ def test_a_million_digit_x150_number(tmp_path: Path) -> None:
     path.write_text("1" * 5000 + "G\n1V" + "9" * 5000 + "\n")  # long numbers on lines the checks still read
     result = run_mcc("check", str(path))
     assert result.returncode == 1 and "G001" not in result.stdout and "Traceback" not in result.stderr
+
+
+@pytest.mark.parametrize("args", [["check", "--profile"], ["compile", "--profile"], ["lint", "--config"],
+                                  ["fmt", "--config"]])
+def test_a_fifo_as_profile_or_configuration_is_an_error_not_a_hang(tmp_path: Path, args: list[str]) -> None:
+    source = tmp_path / "p.mxt"
+    source.write_text(PROGRAM)
+    fifo = tmp_path / "settings.toml"
+    os.mkfifo(fifo)
+    result = run_mcc(*args, str(fifo), str(source))
+    assert result.returncode == 2 and "FIFO" in result.stderr, result
+
+
+def test_one_file_named_twice_is_fixed_once(tmp_path: Path) -> None:
+    real = tmp_path / "p.mxt"
+    real.write_text(FIXABLE)
+    (tmp_path / "link.mxt").symlink_to(real.name)
+    result = run_mcc("lint", "--fix", str(real), str(tmp_path / "link.mxt"), str(tmp_path))
+    assert "in 1 file." in result.stdout and real.read_text().startswith("PG 1\n")

@@ -159,7 +159,7 @@ def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list
 
     extensions = dialects.all_extensions()
     found: list[str] = []
-    seen: set[str] = set()
+    seen: set = set()
     for path in paths:
         if os.path.isdir(path):
             for folder, subdirs, names in os.walk(path):
@@ -178,10 +178,17 @@ def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list
     return found
 
 
-def add(found: list[str], seen: set[str], path: str) -> None:
+def add(found: list[str], seen: set, path: str) -> None:
+    """Add a file once, however it is named: the same file reached through a link or a second
+    path is worked on once (with --fix, two workers would otherwise write it at the same time)."""
     path = os.path.normpath(path)
-    if path not in seen:
-        seen.add(path)
+    try:
+        info = os.stat(path)
+        identity: object = (info.st_dev, info.st_ino)
+    except OSError:
+        identity = path
+    if path not in seen and identity not in seen:
+        seen.update((path, identity))
         found.append(path)
 
 
