@@ -138,6 +138,11 @@ def test_x150_case_fix_keeps_tx_text() -> None:
     assert not [d for d in engine.lint_text("t.x150", "1TX7,1,0,gap=\n", Settings())[1] if d.code == "X102"]
 
 
+def test_x150_case_fix_keeps_quoted_text() -> None:
+    assert fix_once("t.x150", '1dtxt"Hello_World"\n').text == '1DTXT"Hello_World"\n'
+    assert fix_once("t.x150", '1tx7,1,0,Gap= 1g\n').text == "1TX7,1,0,Gap= 1G\n"
+
+
 def test_x126_fix_converges_inside_a_definition() -> None:
     text = "XD1 / G / XD5 / G / XT\n"
     first = fix_once("s.x150", text)
