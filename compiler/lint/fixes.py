@@ -142,25 +142,29 @@ def as_unsafe(diagnostics: list[Diagnostic], keys: set[tuple]) -> list[Diagnosti
 
 def apply_proven(before: Version, candidates: list[Fix], make: Callable[[str], Version]) -> tuple[str, int, set]:
     """Apply the candidates that keep the program's meaning: (text, fixes applied, keys of the
-    candidates that failed the proof). All together first; when that fails, each on its own."""
+    candidates that failed the proof). All together first; when that fails, the candidates are
+    halved until the ones that fail are found (a compile per half, not per fix)."""
     text = before.text
-    new_text, count = apply(text, candidates)
-    if count == 0 or new_text == text:
-        return text, 0, set()
-    if fix_is_safe(before, make(new_text)):
-        return new_text, count, set()
-    passing, failing = [], set()
-    for fix in candidates:
-        alone, applied = apply(text, [fix])
-        if applied and alone != text and fix_is_safe(before, make(alone)):
-            passing.append(fix)
-        else:
-            failing.add(key(fix))
+    passing: list[Fix] = []
+    failing: set = set()
+
+    def prove(group: list[Fix]) -> None:
+        new_text, applied = apply(text, group)
+        if applied and new_text != text and fix_is_safe(before, make(new_text)):
+            passing.extend(group)
+        elif len(group) == 1:
+            failing.add(key(group[0]))
+        elif len(group) > 1:
+            middle = len(group) // 2
+            prove(group[:middle])
+            prove(group[middle:])
+
+    prove(candidates)
     if not passing:
         return text, 0, failing
     new_text, count = apply(text, passing)
-    if not fix_is_safe(before, make(new_text)):  # each is fine alone, not together: one per round
-        new_text, count = apply(text, passing[:1])
+    if len(passing) < len(candidates) and not fix_is_safe(before, make(new_text)):
+        new_text, count = apply(text, passing[:1])  # each part is fine, not all together: one per round
     return new_text, count, failing
 
 
@@ -180,8 +184,7 @@ def fix_until_stable(text: str, diagnostics: list[Diagnostic], relint: Callable[
     original, diags = text, diagnostics
     seen = {text}
     fixed = 0
-    failed: set = set()
-    for _ in range(MAX_ROUNDS):
+    for round_number in range(MAX_ROUNDS + 1):
         current = make(text)
         safe = [d.fix for d in diags if d.fix is not None and d.fix.edits and d.fix.safe]
         new_text, count, failed = apply_proven(current, safe, make) if safe else (text, 0, set())
@@ -191,13 +194,13 @@ def fix_until_stable(text: str, diagnostics: list[Diagnostic], relint: Callable[
             new_text, count = apply(text, others)
         if count == 0 or new_text == text:
             return FixRun(text, as_unsafe(diags, failed), fixed)
+        if round_number == MAX_ROUNDS:
+            codes = sorted({d.code for d in diags if d.fix is not None and d.fix.edits})
+            return FixRun(original, diagnostics, 0,
+                          f"the fixes did not settle after {MAX_ROUNDS} rounds (still fixing: {', '.join(codes)})")
         if new_text in seen:
             return FixRun(original, diagnostics, 0, "the fixes come back to a text they already produced")
         seen.add(new_text)
         text, fixed = new_text, fixed + count
         diags = relint(text)
-    if any(d.fix is not None and d.fix.edits and (d.fix.safe or unsafe) for d in diags):
-        codes = sorted({d.code for d in diags if d.fix is not None and d.fix.edits})
-        return FixRun(original, diagnostics, 0,
-                      f"the fixes did not settle after {MAX_ROUNDS} rounds (still fixable: {', '.join(codes)})")
-    return FixRun(text, diags, fixed)
+    raise AssertionError("unreachable: the last round returns")

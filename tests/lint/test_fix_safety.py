@@ -196,6 +196,17 @@ def test_a_marked_safe_fix_that_changes_the_program_needs_unsafe_fixes() -> None
     assert run.text == "MA 200\n" and run.fixed == 1
 
 
+def test_only_the_fix_that_changes_the_program_is_held_back() -> None:
+    text = "MA 100\nMR 5\nMA 300\n"
+    source = SourceFile("p.mxt", text)
+    comment = [Fix(f"comment {i}", (Edit(source.span(end, end), f"  ' c{i}"),)) for i, end in ((0, 6), (1, 11))]
+    change = Fix("make it 400", (Edit(source.span(15, 18), "400"),))
+    fixes_offered = comment[:1] + [change] + comment[1:]
+    diags = [Diagnostic("M320", Severity.WARNING, Kind.LINT, "test", source.span(0, 2), fix=f) for f in fixes_offered]
+    run = fixes.fix_until_stable(text, diags, lambda t: [], make, unsafe=False)
+    assert run.text == "MA 100  ' c0\nMR 5  ' c1\nMA 300\n" and run.fixed == 2
+
+
 def test_fixes_that_never_settle_stop_with_g008_and_leave_the_text() -> None:
     grow = Fix("add a comment", (Edit(SourceFile("p.mxt", "").span(0, 0), "' x\n"),))
     text = "MA 100\n"
