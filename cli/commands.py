@@ -208,6 +208,7 @@ def write_outputs(result, output: str | None, listing: str | None) -> bool:
     a failure becomes diagnostic G006 on the output's path. True when written."""
     from mcc.compiler import files
     from mcc.compiler.diagnostics import Diagnostics
+    from mcc.compiler.driver import file_span
 
     items = []
     if output:
@@ -219,17 +220,11 @@ def write_outputs(result, output: str | None, listing: str | None) -> bool:
     except OSError as exc:
         path = getattr(exc, "path", None) or exc.filename or output or listing
         diags = Diagnostics(result.diagnostics)
-        diags.add("G006", driver_span(path), f"cannot write {path}: {exc.strerror or exc}; nothing was written")
+        diags.add("G006", file_span(path), f"cannot write {path}: {exc.strerror or exc}; nothing was written")
         result.diagnostics = diags.items
         return False
     result.output = output
     return True
-
-
-def driver_span(path: str):
-    from mcc.compiler.driver import file_span
-
-    return file_span(path)
 
 
 @cli.command()

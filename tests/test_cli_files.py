@@ -134,6 +134,15 @@ def test_write_errors_are_diagnostics_with_exit_two(tmp_path: Path, case: str, o
     no_temporaries(tmp_path)
 
 
+@pytest.mark.parametrize("option", ["-o", "--listing"])
+def test_a_directory_as_output_is_refused(tmp_path: Path, option: str) -> None:
+    source = tmp_path / "p.mxt"
+    source.write_text(PROGRAM)
+    (tmp_path / "build").mkdir()
+    result = run_mcc("compile", str(source), option, str(tmp_path / "build"))
+    assert result.returncode == 2 and "directory" in result.stderr and not list((tmp_path / "build").iterdir())
+
+
 def test_write_errors_in_json(tmp_path: Path) -> None:
     source = tmp_path / "p.mxt"
     source.write_text(PROGRAM)

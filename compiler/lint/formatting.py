@@ -68,11 +68,9 @@ def long_line(text: str, limit: int) -> str:
     """Why a text cannot be formatted because of a line far past the device's limit, or ""."""
     if len(text) <= limit:
         return ""
-    begin = 0
     for number, line in enumerate(text.split("\n"), 1):
         if len(line) > limit:
             return f"line {number} is {len(line):,} characters long; mcc does not format lines over {limit:,} characters"
-        begin += len(line) + 1
     return ""
 
 
