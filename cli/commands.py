@@ -8,7 +8,7 @@ import sys
 import click
 
 from mcc import __version__
-from mcc.cli.main import EXIT_ERRORS, EXIT_OK
+from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
 
 DIALECT_NAMES = ["mcode", "x150", "arcus"]  # kept in step with mcc.compiler.dialects (tested)
 FORMATS = ["text", "json"]
@@ -45,6 +45,18 @@ def load_profile(name: str | None):
         raise click.BadParameter(str(exc), param_hint="--profile") from None
 
 
+def regular_files(ctx, param, value):
+    """Click callback: a path named on the command line must not be a FIFO, device or socket
+    (reading one would wait forever or never end); directories are left to the command."""
+    from mcc.compiler import files
+
+    paths = value if isinstance(value, tuple) else (value,)
+    for path in paths:
+        if path is not None and files.is_special(path):
+            raise click.BadParameter(f"{path}: {files.unreadable(path)}", ctx=ctx, param=param)
+    return value
+
+
 def use_color(fmt: str) -> bool:
     return fmt == "text" and sys.stdout.isatty() and "NO_COLOR" not in os.environ
 
@@ -57,7 +69,8 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 
 
 @cli.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
+@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False),
+                callback=regular_files)
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="text: one diagnostic per finding with the source line; json: one JSON object on stdout.")
@@ -107,7 +120,7 @@ def report(results, fmt: str, extra=None) -> None:
 
 
 @cli.command(name="compile")
-@click.argument("file", type=click.Path(exists=True, dir_okay=False))
+@click.argument("file", type=click.Path(exists=True, dir_okay=False), callback=regular_files)
 @click.option("--target", type=click.Choice(DIALECT_NAMES), help="Dialect to generate (default: the source dialect).")
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension).")
 @click.option("-o", "--output", "output", type=click.Path(dir_okay=False),
@@ -126,8 +139,11 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("-Os", "opt_level", flag_value="Os",
               help="-O2 plus procedural abstraction: repeated runs of operations become subroutines.")
 @click.option("--passes", help="Run exactly these passes, comma-separated (see docs/OPTIMIZER.md).")
+@click.option("--overwrite-input", is_flag=True,
+              help="Allow -o or --listing to replace a file this run reads (FILE itself or the --profile file); "
+                   "refused by default, so that a slip never replaces the source with the compiled text.")
 def compile_cmd(file: str, target: str | None, dialect: str | None, output: str | None, listing: str | None,
-                fmt: str, profile: str | None, opt_level: str, passes: str | None) -> None:
+                fmt: str, profile: str | None, opt_level: str, passes: str | None, overwrite_input: bool) -> None:
     """Compile FILE into a device-ready program.
 
     The program is checked first; nothing is written when it has errors. The output passes
@@ -141,6 +157,7 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     """
     from mcc.compiler import driver
 
+    check_outputs(file, profile, output, listing, overwrite_input)
     prof = load_profile(profile)
     if passes:
         from mcc.compiler.opt import pass_names
@@ -152,14 +169,10 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes)
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
-    if produced:
-        from mcc.compiler.lint.files import write_atomic
-
-        if output:
-            write_atomic(output, result.listing.text)
-            result.output = output
-        if listing:
-            write_atomic(listing, result.listing.render())
+    write_failed = False
+    if produced and (output or listing):
+        write_failed = not write_outputs(result, output, listing)
+        produced = not write_failed
 
     def extra(res) -> dict:
         data = {"output": res.output, "target": res.target,
@@ -189,7 +202,52 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
                 writer.line(f"optimized {result.optimization.summary()}")
         else:
             writer.line(render.summary_line(diags, 1), "bold")
-    sys.exit(EXIT_ERRORS if result.has_errors else EXIT_OK)
+    sys.exit(EXIT_USAGE if write_failed else EXIT_ERRORS if result.has_errors else EXIT_OK)
+
+
+def check_outputs(file: str, profile: str | None, output: str | None, listing: str | None,
+                  overwrite_input: bool) -> None:
+    """Refuse, before any work, outputs that would replace what this run reads, or each other."""
+    from mcc.compiler import files
+
+    if output and listing and files.same_file(output, listing):
+        raise click.BadParameter(f"{listing} is also the -o output: give the listing its own file",
+                                 param_hint="--listing")
+    if overwrite_input:
+        return
+    inputs = [file] + ([profile] if profile and os.path.isfile(profile) else [])
+    for option, path in (("-o", output), ("--listing", listing)):
+        for read in inputs:
+            if path and files.same_file(path, read):
+                what = "the source file" if read == file else "the profile"
+                raise click.BadParameter(
+                    f"{path} is {what} this run reads; writing the compiled program there would replace it. "
+                    "Choose another path, or pass --overwrite-input if that is what you want",
+                    param_hint=option)
+
+
+def write_outputs(result, output: str | None, listing: str | None) -> bool:
+    """Write the program and the listing together (nothing is replaced unless both can be written);
+    a failure becomes diagnostic G006 on the output's path. True when written."""
+    from mcc.compiler import files
+    from mcc.compiler.diagnostics import Diagnostics
+    from mcc.compiler.driver import file_span
+
+    items = []
+    if output:
+        items.append((output, files.encode(result.listing.text, files.PLAIN)))
+    if listing:
+        items.append((listing, files.encode(result.listing.render(), files.PLAIN)))
+    try:
+        files.write_many(items)
+    except OSError as exc:
+        path = getattr(exc, "path", None) or exc.filename or output or listing
+        diags = Diagnostics(result.diagnostics)
+        diags.add("G006", file_span(path), f"cannot write {path}: {exc.strerror or exc}; nothing was written")
+        result.diagnostics = diags.items
+        return False
+    result.output = output
+    return True
 
 
 @cli.command()

@@ -11,7 +11,7 @@ import sys
 
 import click
 
-from mcc.cli.commands import DIALECT_NAMES, cli, use_color
+from mcc.cli.commands import DIALECT_NAMES, cli, regular_files, use_color
 from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
 
 LINT_FORMATS = ["text", "json", "sarif", "github"]
@@ -66,10 +66,21 @@ def config_outcomes(resolver):
             for path, diags, source in resolver.diagnostics()]
 
 
+def expand(paths, resolver) -> list[str]:
+    """The files to work on; special files met in directories are skipped with a note on stderr."""
+    from mcc.compiler.lint import engine
+
+    skipped: list[str] = []
+    targets = engine.expand(paths or ["."], resolver, skipped)
+    for note in skipped:
+        click.echo(f"note: {note}", err=True)
+    return targets
+
+
 def common_options(func):
     options = [
         click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every file (default: from the extension)."),
-        click.option("--config", "config", type=click.Path(exists=True, dir_okay=False),
+        click.option("--config", "config", type=click.Path(exists=True, dir_okay=False), callback=regular_files,
                      help="Use this configuration file for every file instead of the nearest pyproject.toml/mcc.toml."),
         click.option("--isolated", is_flag=True, help="Ignore every configuration file."),
         click.option("--profile", help="Target profile (a built-in name or a TOML file); overrides `target`."),
@@ -82,7 +93,7 @@ def common_options(func):
 
 
 @cli.command()
-@click.argument("paths", nargs=-1, type=click.Path(exists=True))
+@click.argument("paths", nargs=-1, type=click.Path(exists=True), callback=regular_files)
 @click.option("--format", "fmt", type=click.Choice(LINT_FORMATS), default="text", show_default=True,
               help="text: findings with the source line; json: as `mcc check`; sarif: SARIF 2.1.0 for code "
                    "scanning; github: workflow annotations.")
@@ -115,7 +126,7 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, sta
     from mcc.compiler.lint import engine
 
     resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
-    targets = engine.expand(paths or ["."], resolver)
+    targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
     options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
@@ -124,6 +135,8 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, sta
         report_diff(outcomes)
         sys.exit(EXIT_ERRORS if any(o.diff for o in outcomes) and not exit_zero else EXIT_OK)
     report(outcomes, fmt, statistics, fix, unsafe_fixes, len(work))
+    if any(getattr(o, "write_error", False) for o in outcomes):
+        sys.exit(EXIT_USAGE)  # a fixed file could not be written (G006): as for any file error
     failing = {path: settings.fail_on for path, settings in work}
     sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, failing, fail_on))
 
@@ -194,7 +207,7 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
 
 
 @cli.command()
-@click.argument("paths", nargs=-1, type=click.Path(exists=True))
+@click.argument("paths", nargs=-1, type=click.Path(exists=True), callback=regular_files)
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 and list the files that would change.")
 @click.option("--diff", is_flag=True, help="Write nothing; print the changes as a unified diff (exit 1 if any).")
 @common_options
@@ -215,7 +228,7 @@ def fmt(paths, check, diff, dialect, config, isolated, profile, jobs) -> None:
     from mcc.compiler.lint import engine, formatting
 
     resolver = make_resolver(config, isolated, (), (), (), profile, None)
-    targets = engine.expand(paths or ["."], resolver)
+    targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
     options = formatting.Options(check=check, diff=diff, dialect=dialect)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "formatting"),
@@ -242,6 +255,8 @@ def fmt(paths, check, diff, dialect, config, isolated, profile, jobs) -> None:
               "left unchanged"
     click.echo(summary, err=diff)
     failed = any(o.error for o in outcomes)
+    if any(o.write_error for o in outcomes):
+        sys.exit(EXIT_USAGE)
     sys.exit(EXIT_ERRORS if failed or (check or diff) and changed else EXIT_OK)
 
 

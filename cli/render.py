@@ -7,6 +7,7 @@ import json
 from mcc.compiler.diagnostics import Diagnostic, Severity
 from mcc.compiler.span import SourceFile
 
+SHOWN_WIDTH = 200  # longer source lines are shown as a window around the span, marked with "..."
 STYLE = {Severity.ERROR: "bold red", Severity.WARNING: "bold yellow", Severity.INFO: "bold cyan"}
 
 
@@ -19,15 +20,29 @@ def format_diagnostic(diag: Diagnostic, source: SourceFile | None) -> list[tuple
     if text.strip():
         gutter = f"{span.line:>5} | "
         shown = text.expandtabs(1)
-        lines.append((gutter + shown, ""))
         width = span.end_column - span.column if span.end_line == span.line else len(shown) - span.column + 1
-        caret = " " * (len(gutter) - 2) + "| " + " " * (span.column - 1) + "^" * max(1, width)
+        column = span.column
+        if len(shown) > SHOWN_WIDTH:
+            shown, column, width = window(shown, column, max(1, width))
+        lines.append((gutter + shown, ""))
+        caret = " " * (len(gutter) - 2) + "| " + " " * (column - 1) + "^" * max(1, width)
         lines.append((caret, STYLE[diag.severity]))
     for note in diag.notes:
         lines.append((f"      = note: {note}", "dim"))
     if diag.fix is not None:
         lines.append((f"      = fix{'' if diag.fix.safe else ' (unsafe)'}: {diag.fix.description}", "green"))
     return lines
+
+
+def window(line: str, column: int, width: int) -> tuple[str, int, int]:
+    """A SHOWN_WIDTH-character piece of a long line around the span: (text, column, caret width)."""
+    start = max(0, min(column - 1 - SHOWN_WIDTH // 4, len(line) - SHOWN_WIDTH))
+    end = start + SHOWN_WIDTH
+    head = "..." if start > 0 else ""
+    tail = "..." if end < len(line) else ""
+    column = column - start + len(head)
+    width = max(1, min(width, end - (column - len(head) + start - 1)))
+    return head + line[start:end] + tail, column, width
 
 
 def summary_line(diags: list[Diagnostic], files: int) -> str:

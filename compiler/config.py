@@ -273,8 +273,10 @@ def load(path: str | None, display: str | None = None) -> Loaded:
     if path is None:
         return Loaded(Settings(root=os.getcwd()), [], None)
     shown = display or display_path(path)
+    from mcc.compiler.files import read_bytes  # only regular files: never blocks on a FIFO
+
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        text = read_bytes(path).decode("utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         diags = Diagnostics()
         diags.add("G103", Span(shown, 1, 1, 1, 1), f"cannot read the configuration file: {exc}")

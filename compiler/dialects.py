@@ -20,6 +20,10 @@ class Dialect:
     default_profile: str
     output_extension: str
     comment: str  # the comment marker used in generated text and suppressions
+    # A line longer than this is reported (G007) and not analysed: far past anything the device
+    # reads (64-character MCode lines and Arcus commands, an X150 store of 8000 bytes), and a
+    # megabyte line would otherwise take the parser many seconds and hundreds of megabytes.
+    longest_line: int = 4096
 
     def load_frontend(self):
         return importlib.import_module(self.frontend)
@@ -32,7 +36,7 @@ DIALECTS: dict[str, Dialect] = {
     "mcode": Dialect("mcode", "Lexium MCode", (".mxt", ".ixt", ".mcode"),
                      "mcc.compiler.mcode.frontend", "mcc.backends.mcode", "lmd-c", ".mxt", "'"),
     "x150": Dialect("x150", "Parker/Digiplan X150/X150E", (".x150",),
-                    "mcc.compiler.x150.frontend", "mcc.backends.x150", "x150-pdhx", ".x150", ";"),
+                    "mcc.compiler.x150.frontend", "mcc.backends.x150", "x150-pdhx", ".x150", ";", 8000),
     "arcus": Dialect("arcus", "Arcus Performax PMX-4EX-SA", (".prg",),
                      "mcc.compiler.arcus.frontend", "mcc.backends.arcus", "pmx-4ex-sa", ".prg", ";"),
 }

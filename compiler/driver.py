@@ -78,8 +78,40 @@ def read_source(path: str, diags: Diagnostics) -> SourceFile | None:
         return None
 
 
+def without_long_lines(source: SourceFile, limit: int, diags: Diagnostics) -> SourceFile:
+    """The source with the content of every line longer than `limit` removed (the line itself
+    stays, empty, so every other line keeps its number and columns), each reported once as G007.
+    Offsets after such a line shift; fixes are therefore never applied to a file with G007."""
+    text = source.text
+    if len(text) <= limit:
+        return source
+    pieces: list[str] = []
+    start = 0
+    changed = False
+    for number, begin in enumerate(source.line_starts, 1):
+        end = text.find("\n", begin)
+        end = len(text) if end < 0 else end
+        if end - begin > limit:
+            diags.add("G007", Span(source.path, number, 1, number, 1, begin, begin),
+                      f"line {number} is {end - begin:,} characters long, far past what the device reads; "
+                      f"mcc does not analyse lines over {limit:,} characters: split it, or check that this file is "
+                      "the program you meant")
+            pieces.append(text[start:begin])
+            start = end
+            changed = True
+    if not changed:
+        return source
+    pieces.append(text[start:])
+    return SourceFile(source.path, "".join(pieces))
+
+
+def has_long_lines(diagnostics) -> bool:
+    return any(d.code == "G007" for d in diagnostics)
+
+
 def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile: Profile | None,
                    diags: Diagnostics) -> Analysis | None:
+    source = without_long_lines(source, dialect.longest_line, diags)
     try:
         frontend = dialect.load_frontend()
         analysis = frontend.analyze(source, profile_for(dialect, profile))

@@ -54,8 +54,10 @@ def _merge(base: dict, over: dict) -> dict:
 
 
 def _read(path: Path) -> dict:
+    from mcc.compiler.files import read_bytes  # only regular files: a FIFO named as a profile never blocks
+
     try:
-        data = toml.loads(path.read_text(encoding="utf-8"))
+        data = toml.loads(read_bytes(str(path)).decode("utf-8"))
     except (OSError, UnicodeDecodeError) as exc:
         raise ProfileError(f"cannot read profile {path}: {exc}") from None
     except toml.TOMLDecodeError as exc:
@@ -93,7 +95,7 @@ def _load_builtin(name: str) -> Profile:
 def _load(name_or_path: str) -> Profile:
     path = Path(name_or_path)
     if path.suffix == ".toml" or path.exists():
-        if not path.is_file():
+        if not path.exists():
             raise ProfileError(f"profile file not found: {name_or_path}")
         data = _read(path)
         default_name = path.stem

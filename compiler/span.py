@@ -49,8 +49,11 @@ class SourceFile:
 
     @classmethod
     def read(cls, path: str, display: str | None = None) -> "SourceFile":
-        """Read a file as UTF-8, falling back to Latin-1: manuals' listings carry µ and ± in comments."""
-        data = open(path, "rb").read()
+        """Read a file as UTF-8, falling back to Latin-1: manuals' listings carry µ and ± in comments.
+        Only regular files are read (mcc.compiler.files); anything else raises FileError (an OSError)."""
+        from mcc.compiler.files import read_bytes
+
+        data = read_bytes(path)
         try:
             text = data.decode("utf-8-sig")
         except UnicodeDecodeError:

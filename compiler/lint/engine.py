@@ -2,8 +2,8 @@
 
 For one file: the frontend's diagnostics (`driver.check_file`, the work of `mcc check`), then the
 selected lint rules of its dialect over the same analysis, then the configuration (selection,
-per-file ignores, severities), then `noqa` comments. With `--fix` the safe fixes are applied and
-the file is checked again, up to MAX_PASSES times.
+per-file ignores, severities), then `noqa` comments. With `--fix` the fixes are applied round
+after round until the text settles (compiler/lint/fixes.py proves each safe fix first).
 
 Many files are linted in parallel with a process pool (Lark parsing is CPU-bound, so threads would
 not help). Work is sent in batches to keep the pickling overhead small, and each worker returns
@@ -25,7 +25,6 @@ from mcc.compiler.lint import files, fixes, suppress
 from mcc.compiler.lint.rules import Context, rules_for
 from mcc.compiler.span import SourceFile
 
-MAX_PASSES = 10
 SKIP_DIRS = {"__pycache__", "node_modules", "venv"}
 
 
@@ -48,6 +47,7 @@ class Outcome:
     fixed: int = 0  # fixes applied (or that --diff would apply)
     diff: str = ""
     written: bool = False
+    write_error: bool = False  # the fixed text could not be written (G006)
 
     @property
     def source(self) -> SourceFile | None:
@@ -141,34 +141,60 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
     text = original.text
     dialect, diags = lint_text(path, text, settings, options.dialect)
     fixed = 0
-    if options.fix or options.diff:
-        for _ in range(MAX_PASSES):
-            todo = fixes.applicable(diags, options.unsafe_fixes)
-            if not todo:
-                break
-            new_text, count = fixes.apply(text, todo)
-            if new_text == text or count == 0:
-                break
-            text, fixed = new_text, fixed + count
-            dialect, diags = lint_text(path, text, settings, options.dialect)
+    if (options.fix or options.diff) and not driver.has_long_lines(diags):  # G007: offsets shifted, no fixes
+        run = fix_text(path, text, diags, settings, options)
+        text, diags, fixed = run.text, run.diagnostics, run.fixed
+        if run.error:
+            extra = Diagnostics()
+            extra.add("G008", driver.file_span(path), f"{run.error}; the file was left unchanged. This is a bug in "
+                                                      "mcc: please report it with this file")
+            diags = sorted(diags + extra.items, key=Diagnostic.sort_key)
     outcome = Outcome(path, dialect, diags, text, fixed)
     if text != original.text:
         if options.diff:
             outcome.diff = fixes.unified_diff(path, original.text, text)
         elif options.fix:
-            files.write_atomic(path, text, original)
-            outcome.written = True
+            try:
+                files.write_atomic(path, text, original)
+                outcome.written = True
+            except OSError as exc:
+                dialect, diags = lint_text(path, original.text, settings, options.dialect)
+                extra = Diagnostics()
+                extra.add("G006", driver.file_span(path), f"cannot write {path}: {exc.strerror or exc}; the fixes "
+                                                          "were not applied")
+                outcome = Outcome(path, dialect, sorted(diags + extra.items, key=Diagnostic.sort_key),
+                                  original.text, 0, write_error=True)
     return outcome
+
+
+def fix_text(path: str, text: str, diags: list[Diagnostic], settings: Settings, options: Options) -> fixes.FixRun:
+    """Apply the fixes to one text until it settles (safe ones proved by fixes.fix_is_safe)."""
+    found = driver.resolve_dialect(path, options.dialect)
+    profile = None
+    if found is not None:
+        profile = settings.profile(found.name) or load_profile(found.default_profile)
+
+    def relint(new_text: str) -> list[Diagnostic]:
+        return lint_text(path, new_text, settings, options.dialect)[1]
+
+    def make(new_text: str) -> fixes.Version:
+        return fixes.Version(path, new_text, options.dialect, profile)
+
+    return fixes.fix_until_stable(text, diags, relint, make, options.unsafe_fixes)
 
 
 # many files ----------------------------------------------------------------------------------------
 
-def expand(paths: Iterable[str], resolver: Resolver | None = None) -> list[str]:
+def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list[str] | None = None) -> list[str]:
     """Files to lint: the files given, and the files with a known extension under the directories
-    given (hidden directories and the configuration's `exclude` patterns are skipped)."""
+    given (hidden directories and the configuration's `exclude` patterns are skipped). Only regular
+    files are taken from a directory: a FIFO, device or socket (or a broken link) with a dialect's
+    extension is left out, with a note appended to `skipped`."""
+    from mcc.compiler import files as files_mod
+
     extensions = dialects.all_extensions()
     found: list[str] = []
-    seen: set[str] = set()
+    seen: set = set()
     for path in paths:
         if os.path.isdir(path):
             for folder, subdirs, names in os.walk(path):
@@ -177,16 +203,27 @@ def expand(paths: Iterable[str], resolver: Resolver | None = None) -> list[str]:
                 for name in sorted(names):
                     full = os.path.join(folder, name)
                     if name.lower().endswith(extensions) and not excluded(full, resolver):
-                        add(found, seen, full)
+                        problem = files_mod.unreadable(full)
+                        if problem is None:
+                            add(found, seen, full)
+                        elif skipped is not None:
+                            skipped.append(f"skipped {os.path.normpath(full)}: {problem}")
         else:
             add(found, seen, path)
     return found
 
 
-def add(found: list[str], seen: set[str], path: str) -> None:
+def add(found: list[str], seen: set, path: str) -> None:
+    """Add a file once, however it is named: the same file reached through a link or a second
+    path is worked on once (with --fix, two workers would otherwise write it at the same time)."""
     path = os.path.normpath(path)
-    if path not in seen:
-        seen.add(path)
+    try:
+        info = os.stat(path)
+        identity: object = (info.st_dev, info.st_ino)
+    except OSError:
+        identity = path
+    if path not in seen and identity not in seen:
+        seen.update((path, identity))
         found.append(path)
 
 

@@ -35,6 +35,7 @@ class Outcome:
     diff: str = ""
     error: str = ""  # why the file was not formatted
     skipped: bool = False  # no formatter for this dialect (yet)
+    write_error: bool = False  # the formatted text could not be written
 
 
 def formatter(dialect: str) -> ModuleType | None:
@@ -63,6 +64,16 @@ def verify(path: str, dialect: str, before: str, after: str, settings: Settings)
     return "; ".join(differences(old.module, new.module, limit=3))
 
 
+def long_line(text: str, limit: int) -> str:
+    """Why a text cannot be formatted because of a line far past the device's limit, or ""."""
+    if len(text) <= limit:
+        return ""
+    for number, line in enumerate(text.split("\n"), 1):
+        if len(line) > limit:
+            return f"line {number} is {len(line):,} characters long; mcc does not format lines over {limit:,} characters"
+    return ""
+
+
 def format_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
     found = driver.resolve_dialect(path, options.dialect)
     if found is None:
@@ -73,6 +84,10 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
         return outcome
     try:
         original = files.read(path)
+        too_long = long_line(original.text, found.longest_line)
+        if too_long:
+            outcome.error = f"{too_long}; the file was left unchanged (G007)"
+            return outcome
         text = format_text(original.text, path, found.name, settings)
         if text != original.text:
             problem = verify(path, found.name, original.text, text, settings)
@@ -92,6 +107,10 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
         if options.diff:
             outcome.diff = unified_diff(path, original.text, text)
         elif not options.check:
-            files.write_atomic(path, text, original)
-            outcome.written = True
+            try:
+                files.write_atomic(path, text, original)
+                outcome.written = True
+            except OSError as exc:
+                outcome.error = f"cannot write {path}: {exc.strerror or exc}; the file was left unchanged"
+                outcome.write_error = True
     return outcome

@@ -199,7 +199,7 @@ class Resolver:
 
     def check_write(self, res: Resolved) -> bool:
         command, stmt = res.command, res.stmt
-        if stmt.form == "bare":
+        if stmt.form == "bare" and not res.args:  # `LT1000` has its value glued on (M124): a write
             self.diags.add("M121", stmt.head.span,
                            f"{command.name} alone does nothing: set it with `{command.name}=<value>` or read it with "
                            f"`PR {command.name}`")

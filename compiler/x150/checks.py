@@ -86,11 +86,10 @@ class Checker:
         policy = self.profile.get("x150.case", "warn")
         if policy == "ignore" or command.host:
             return
-        unquoted = QUOTED.sub("", command.text)
-        if unquoted == unquoted.upper():
+        fixed = canonical_case(command)
+        if fixed == command.text:
             return
         severity = Severity.ERROR if policy == "error" else None
-        fixed = upper_outside_quotes(command.text)
         self.diags.add("X102", command.span, f"'{command.text}' is not upper case: the manual writes every command in "
                                              "upper case (L116, L126) and never says the controller accepts lower "
                                              f"case; write {fixed}",
@@ -214,10 +213,12 @@ class Checker:
         start = unit.start
         prefix = start.address_text()
         erase = f"{prefix}XE{unit.number}"
+        # Inside another definition (X106) an XE written before this XD would be stored in that
+        # definition, not sent: no fix there (it would be offered again after every run).
+        fix = None if unit.nested else Fix(f"insert {erase}", (Edit(insert_at(start.span), erase + " "),))
         self.diags.add("X126", start.span,
                        f"XD{unit.number} without {erase} first: the controller does not store a sequence whose "
-                       f"number is already in use (L4904); send {erase} before it",
-                       fix=Fix(f"insert {erase}", (Edit(insert_at(start.span), erase + " "),)))
+                       f"number is already in use (L4904); send {erase} before it", fix=fix)
 
     def check_device(self, command: st.Command, unit: Unit) -> None:
         if unit.address is None or command.host:
@@ -417,6 +418,20 @@ class Checker:
                                    f"the sequences for {who} need {total} of the {store} bytes of the sequence store "
                                    f"({100 * total / store:.1f} %, L4871): little room is left for changes; the "
                                    "count assumes 1 byte per character and delimiter (L241)")
+
+
+KEEP_CASE_ARGS = ("raw",)  # TX's free text (catalog argument class): sent to the display as written
+
+
+def canonical_case(command: st.Command) -> str:
+    """The command in upper case, except its text: quoted text (`DTXT"..."`, `"..."`) and the
+    free text of TX are data the device shows as written (`1TX7,1,0,gap=` shows `gap=`). One
+    definition for X102 and its fix and for `mcc fmt`, so that neither changes what is shown."""
+    text = command.text
+    if command.info is not None and command.info.arg in KEEP_CASE_ARGS:
+        end = text.upper().find(command.mnemonic) + len(command.mnemonic)
+        return text[:end].upper() + text[end:] if end >= len(command.mnemonic) else text
+    return upper_outside_quotes(text)
 
 
 def upper_outside_quotes(text: str) -> str:

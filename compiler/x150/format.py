@@ -16,19 +16,13 @@ Formatting never changes what a program does: `mcc fmt` compares the IR before a
 
 from __future__ import annotations
 
-import re
-
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import parser
 from mcc.compiler.x150 import syntax as st
+from mcc.compiler.x150.checks import canonical_case
 from mcc.compiler.lint.layout import Out, align_comments, collapse_blank_lines, render
-
-QUOTED = re.compile(r'("[^"]*")')
-KEEP_CASE_ARGS = ("raw",)  # TX's free text (catalog argument class)
-
-
 
 
 def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
@@ -52,10 +46,7 @@ def command_text(command: st.Command) -> str:
     text = command.text
     if not command.ok or command.host or command.info is None:
         return text
-    if command.info.arg in KEEP_CASE_ARGS:
-        end = text.upper().find(command.mnemonic) + len(command.mnemonic)
-        return text[:end].upper() + text[end:] if end >= len(command.mnemonic) else text
-    return "".join(piece if piece.startswith('"') else piece.upper() for piece in QUOTED.split(text))
+    return canonical_case(command)
 
 
 

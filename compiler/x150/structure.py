@@ -25,6 +25,7 @@ class Unit:
     end: st.Command | None = None  # XT (None: not closed)
     erase: st.Command | None = None  # the XEn sent just before XDn
     name: str = ""  # routine name, given by the lowering
+    nested: bool = False  # the XD came inside another definition (X106): nothing can be sent before it
 
     @property
     def is_sequence(self) -> bool:
@@ -58,7 +59,9 @@ def split_units(tree: st.SyntaxTree, diags: Diagnostics) -> list[Unit]:
                           "XD clears the download and starts again, so that definition is lost; end it with XT "
                           "first")
                 sequence.end = None
-            sequence = Unit("sequence", number=sequence_number(command), address=command.address, start=command)
+            nested = sequence is not None
+            sequence = Unit("sequence", number=sequence_number(command), address=command.address, start=command,
+                            nested=nested)
             if sequence.number is None and command.ok:
                 diags.add("X104", command.span, "XD needs the number of the sequence it defines: XD1 to XD64 (L4899)")
             if stream is not None and stream.commands and _erases(stream.commands[-1], command):

@@ -96,10 +96,23 @@ class ArgError(Exception):
         self.end = end
 
 
+HUGE = 10**18  # stands for any whole number with more digits than that: out of every range the checks know
+
+
+def whole(digits: str) -> int:
+    """int() of a digit string of any length: Python refuses more than 4300 digits, and no
+    controller value has more than a handful, so a longer one is read as HUGE (still reported as
+    out of range by the checks, never an internal error)."""
+    significant = digits.lstrip("+-").lstrip("0")
+    if len(significant) > 18:
+        return -HUGE if digits.startswith("-") else HUGE
+    return int(digits)
+
+
 def number_value(text: str) -> int | float:
     if "." in text or "e" in text or "E" in text:
         return float(text)
-    return int(text)
+    return whole(text)
 
 
 class CommandReader:
@@ -139,7 +152,7 @@ class CommandReader:
         digits = DIGITS.match(text)
         if digits:
             pos = digits.end()
-            cmd.address = int(digits.group())
+            cmd.address = whole(digits.group())
             cmd.address_span = sub(0, pos)
         if pos == len(text):
             cmd.problems.append(st.Problem("X003", span, f"'{text}' is a device address with no command after it; "
@@ -222,7 +235,7 @@ class CommandReader:
         if not (cmd.info and cmd.info.var_subst):
             raise ArgError(f"{cmd.mnemonic} cannot take its value from a variable: (VARn) works only for the "
                            "commands the manual lists (L4575-L4590)", pos, len(text))
-        return st.VarRef(int(match.group(1)), sub(pos, len(text)))
+        return st.VarRef(whole(match.group(1)), sub(pos, len(text)))
 
     def read_number(self, cmd: st.Command, text: str, pos: int, sub):
         if pos == len(text):
@@ -249,7 +262,7 @@ class CommandReader:
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a whole number; '{text[bad:]}' is not part of one",
                            bad, len(text))
-        return st.Number(match.group(), int(match.group()), sub(pos, len(text)))
+        return st.Number(match.group(), whole(match.group()), sub(pos, len(text)))
 
     def pattern17(self, text: str, pos: int, end: int, sub, what: str) -> st.Pattern:
         bits = text[pos:end].upper()
@@ -293,7 +306,7 @@ class CommandReader:
         if match is None:
             raise ArgError(f"{cmd.mnemonic} takes an {kind} number and a function letter ({cmd.mnemonic}3B)",
                            pos, len(text))
-        index, letter = int(match.group(1)), match.group(2).upper()
+        index, letter = whole(match.group(1)), match.group(2).upper()
         if not 1 <= index <= count:
             raise ArgError(f"{kind} {index} does not exist: the {kind}s are 1-{count}", pos, match.end(1))
         if letter not in functions:
@@ -333,7 +346,7 @@ class CommandReader:
             if spec.digits and match.end() - cursor < spec.digits:
                 raise ArgError(f"{cmd.mnemonic}: the {spec.name} is always written with {spec.digits} digits "
                                f"({self.example(info)})", cursor, match.end())
-            values.append(int(text[cursor:end]))
+            values.append(whole(text[cursor:end]))
             spans.append(sub(cursor, end))
             cursor = end
         if info.tail:
@@ -384,7 +397,7 @@ class CommandReader:
             hint = " (write VARn=VARm to copy a variable)" if text.startswith("(", pos) else ""
             raise ArgError(f"{cmd.mnemonic} needs a variable number: {cmd.mnemonic}1 to {cmd.mnemonic}50{hint}",
                            pos, len(text))
-        var = st.VarRef(int(match.group()), sub(pos, match.end()))
+        var = st.VarRef(whole(match.group()), sub(pos, match.end()))
         cursor = match.end()
         if cursor == len(text):
             return st.VarStatement(var, None, sub(pos, len(text)))
@@ -400,7 +413,7 @@ class CommandReader:
     def read_operand(self, text: str, pos: int, sub) -> tuple[st.Operand, int]:
         var = VAR_NAME.match(text, pos)
         if var:
-            return st.VarRef(int(var.group(1)), sub(pos, var.end())), var.end()
+            return st.VarRef(whole(var.group(1)), sub(pos, var.end())), var.end()
         word = WORD.match(text, pos)
         if word and word.group().upper() in self.sources:
             return st.Source(word.group().upper(), sub(pos, word.end())), word.end()
@@ -471,7 +484,7 @@ class CommandReader:
         var = VAR_NAME.match(text, pos, close)
         if var is None:
             raise ArgError("a condition term is VARn<op>value or IN<pattern> (VAR1>5, IN_XX1)", pos, close)
-        left = st.VarRef(int(var.group(1)), sub(pos, var.end()))
+        left = st.VarRef(whole(var.group(1)), sub(pos, var.end()))
         cursor = SPACES.match(text, var.end(), close).end()
         rel = RELOP.match(text, cursor, close)
         if rel is None or rel.group() not in self.relational:
@@ -481,7 +494,7 @@ class CommandReader:
         cursor = SPACES.match(text, rel.end(), close).end()
         right_var = VAR_NAME.match(text, cursor, close)
         if right_var:
-            right: st.Operand = st.VarRef(int(right_var.group(1)), sub(cursor, right_var.end()))
+            right: st.Operand = st.VarRef(whole(right_var.group(1)), sub(cursor, right_var.end()))
             end = right_var.end()
         else:
             number = NUMBER.match(text, cursor, close)

@@ -145,12 +145,14 @@ def test_undefined_and_dynamic_targets():
 
 def test_pathological_inputs_never_raise():
     deep = "\n".join(["1XE1", "1XD1"] + ["1L2"] * 3000 + ["1G"] + ["1N"] * 3000 + ["1XT"]) + "\n"
-    wide = "1XE1\n1XD1\n1IF(" + " AND ".join(["IN_1"] * 3000) + ")\n1NIF\n1XT\n"
-    chain = "1VAR1=" + "+".join(["VAR2"] * 3000) + "\n"
-    for text in (deep, wide, chain):
+    wide = "1XE1\n1XD1\n1IF(" + " AND ".join(["IN_1"] * 700) + ")\n1NIF\n1XT\n"
+    chain = "1VAR1=" + "+".join(["VAR2"] * 1500) + "\n"
+    huge = "1XE1\n1XD1\n1IF(" + " AND ".join(["IN_1"] * 3000) + ")\n1NIF\n1XT\n"  # 30,000 characters
+    for text in (deep, wide, chain, huge):
         for result in (check(text), driver.compile_file("p.x150", "x150", text=text)):
             assert not [d for d in result.diagnostics if d.kind.value == "internal"]
     assert "X110" in codes(deep) and "X111" in codes(wide)
+    assert codes(huge).count("G007") == 1 and "X111" not in codes(huge)  # reported once, not analysed
 
 
 def test_nesting_summed_across_calls_is_an_inferred_warning_not_an_error() -> None:
