@@ -6,7 +6,9 @@ processing one file becomes a G001 internal diagnostic on that file, and the run
 
 from __future__ import annotations
 
+import gc
 import traceback
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -84,11 +86,25 @@ def read_source(path: str, diags: Diagnostics) -> SourceFile | None:
         return None
 
 
+@contextmanager
+def fewer_collections():
+    """Collect garbage less often while a file is analysed: a syntax tree and its IR are hundreds of
+    thousands of live objects that the cyclic collector would walk again and again (it made
+    `check` on 16,000 lines take three times as long as on 8,000). Restored on the way out."""
+    old = gc.get_threshold()
+    gc.set_threshold(max(old[0], 50_000), max(old[1], 20), max(old[2], 20))
+    try:
+        yield
+    finally:
+        gc.set_threshold(*old)
+
+
 def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile: Profile | None,
                    diags: Diagnostics) -> Analysis | None:
     try:
         frontend = dialect.load_frontend()
-        analysis = frontend.analyze(source, profile_for(dialect, profile))
+        with fewer_collections():
+            analysis = frontend.analyze(source, profile_for(dialect, profile))
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, source.path, exc, "checking")
         return None
@@ -126,7 +142,8 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
     try:
         target_dialect = dialects.get(result.target)
         backend = target_dialect.load_backend()
-        listing = backend.emit(analysis.module, profile_for(target_dialect, profile))
+        with fewer_collections():
+            listing = backend.emit(analysis.module, profile_for(target_dialect, profile))
         diags.extend(listing.diagnostics)
         result.listing = listing
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee

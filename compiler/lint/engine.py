@@ -67,7 +67,8 @@ def lint_text(path: str, text: str, settings: Settings, dialect: str | None = No
     analysis = result.analysis
     syntax_ok = not any(d.kind is Kind.SYNTAX for d in result.diagnostics)
     if analysis is not None and analysis.module is not None and syntax_ok and found is not None:
-        run_rules(analysis, profile, found.name, settings, path, diags)
+        with driver.fewer_collections():
+            run_rules(analysis, profile, found.name, settings, path, diags)
     kept = []
     for diag in diags.items:
         if not settings.enabled(diag.code, path):
