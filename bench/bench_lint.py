@@ -140,10 +140,10 @@ def check_and_lint(dialect: str, text: str, repeat: int) -> tuple[float, float]:
     return check, lint
 
 
-def growth_table(sizes: list[int], repeat: int) -> None:
+def growth_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
     print("lint / check on one program (CPU time, best of %d runs)" % repeat)
     print(f"  {'dialect':8} {'lines':>6} {'check s':>8} {'lint s':>8} {'lint/check':>10} {'lint ms/1k lines':>17}")
-    for dialect in ("arcus", "mcode", "x150"):
+    for dialect in dialects:
         check_and_lint(dialect, program(dialect, 200), 1)  # imports, catalogs, parsers
         for size in sizes:
             text = program(dialect, size)
@@ -153,11 +153,13 @@ def growth_table(sizes: list[int], repeat: int) -> None:
                   f"{lint * 1e6 / lines:>16.1f}")
 
 
-def nesting_table(repeat: int) -> None:
+def nesting_table(repeat: int, dialects: list[str]) -> None:
     print("500 nested blocks (CPU time, best of %d runs)" % repeat)
     print(f"  {'program':18} {'lines':>6} {'check s':>8} {'lint s':>8} {'compile s':>9}")
     for dialect, kind in (("arcus", "IF"), ("arcus", "WHILE"), ("arcus", "IF/ELSE"), ("mcode", "CL"),
                           ("mcode", "BR")):
+        if dialect not in dialects:
+            continue
         text = nested(dialect, kind, 500)
         check, lint = check_and_lint(dialect, text, repeat)
         path = f"bench{EXTENSION[dialect]}"
@@ -170,10 +172,12 @@ def main() -> None:
     args.add_argument("--files", type=int, default=1000)
     args.add_argument("--repeat", type=int, default=3)
     args.add_argument("--sizes", default="1000,2000,4000,8000,16000", help="program sizes in lines, comma-separated")
+    args.add_argument("--dialects", default="arcus,mcode,x150", help="dialects of the one-program tables")
     args.add_argument("--skip-tree", action="store_true", help="only the one-program tables")
     options = args.parse_args()
-    growth_table([int(n) for n in options.sizes.split(",") if n], options.repeat)
-    nesting_table(options.repeat)
+    dialects = [d for d in options.dialects.split(",") if d]
+    growth_table([int(n) for n in options.sizes.split(",") if n], options.repeat, dialects)
+    nesting_table(options.repeat, dialects)
     if options.skip_tree:
         return
     tmp = Path(tempfile.mkdtemp(prefix="mcc-bench-lint-"))

@@ -112,3 +112,16 @@ def test_fmt_of_a_file_it_cannot_format_reports_the_files_own_errors(tmp_path, m
     outcome = formatting.format_file(str(path), Settings())
     assert outcome.error.startswith("not formatted: the file has errors (1:")
     assert "A001" in outcome.error and "internal" not in outcome.error
+
+
+@pytest.mark.parametrize("command", [["check"], ["lint"], ["fmt", "--check"], ["compile", "--target", "mcode"]])
+def test_the_mcc_command_on_a_deep_nest_and_a_huge_number(command: list[str], tmp_path, mcc) -> None:
+    deep = tmp_path / "deep.prg"
+    deep.write_text(nested("arcus", "ifelse", 500), encoding="utf-8")
+    huge = tmp_path / "huge.x150"
+    huge.write_text(program("x150", ASSIGN["x150"][1].format(HUGE)), encoding="utf-8")
+    for path in (deep, huge):
+        run = mcc(*command, str(path))
+        assert run.returncode in (0, 1), run.stderr
+        assert "Traceback" not in run.stderr and "G001" not in run.stdout + run.stderr
+    assert "G006" in mcc("check", str(huge)).stdout
