@@ -56,11 +56,15 @@ def format_text(text: str, path: str, dialect: str, settings: Settings = Setting
 def verify(path: str, dialect: str, before: str, after: str, settings: Settings) -> str:
     """Empty when `after` means the same as `before`; otherwise the first differences."""
     profile = settings.profile(dialect)
-    old = driver.check_file(path, dialect, profile, before).analysis
-    new = driver.check_file(path, dialect, profile, after).analysis
+    old = module_of(driver.check_file(path, dialect, profile, before))  # only the IR stays alive,
+    new = module_of(driver.check_file(path, dialect, profile, after))  # not both syntax trees
     if old is None or new is None:
         return "the file could not be analysed"
-    return "; ".join(differences(old.module, new.module, limit=3))
+    return "; ".join(differences(old, new, limit=3))
+
+
+def module_of(result: driver.FileResult):
+    return result.analysis.module if result.analysis is not None else None
 
 
 def own_errors(path: str, dialect: str, text: str, settings: Settings, limit: int = 3) -> str:
