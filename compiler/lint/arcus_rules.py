@@ -142,11 +142,12 @@ def busy(block: ir.Block) -> bool:
 @rule("A303", ARCUS)
 def busy_wait(ctx: Context) -> None:
     for routine in ctx.module.routines:
+        forest = flow.loop_forest(routine)  # innermost first, each block in one loop: linear
         idle: dict[str, bool] = {}  # header -> the whole loop (inner loops included) only computes
-        for loop in flow.loop_forest(routine):  # innermost first
+        for loop in forest:
             idle[loop.header.label] = all(busy(block) for block in loop.blocks) and \
                 all(idle[inner.header.label] for inner in loop.inner)
-        for loop in flow.loop_forest(routine) if any(idle.values()) else ():
+        for loop in forest:
             header = loop.header
             if not isinstance(header.terminator, ir.Branch):
                 continue
