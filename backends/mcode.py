@@ -28,6 +28,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.profiles import Profile
+from mcc.compiler.span import Span
 
 DIALECT = "mcode"
 PARAM_NAMES = {ir.MotionParam.ACCEL: "A", ir.MotionParam.DECEL: "D", ir.MotionParam.INITIAL_SPEED: "VI",
@@ -842,4 +843,11 @@ def pattern_cond(pattern: ir.Pattern):
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
-    return Writer(module, profile).run()
+    try:
+        return Writer(module, profile).run()
+    except Unsupported as exc:  # a limit of the whole program (the name space), not of one line
+        listing = Listing(DIALECT)
+        span = next((op.span for _, b in module.blocks() for op in b.ops if op.span is not None),
+                    Span(module.path or "-", 1, 1, 1, 1))
+        listing.diagnostics.add("G003", span, f"this program cannot be written in MCode: {exc}")
+        return listing

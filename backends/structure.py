@@ -55,6 +55,9 @@ from mcc.compiler.span import Span
 
 EXIT = "%exit"  # the virtual node every routine end leads to
 TAIL_COPY = 4  # operations of an END block the structurer may write twice rather than give up
+# IF and WHILE blocks nested deeper than this are not rebuilt: the routine becomes a dispatch loop,
+# which is flat, so neither this module nor a writer walking its tree recurses more than this deep.
+MAX_NESTING = 64
 NEGATE = {"=": "!=", "!=": "=", "<": ">=", ">=": "<", ">": "<=", "<=": ">"}
 TRUE = ir.Compare("=", ir.Const(1), ir.Const(1))  # the test of an endless loop
 
@@ -370,6 +373,7 @@ class Structurer:
         self.emitted: set[str] = set()
         self.ends = self.graph.terminating()
         self.exit_span: Span | None = None
+        self.depth = 0  # regions being built, one per enclosing IF arm or WHILE body
 
     def run(self) -> list:
         graph = self.graph
@@ -425,6 +429,16 @@ class Structurer:
 
     def region(self, label: str | None, follow: str, forbidden: frozenset, active: frozenset,
                first: bool = False) -> list:
+        if self.depth >= MAX_NESTING:
+            raise Unstructurable(f"IF and WHILE blocks nest more than {MAX_NESTING} deep")
+        self.depth += 1
+        try:
+            return self.sequence(label, follow, forbidden, active, first)
+        finally:
+            self.depth -= 1
+
+    def sequence(self, label: str | None, follow: str, forbidden: frozenset, active: frozenset,
+                 first: bool) -> list:
         out: list = []
         while label is not None and (label != follow or first):
             starting, first = first, False

@@ -6,7 +6,9 @@ processing one file becomes a G001 internal diagnostic on that file, and the run
 
 from __future__ import annotations
 
+import gc
 import traceback
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -109,12 +111,26 @@ def has_long_lines(diagnostics) -> bool:
     return any(d.code == "G007" for d in diagnostics)
 
 
+@contextmanager
+def fewer_collections():
+    """Collect garbage less often while a file is analysed: a syntax tree and its IR are hundreds of
+    thousands of live objects that the cyclic collector would walk again and again (it made
+    `check` on 16,000 lines take three times as long as on 8,000). Restored on the way out."""
+    old = gc.get_threshold()
+    gc.set_threshold(max(old[0], 50_000), max(old[1], 20), max(old[2], 20))
+    try:
+        yield
+    finally:
+        gc.set_threshold(*old)
+
+
 def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile: Profile | None,
                    diags: Diagnostics) -> Analysis | None:
     source = without_long_lines(source, dialect.longest_line, diags)
     try:
         frontend = dialect.load_frontend()
-        analysis = frontend.analyze(source, profile_for(dialect, profile))
+        with fewer_collections():
+            analysis = frontend.analyze(source, profile_for(dialect, profile))
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, source.path, exc, "checking")
         return None
@@ -261,8 +277,9 @@ def generate(module: ir.Module, target: dialects.Dialect, profile: Profile, leve
     from mcc.compiler import opt
 
     work = ir.copy_module(module) if level != "O0" or passes else module
-    stats = opt.optimize(work, level, profile, passes)
-    return target.load_backend().emit(work, profile), stats
+    with fewer_collections():
+        stats = opt.optimize(work, level, profile, passes)
+        return target.load_backend().emit(work, profile), stats
 
 
 def new_errors(listing, baseline) -> bool:

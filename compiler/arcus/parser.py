@@ -16,7 +16,7 @@ from lark import Lark, Token
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from mcc.compiler.arcus import syntax as st
-from mcc.compiler import recovery
+from mcc.compiler import limits, recovery
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import SourceFile
 
@@ -201,4 +201,7 @@ def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
             line.keyword = opener.group(1).upper()
         return line
 
-    return st.SyntaxTree(source.path, recovery.parse_lines(source, parser, builder, bad_line))
+    text, refused = limits.readable(source, ";'", diags)
+    lines = recovery.parse_lines(text, parser, builder, bad_line)
+    limits.refuse_deep(source, lines, refused, diags)
+    return st.SyntaxTree(source.path, lines)

@@ -142,10 +142,16 @@ def busy(block: ir.Block) -> bool:
 @rule("A303", ARCUS)
 def busy_wait(ctx: Context) -> None:
     for routine in ctx.module.routines:
-        for header, body in flow.natural_loops(routine):
+        forest = flow.loop_forest(routine)  # innermost first, each block in one loop: linear
+        idle: dict[str, bool] = {}  # header -> the whole loop (inner loops included) only computes
+        for loop in forest:
+            idle[loop.header.label] = all(busy(block) for block in loop.blocks) and \
+                all(idle[inner.header.label] for inner in loop.inner)
+        for loop in forest:
+            header = loop.header
             if not isinstance(header.terminator, ir.Branch):
                 continue
-            if all(busy(block) for block in body):
+            if idle[header.label]:
                 ctx.report(header.terminator.span,
                            "this loop only tests its condition again and again: add DELAY=<ms> inside it (L1868), "
                            "or WAIT[axis] to wait for a move")
@@ -250,21 +256,37 @@ def calls(module: ir.Module) -> dict[str, list[ir.Call]]:
 @rule("A306", ARCUS)
 def recursive_subroutine(ctx: Context) -> None:
     graph = calls(ctx.module)
-    reported: set[int] = set()
-
-    def visit(name: str, path: list[str]) -> None:
-        for call in graph.get(name, ()):
-            if call.routine in path:
-                cycle = " -> ".join(path[path.index(call.routine):] + [call.routine])
-                if id(call) not in reported:
-                    reported.add(id(call))
-                    ctx.report(call.span, f"GOSUB makes {call.routine} call itself ({cycle}): subroutines cannot be "
-                                          "recursive; use a WHILE loop")
-            elif len(path) < 64:
-                visit(call.routine, path + [call.routine])
-
+    targets = {name: [call.routine for call in found] for name, found in graph.items()}
+    component = {}
+    for members in flow.components(targets, lambda name: (t for t in targets.get(name, ()) if t in targets)):
+        for name in members:
+            component[name] = members[0]
     for routine in ctx.module.routines:
-        visit(routine.name, [routine.name])
+        for call in graph.get(routine.name, ()):
+            if call.routine not in component or component[call.routine] != component.get(routine.name):
+                continue
+            cycle = " -> ".join(call_path(targets, call.routine, routine.name, component) + [call.routine])
+            ctx.report(call.span, f"GOSUB makes {call.routine} call itself ({cycle}): subroutines cannot be "
+                                  "recursive; use a WHILE loop")
+
+
+def call_path(targets: dict[str, list[str]], start: str, goal: str, component: dict[str, str]) -> list[str]:
+    """The shortest chain of calls from `start` to `goal` inside their cycle (breadth first)."""
+    before: dict[str, str | None] = {start: None}
+    queue = [start]
+    for name in queue:
+        if name == goal:
+            break
+        for callee in targets.get(name, ()):
+            if callee not in before and component.get(callee) == component[start]:
+                before[callee] = name
+                queue.append(callee)
+    path: list[str] = []
+    name: str | None = goal if goal in before else start
+    while name is not None:
+        path.append(name)
+        name = before[name]
+    return path[::-1]
 
 
 @rule("A307", ARCUS)

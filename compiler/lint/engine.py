@@ -98,7 +98,8 @@ def settle(checked: Checked, settings: Settings, rules: bool = True,
     syntax_ok = not any(d.kind is Kind.SYNTAX for d in result.diagnostics)
     if rules and analysis is not None and analysis.module is not None and syntax_ok \
             and result.dialect in dialects.DIALECTS:
-        run_rules(analysis, checked.profile, result.dialect, settings, path, diags, stop)
+        with driver.fewer_collections():
+            run_rules(analysis, checked.profile, result.dialect, settings, path, diags, stop)
     kept = []
     for diag in diags.items:
         if not settings.enabled(diag.code, path):

@@ -8,7 +8,9 @@ each routine is analysed from its own entry, and calls are summarised by the rul
 
 from __future__ import annotations
 
+import heapq
 from collections import deque
+from dataclasses import dataclass, field
 from typing import Callable, Hashable, Iterable, Iterator, TypeVar
 
 from mcc.compiler import ir
@@ -18,11 +20,32 @@ State = TypeVar("State", bound=Hashable)
 
 def block_index(module: ir.Module) -> dict[str, tuple[ir.Routine, ir.Block]]:
     """Block label -> (routine, block), for the whole module."""
-    return {block.label: (routine, block) for routine, block in module.blocks()}
+    index: dict[str, tuple[ir.Routine, ir.Block]] = {}
+    for routine, block in module.blocks():
+        index.setdefault(block.label, (routine, block))
+    return index
+
+
+def routine_index(module: ir.Module) -> dict[str, ir.Routine]:
+    """Routine name -> routine (the first of that name), built once instead of a search per call."""
+    index: dict[str, ir.Routine] = {}
+    for routine in module.routines:
+        index.setdefault(routine.name, routine)
+    return index
+
+
+def successor_map(routine: ir.Routine) -> dict[str, list[ir.Block]]:
+    """Block label -> successor blocks inside the routine, for every block: built once per analysis
+    (looking each label up in the routine's block list would make every walk quadratic)."""
+    index: dict[str, ir.Block] = {}
+    for block in routine.blocks:
+        index.setdefault(block.label, block)
+    return {block.label: [index[label] for label in ir.successors(block.terminator) if label in index]
+            for block in routine.blocks}
 
 
 def local_successors(routine: ir.Routine, block: ir.Block) -> list[ir.Block]:
-    """Successor blocks inside the same routine."""
+    """Successor blocks inside the same routine (one lookup; use `successor_map` in a walk)."""
     out = []
     for label in ir.successors(block.terminator):
         target = routine.block(label)
@@ -31,29 +54,74 @@ def local_successors(routine: ir.Routine, block: ir.Block) -> list[ir.Block]:
     return out
 
 
-def reachable(routine: ir.Routine, start: ir.Block | None = None) -> list[ir.Block]:
+def reachable(routine: ir.Routine, start: ir.Block | None = None,
+              succ: dict[str, list[ir.Block]] | None = None) -> list[ir.Block]:
     """Blocks reachable from `start` (default: the entry) inside the routine, in routine order."""
     first = start or routine.entry
     if first is None:
         return []
+    succ = succ if succ is not None else successor_map(routine)
     seen = {first.label}
     queue = deque([first])
     while queue:
-        for succ in local_successors(routine, queue.popleft()):
-            if succ.label not in seen:
-                seen.add(succ.label)
-                queue.append(succ)
+        for nxt in succ.get(queue.popleft().label, ()):
+            if nxt.label not in seen:
+                seen.add(nxt.label)
+                queue.append(nxt)
     return [b for b in routine.blocks if b.label in seen]
 
 
+def components(labels: Iterable[str], succ: Callable[[str], Iterable[str]]) -> list[list[str]]:
+    """The strongly connected components of a graph (Tarjan's algorithm with an explicit stack, so
+    a long chain of blocks or calls needs no Python recursion), callees before callers."""
+    number: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on_stack: set[str] = set()
+    found: list[list[str]] = []
+    for root in labels:
+        if root in number:
+            continue
+        number[root] = low[root] = len(number)
+        stack.append(root)
+        on_stack.add(root)
+        work = [(root, iter(succ(root)))]
+        while work:
+            node, it = work[-1]
+            for nxt in it:
+                if nxt not in number:
+                    number[nxt] = low[nxt] = len(number)
+                    stack.append(nxt)
+                    on_stack.add(nxt)
+                    work.append((nxt, iter(succ(nxt))))
+                    break
+                if nxt in on_stack:
+                    low[node] = min(low[node], number[nxt])
+            else:
+                work.pop()
+                if work:
+                    parent = work[-1][0]
+                    low[parent] = min(low[parent], low[node])
+                if low[node] == number[node]:
+                    component = []
+                    while True:
+                        member = stack.pop()
+                        on_stack.discard(member)
+                        component.append(member)
+                        if member == node:
+                            break
+                    found.append(component)
+    return found
+
+
 def in_loops(routine: ir.Routine) -> set[str]:
-    """Labels of blocks that can reach themselves again (the body of some loop)."""
-    looping = set()
-    for block in routine.blocks:
-        for succ in local_successors(routine, block):
-            if block.label in {b.label for b in reachable(routine, succ)}:
-                looping.add(block.label)
-                break
+    """Labels of blocks that can reach themselves again (the body of some loop): the members of a
+    strongly connected component with a cycle, found in one linear pass."""
+    succ = successor_map(routine)
+    looping: set[str] = set()
+    for component in components(succ, lambda label: (b.label for b in succ.get(label, ()))):
+        if len(component) > 1 or any(b.label == component[0] for b in succ.get(component[0], ())):
+            looping.update(component)
     return looping
 
 
@@ -66,9 +134,13 @@ def is_fallthrough(jump: ir.Jump, target: ir.Block | None) -> bool:
     return target is not None and jump.span is not None and jump.span == target.span
 
 
-def foreign_jumps(module: ir.Module, routine: ir.Routine) -> Iterator[tuple[ir.Block, str, ir.Routine, bool]]:
-    """Edges from `routine` to blocks of another routine: (block, target label, target routine, fallthrough)."""
-    index = block_index(module)
+def foreign_jumps(module: ir.Module, routine: ir.Routine,
+                  index: dict[str, tuple[ir.Routine, ir.Block]] | None = None) \
+        -> Iterator[tuple[ir.Block, str, ir.Routine, bool]]:
+    """Edges from `routine` to blocks of another routine: (block, target label, target routine, fallthrough).
+
+    Pass `index` (`block_index(module)`) when asking for many routines: building it is linear."""
+    index = index if index is not None else block_index(module)
     for block in routine.blocks:
         for label in ir.successors(block.terminator):
             found = index.get(label)
@@ -105,22 +177,51 @@ def forward(routine: ir.Routine, entry: State, transfer: Callable[[State, object
     start = routine.entry
     if start is None:
         return {}
+    succ = successor_map(routine)
+    rank = {label: i for i, label in enumerate(reverse_postorder(start.label, succ))}
     states: dict[str, State] = {start.label: entry}
-    queue = deque([start])
+    blocks = {block.label: block for block in reversed(routine.blocks)}
+    # A worklist in reverse postorder: a block waits until its forward predecessors are done, so a
+    # loop nest settles in a few passes instead of one pass per queued change.
+    queue = [rank[start.label]]
+    queued = {start.label}
+    order = list(rank)
     while queue:
-        block = queue.popleft()
-        state = states[block.label]
+        label = order[heapq.heappop(queue)]
+        queued.discard(label)
+        block = blocks[label]
+        state = states[label]
         for op in block.ops:
             state = transfer(state, op)
         state = transfer(state, block.terminator)
-        for succ in local_successors(routine, block):
-            out = edge(state, block, succ) if edge is not None else state
-            old = states.get(succ.label)
+        for nxt in succ[label]:
+            out = edge(state, block, nxt) if edge is not None else state
+            old = states.get(nxt.label)
             new = out if old is None else join(old, out)
             if old is None or new != old:
-                states[succ.label] = new
-                queue.append(succ)
+                states[nxt.label] = new
+                if nxt.label not in queued:
+                    queued.add(nxt.label)
+                    heapq.heappush(queue, rank[nxt.label])
     return states
+
+
+def reverse_postorder(entry: str, succ: dict[str, list[ir.Block]]) -> list[str]:
+    """Labels reachable from `entry` in reverse postorder of a depth-first walk (explicit stack)."""
+    seen = {entry}
+    post: list[str] = []
+    stack = [(entry, iter(succ.get(entry, ())))]
+    while stack:
+        label, it = stack[-1]
+        for nxt in it:
+            if nxt.label not in seen:
+                seen.add(nxt.label)
+                stack.append((nxt.label, iter(succ.get(nxt.label, ()))))
+                break
+        else:
+            stack.pop()
+            post.append(label)
+    return post[::-1]
 
 
 def replay(block: ir.Block, state: State, transfer: Callable[[State, object], State]) -> Iterator[tuple[object, State]]:
@@ -138,31 +239,136 @@ def ops(module: ir.Module, kinds: type | tuple[type, ...] | None = None) -> Iter
                 yield routine, block, op
 
 
-def natural_loops(routine: ir.Routine) -> list[tuple[ir.Block, list[ir.Block]]]:
-    """(header, body) of each loop: a block some later block jumps back to.
+@dataclass
+class Loop:
+    """One loop of a routine's loop-nesting forest: its header, the blocks directly inside it (not
+    in an inner loop; the header first) and the loops nested in it."""
 
-    The body is every block from which the header can be reached again without passing through the
-    header itself — the blocks of a WHILE, an MCode `BR` loop or an X150 `L..N`.
+    header: ir.Block
+    blocks: list[ir.Block] = field(default_factory=list)
+    inner: list["Loop"] = field(default_factory=list)
+
+
+def loop_forest(routine: ir.Routine) -> list[Loop]:
+    """The routine's loops, innermost first: a header is a block a later block (one the depth-first
+    walk reaches from it) jumps back to; its body is every block that reaches such a jump without
+    passing through the header — the blocks of a WHILE, an MCode `BR` loop or an X150 `L..N`.
+
+    Havlak's algorithm: headers are taken in reverse depth-first order, and the body walk jumps over
+    an inner loop already found (union-find), so each block is visited about once and a nest of 500
+    loops costs what 500 loops in a row cost. Edges into a loop from outside the header's depth-
+    first subtree (an irreducible entry) are not followed.
     """
-    preds: dict[str, list[ir.Block]] = {b.label: [] for b in routine.blocks}
-    for block in routine.blocks:
-        for succ in local_successors(routine, block):
-            preds[succ.label].append(block)
-    found = []
-    for header in routine.blocks:
-        inside = {b.label for b in reachable(routine, header)}
-        back = [p for p in preds[header.label] if p.label in inside]
-        body: set[str] = set()
-        stack = list(back)
-        while stack:
-            block = stack.pop()
-            if block.label in body or block is header:
+    entry = routine.entry
+    if entry is None:
+        return []
+    succ = successor_map(routine)
+    blocks = {block.label: block for block in reversed(routine.blocks)}
+    number: dict[str, int] = {entry.label: 0}
+    order = [entry.label]
+    last: dict[str, int] = {}
+    stack = [(entry.label, iter(succ[entry.label]))]
+    while stack:
+        label, it = stack[-1]
+        for nxt in it:
+            if nxt.label not in number:
+                number[nxt.label] = len(order)
+                order.append(nxt.label)
+                stack.append((nxt.label, iter(succ[nxt.label])))
+                break
+        else:
+            stack.pop()
+            last[label] = len(order) - 1
+    preds: dict[str, list[str]] = {label: [] for label in order}
+    for label in order:
+        for nxt in succ[label]:
+            preds[nxt.label].append(label)
+    parent = {label: label for label in order}  # union-find: a block -> the header that absorbed it
+
+    def find(label: str) -> str:
+        root = label
+        while parent[root] != root:
+            root = parent[root]
+        while parent[label] != root:
+            parent[label], label = root, parent[label]
+        return root
+
+    loops: dict[str, Loop] = {}
+    found: list[Loop] = []
+    for header in reversed(order):
+        low, high = number[header], last[header]
+        back = [p for p in preds[header] if low <= number[p] <= high]
+        if not back:
+            continue
+        loop = Loop(blocks[header], [blocks[header]])
+        members: set[str] = set()
+        work = [find(p) for p in back]
+        while work:
+            label = work.pop()
+            if label == header or label in members:
                 continue
-            body.add(block.label)
-            stack += preds[block.label]
-        if back:
-            found.append((header, [b for b in routine.blocks if b.label in body or b is header]))
+            members.add(label)
+            for pred in preds[label]:
+                if low <= number[pred] <= high:
+                    work.append(find(pred))
+        for label in sorted(members, key=number.__getitem__):
+            parent[label] = header
+            if label in loops:
+                loop.inner.append(loops[label])
+            else:
+                loop.blocks.append(blocks[label])
+        loops[header] = loop
+        found.append(loop)
     return found
+
+
+def natural_loops(routine: ir.Routine) -> list[tuple[ir.Block, list[ir.Block]]]:
+    """(header, body) of each loop of `loop_forest`, the body with its inner loops' blocks, in
+    routine order. The bodies of a deep nest add up to more than the routine: rules that only need
+    a property of each loop should compute it over `loop_forest` bottom-up instead."""
+    position = {block.label: i for i, block in enumerate(routine.blocks)}
+    out = []
+    for loop in sorted(loop_forest(routine), key=lambda item: position[item.header.label]):
+        body: list[ir.Block] = []
+        work = [loop]
+        while work:
+            current = work.pop()
+            body += current.blocks
+            work += current.inner
+        out.append((loop.header, sorted(body, key=lambda b: position[b.label])))
+    return out
+
+
+def call_graph(module: ir.Module) -> dict[str, list[str]]:
+    """Routine name -> names of the routines it calls, in the order of its blocks."""
+    graph: dict[str, list[str]] = {routine.name: [] for routine in module.routines}
+    for routine, _, op in ops(module, ir.Call):
+        graph[routine.name].append(op.routine)
+    return graph
+
+
+def summarize(name: str, summaries: dict, assume, graph: dict[str, list[str]], compute: Callable[[str], object]):
+    """`summaries[name]`, computing the summaries of `name` and of the routines it calls, callees
+    first, without Python recursion: a routine's summary may read its callees' summaries, which are
+    ready (or `assume`d while a recursive call is still being summarised, as in a recursive walk)."""
+    if name in summaries:
+        return summaries[name]
+    summaries[name] = assume
+    post: list[str] = []
+    stack = [(name, iter(graph.get(name, ())))]
+    while stack:
+        current, it = stack[-1]
+        for callee in it:
+            if callee not in summaries:
+                summaries[callee] = assume
+                stack.append((callee, iter(graph.get(callee, ()))))
+                break
+        else:
+            stack.pop()
+            post.append(current)
+    for current in post:
+        summaries[current] = compute(current)
+    return summaries[name]
 
 
 class MustFacts:
@@ -177,6 +383,8 @@ class MustFacts:
         self.module = module
         self.gen = gen
         self.summaries: dict[str, frozenset] = {}
+        self.routines = routine_index(module)
+        self.calls = call_graph(module)
 
     def transfer(self, state: frozenset, item) -> frozenset:
         if isinstance(item, ir.Call):
@@ -185,22 +393,23 @@ class MustFacts:
         return state | frozenset(facts) if facts else state
 
     def summary(self, name: str) -> frozenset:
-        if name in self.summaries:
-            return self.summaries[name]
-        self.summaries[name] = frozenset()  # recursion: assume nothing
-        routine = self.module.routine(name)
+        # a recursive call assumes nothing
+        return summarize(name, self.summaries, frozenset(), self.calls, self.compute)
+
+    def compute(self, name: str) -> frozenset:
+        routine = self.routines.get(name)
         if routine is None:
             return frozenset()
         states = forward(routine, frozenset(), self.transfer, frozenset.intersection)
+        succ = successor_map(routine)
         exits = []
         for block in routine.blocks:
-            if block.label in states and not local_successors(routine, block):
+            if block.label in states and not succ[block.label]:
                 state = states[block.label]
                 for item in [*block.ops, block.terminator]:
                     state = self.transfer(state, item)
                 exits.append(state)
-        self.summaries[name] = frozenset.intersection(*exits) if exits else frozenset()
-        return self.summaries[name]
+        return frozenset.intersection(*exits) if exits else frozenset()
 
     def states(self, start: dict[str, frozenset] | None = None) -> dict[str, dict[str, frozenset]]:
         """Routine name -> block label -> facts at the block's start, for every analysed routine.
@@ -214,7 +423,7 @@ class MustFacts:
         queue = deque(entries)
         while queue:
             name = queue.popleft()
-            routine = self.module.routine(name)
+            routine = self.routines.get(name)
             if routine is None:
                 continue
             states = forward(routine, entries[name], self.transfer, frozenset.intersection)
@@ -228,5 +437,6 @@ class MustFacts:
                         new = state if old is None else old & state
                         if old is None or new != old:
                             entries[item.routine] = new
-                            queue.append(item.routine)
+                            if item.routine not in queue:
+                                queue.append(item.routine)
         return result

@@ -57,11 +57,29 @@ def format_text(text: str, path: str, dialect: str, settings: Settings = Setting
 def verify(path: str, dialect: str, before: str, after: str, settings: Settings) -> str:
     """Empty when `after` means the same as `before`; otherwise the first differences."""
     profile = settings.profile(dialect)
-    old = driver.check_file(path, dialect, profile, before).analysis
-    new = driver.check_file(path, dialect, profile, after).analysis
+    old = module_of(driver.check_file(path, dialect, profile, before))  # only the IR stays alive,
+    new = module_of(driver.check_file(path, dialect, profile, after))  # not both syntax trees
     if old is None or new is None:
         return "the file could not be analysed"
-    return "; ".join(differences(old.module, new.module, limit=3))
+    return "; ".join(differences(old, new, limit=3))
+
+
+def module_of(result: driver.FileResult):
+    return result.analysis.module if result.analysis is not None else None
+
+
+def own_errors(path: str, dialect: str, text: str, settings: Settings, limit: int = 3) -> str:
+    """The file's own errors (syntax first), as `line:column CODE message`: when a file that cannot
+    be formatted has some, they are the reason to show, not an internal error of mcc."""
+    try:
+        result = driver.check_file(path, dialect, settings.profile(dialect), text)
+    except Exception:  # noqa: BLE001 - the caller falls back to its own message
+        return ""
+    errors = [d for d in result.diagnostics if d.severity.value == "error" and d.kind.value != "internal"]
+    errors.sort(key=lambda d: (d.kind.value != "syntax", d.span.line, d.span.column))
+    shown = "; ".join(f"{d.span.line}:{d.span.column} {d.code} {d.message}" for d in errors[:limit])
+    more = f"; and {len(errors) - limit} more" if len(errors) > limit else ""
+    return shown + more
 
 
 def long_line(text: str, limit: int) -> str:
@@ -92,15 +110,19 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
         if text != original.text:
             problem = verify(path, found.name, original.text, text, settings)
             if problem:
-                outcome.error = (f"internal error: formatting would change the program ({problem}). This is a bug "
-                                 "in mcc; the file was left unchanged, please report it")
+                own = own_errors(path, found.name, original.text, settings)
+                outcome.error = f"not formatted: the file has errors ({own}); fix them first" if own else (
+                    f"internal error: formatting would change the program ({problem}). This is a bug "
+                    "in mcc; the file was left unchanged, please report it")
                 return outcome
     except OSError as exc:
         outcome.error = f"cannot read {path}: {exc.strerror or exc}"
         return outcome
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
-        outcome.error = f"internal error while formatting: {type(exc).__name__}: {exc}. This is a bug in mcc; " \
-                        "please report it with this file"
+        own = own_errors(path, found.name, original.text, settings)
+        outcome.error = f"not formatted: the file has errors ({own}); fix them first" if own else (
+            f"internal error while formatting: {type(exc).__name__}: {exc}. This is a bug in mcc; "
+            "please report it with this file")
         return outcome
     outcome.changed = text != original.text
     if outcome.changed:

@@ -97,6 +97,8 @@ class Motion:
         self.starts = starts
         self.clears_on_flag = clears_on_flag
         self.summaries: dict[str, tuple[bool, frozenset]] = {}
+        self.routines = flow.routine_index(module)
+        self.calls = flow.call_graph(module)
 
     def transfer(self, state: frozenset, item) -> frozenset:
         if isinstance(item, self.starts):
@@ -111,12 +113,13 @@ class Motion:
         return state
 
     def summary(self, name: str) -> tuple[bool, frozenset]:
-        if name in self.summaries:
-            return self.summaries[name]
-        self.summaries[name] = (False, frozenset())  # recursion: assume nothing
-        routine = self.module.routine(name)
+        # a recursive call assumes nothing; callees are summarised first, without Python recursion
+        return flow.summarize(name, self.summaries, (False, frozenset()), self.calls, self.compute)
+
+    def compute(self, name: str) -> tuple[bool, frozenset]:
+        routine = self.routines.get(name)
         if routine is None:
-            return self.summaries[name]
+            return (False, frozenset())
         marker = frozenset({-1})  # a pseudo move standing for "whatever ran before the call"
         states = flow.forward(routine, marker, self.transfer, frozenset.union)
         exits = [b for b in routine.blocks if isinstance(b.terminator, ir.Return) and b.label in states]
@@ -126,9 +129,7 @@ class Motion:
             for op in block.ops:
                 state = self.transfer(state, op)
             at_exit |= state
-        result = (-1 not in at_exit, frozenset(at_exit - marker))
-        self.summaries[name] = result
-        return result
+        return (-1 not in at_exit, frozenset(at_exit - marker))
 
     def run(self, routine: ir.Routine):
         """(item, state before it) for every operation and terminator reachable in the routine."""
@@ -155,10 +156,11 @@ def position_read_while_moving(ctx: Context) -> None:
 
 @rule("M302", MCODE)
 def branch_out_of_subroutine(ctx: Context) -> None:
+    index = flow.block_index(ctx.module)
     for routine in ctx.module.routines:
         if routine.kind not in SUBROUTINE_KINDS:
             continue
-        for block, label, target, fallthrough in flow.foreign_jumps(ctx.module, routine):
+        for block, label, target, fallthrough in flow.foreign_jumps(ctx.module, routine, index):
             if fallthrough:
                 continue
             what = "handler" if routine.kind is ir.RoutineKind.HANDLER else "subroutine"
@@ -341,13 +343,23 @@ def motion_at_power_up(ctx: Context) -> None:
     def edge(unguarded: bool, block: ir.Block, succ: ir.Block) -> bool:
         return unguarded and not reads_input(block.terminator)
 
+    routines = flow.routine_index(module)
+
     def moves(routine_name: str, seen: set[str]) -> bool:
-        routine = module.routine(routine_name)
-        if routine is None or routine_name in seen:
-            return False
-        seen.add(routine_name)
-        return any(isinstance(op, MOTION_OPS) or isinstance(op, ir.Call) and moves(op.routine, seen)
-                   for block in routine.blocks for op in block.ops)
+        """The routine, or one it calls (at any depth), starts motion."""
+        work = [routine_name]
+        while work:
+            routine = routines.get(work.pop())
+            if routine is None or routine.name in seen:
+                continue
+            seen.add(routine.name)
+            for block in routine.blocks:
+                for op in block.ops:
+                    if isinstance(op, MOTION_OPS):
+                        return True
+                    if isinstance(op, ir.Call):
+                        work.append(op.routine)
+        return False
 
     for routine in module.routines:
         if routine.kind is not ir.RoutineKind.POWERUP:

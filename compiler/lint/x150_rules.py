@@ -63,8 +63,9 @@ def axis_of(item) -> str:
 def exit_state(routine: ir.Routine, states: dict, transfer, join):
     """The state after the routine's last blocks (those without a successor in the routine)."""
     result = None
+    succ = flow.successor_map(routine)
     for block in routine.blocks:
-        if block.label in states and not flow.local_successors(routine, block):
+        if block.label in states and not succ[block.label]:
             state = states[block.label]
             for item in [*block.ops, block.terminator]:
                 state = transfer(state, item)
@@ -244,15 +245,20 @@ def report_comments(ctx: Context, first: st.Comment, count: int) -> None:
 def re_arms(module: ir.Module, routine: ir.Routine, seen: set[str] | None = None) -> bool:
     """The routine (or a sequence it calls) sets a WHEN condition again."""
     seen = seen if seen is not None else set()
-    seen.add(routine.name)
-    for block in routine.blocks:
-        for op in block.ops:
-            if isinstance(op, ir.SetHandler) and op.event == "when" and op.routine is None:
-                return True
-            if isinstance(op, ir.Call) and op.routine not in seen:
-                callee = module.routine(op.routine)
-                if callee is not None and re_arms(module, callee, seen):
+    work = [routine]
+    while work:  # the sequences it calls, at any depth, without Python recursion
+        current = work.pop()
+        if current.name in seen and current is not routine:
+            continue
+        seen.add(current.name)
+        for block in current.blocks:
+            for op in block.ops:
+                if isinstance(op, ir.SetHandler) and op.event == "when" and op.routine is None:
                     return True
+                if isinstance(op, ir.Call) and op.routine not in seen:
+                    callee = module.routine(op.routine)
+                    if callee is not None:
+                        work.append(callee)
     return False
 
 

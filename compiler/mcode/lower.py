@@ -275,6 +275,12 @@ class Lowering:
         return any(b.ops or b.terminator is not None or b.named for b in self.routine.blocks)
 
     def retarget(self, old: str, new: str) -> None:
+        """Point the jumps to the dropped block `old` at `new`. Only generated blocks are dropped, and
+        only `branch` targets one: the block just before it (scanning the module made each label
+        cost the whole program, so long programs checked in quadratic time)."""
+        if old.startswith("%") and self.routine is not None and self.routine.blocks:
+            ir.retarget(self.routine.blocks[-1].terminator, old, new)
+            return
         for _, block in self.module.blocks():
             ir.retarget(block.terminator, old, new)
 

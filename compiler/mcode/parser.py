@@ -12,7 +12,7 @@ from pathlib import Path
 from lark import Lark, Token
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
-from mcc.compiler import recovery
+from mcc.compiler import limits, recovery
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.span import SourceFile
@@ -195,4 +195,7 @@ def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
         diags.add("M001", recovery.error_span(source, number, text, exc), message)
         return st.Line(number, error=True)
 
-    return st.SyntaxTree(source.path, recovery.parse_lines(source, parser, builder, bad_line))
+    text, refused = limits.readable(source, "`'", diags)
+    lines = recovery.parse_lines(text, parser, builder, bad_line)
+    limits.refuse_deep(source, lines, refused, diags)
+    return st.SyntaxTree(source.path, lines)

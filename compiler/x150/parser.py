@@ -22,7 +22,7 @@ from pathlib import Path
 from lark import Lark, Token, Transformer
 from lark.exceptions import LarkError, UnexpectedInput
 
-from mcc.compiler import recovery
+from mcc.compiler import limits, recovery
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import catalog as cat
@@ -84,8 +84,9 @@ def describe_error(exc: UnexpectedInput, text: str, column: int) -> str:
     return str(exc).splitlines()[0]
 
 
-def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
+def parse(original: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
     parser, collector = _parser()
+    source, refused = limits.readable(original, ";", diags)
     text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
     collector.line_delta = 0
     tree = st.SyntaxTree(source.path)
@@ -107,6 +108,7 @@ def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
         if comment is not None:
             line.comment = st.Comment(str(comment), spans.at(comment.start_pos, comment.end_pos))
         tree.lines.append(line)
+    limits.refuse_deep(original, tree.lines, refused, diags, bounded=(st.Condition,))
     return tree
 
 
