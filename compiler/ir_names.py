@@ -92,6 +92,12 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("initial_speed", Unit.STEPS_PER_S),  # the initial speed in force
     Reading("accel", Unit.STEPS_PER_S2),  # the acceleration in force
     Reading("decel", Unit.STEPS_PER_S2),  # the deceleration in force
+    Reading("accel_time", Unit.S),  # the ramp time in force (initial to maximum speed)
+    Reading("profile"),  # the velocity profile in force: 0 trapezoidal, 1 S-curve
+    Reading("motor_status"),  # status bits: 0 accel, 1 decel, 2 constant speed, 3 alarm in, 4 +limit in, 5 -limit in, 6 home in, 7 +limit error, 8 -limit error, 9 alarm error
+    Reading("enable_outputs"),  # every drive-enable output as a bit mask, the first axis in bit 0
+    Reading("countdown", Unit.S),  # time left on the countdown timer (it counts down to 0)
+    Reading("compare_state"),  # the position-compare output: 0 off, 1 armed, 2 fired
 )}
 
 # SetHandler events: what makes the handler run.
@@ -126,6 +132,22 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("hold_delay", Unit.S, "time after a move before the hold current applies", ("mcode",)),
     SettingInfo("encoder_enable", Unit.NONE, "1: the encoder is used (closed loop), 0: open loop",
                 ("mcode",)),
+    SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis", ("arcus",)),
+    SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again",
+                ("arcus",)),
+    SettingInfo("enable_outputs", Unit.NONE, "every drive-enable output as a bit mask, the first axis in bit 0",
+                ("arcus",)),
+    SettingInfo("countdown", Unit.S, "loads the countdown timer, which then counts down to 0", ("arcus",)),
+    SettingInfo("speed_change", Unit.STEPS_PER_S, "changes the speed of the move in progress on the fly",
+                ("arcus",)),
+    SettingInfo("compare_condition", Unit.NONE, "when the position-compare output fires: 1 encoder = position, "
+                "2 encoder > position, 3 encoder < position", ("arcus",)),
+    SettingInfo("compare_position", Unit.STEPS, "the encoder position the position-compare output tests",
+                ("arcus",)),
+    SettingInfo("compare_pulse", Unit.S, "pulse width of the compare output at equality (0: while equal)",
+                ("arcus",)),
+    SettingInfo("compare_output", Unit.NONE, "1 arms the position-compare output, 0 turns it off (its digital "
+                "output is then the program's again)", ("arcus",)),
 )}
 
 
