@@ -96,8 +96,9 @@ def ms(value: ir.Expr, what: str) -> ir.Expr:
 
 class Axes:
     """The source's logical axes as the target's letters: Arcus letters stay; device addresses
-    1..n become the n-th letter; other names (an MCode party name) take the letters in the order
-    they first appear."""
+    1..n become the n-th letter; other names (an MCode party name, or no name at all: the one
+    axis of a single-axis drive) take the free letters in the order they first appear. "*" is
+    every axis."""
 
     LETTERS = ("X", "Y", "Z", "U")
 
@@ -106,6 +107,7 @@ class Axes:
         self.map: dict[str, str] = {}
         names = _axes_used(module)
         named = [n for n in names if n.upper() not in self.LETTERS and not n.isdigit()]
+        named += [n for n in names if n.isdigit() and not 1 <= int(n) <= len(letters)]
         for name in names:
             if name.upper() in self.LETTERS:
                 self.map[name] = name.upper()
@@ -119,8 +121,10 @@ class Axes:
 
     def letter(self, axis: str) -> str | None:
         """The target letter, "*" for every axis, or None (no axis of the target is left for it)."""
-        if axis in ("", ir.ALL_AXES):
+        if axis == ir.ALL_AXES:
             return ir.ALL_AXES
+        if axis == "" and "" not in self.map:
+            return ir.ALL_AXES  # a setting of no axis in a program that names none
         return self.map.get(axis) or self.map.get(axis.upper())
 
 
@@ -128,7 +132,7 @@ def _axes_used(module: ir.Module) -> list[str]:
     seen: dict[str, None] = {}
 
     def add(axis: str) -> None:
-        if axis and axis != ir.ALL_AXES:
+        if axis != ir.ALL_AXES:
             seen.setdefault(axis, None)
 
     for _, block in module.blocks():
@@ -139,11 +143,13 @@ def _axes_used(module: ir.Module) -> list[str]:
             elif isinstance(op, ir.Arc):
                 for axis in op.axes:
                     add(axis)
-            elif hasattr(op, "axis"):
-                add(getattr(op, "axis"))
+            elif isinstance(op, (ir.Slew, ir.Home, ir.WaitMotion, ir.Stop, ir.SetPosition, ir.DriveEnable)):
+                add(op.axis)  # a motion command names its axis; "" is a single-axis drive's one axis
+            elif getattr(op, "axis", ""):
+                add(op.axis)
             for expr in ir.op_exprs(op):
                 for node in ir.walk_expr(expr):
-                    if isinstance(node, ir.Status):
+                    if isinstance(node, ir.Status) and node.axis:
                         add(node.axis)
     return list(seen)
 

@@ -25,11 +25,11 @@ def lines(module: ir.Module, profile: Profile, ctx: "Context") -> list[str]:
     if source > 0 and target > 0:
         scale = f"{source} source steps per revolution -> {target} pulses per revolution (profile {profile.name})"
     else:
-        unknown = "target" if source > 0 else "source" if target > 0 else "source and target"
-        scale = (f"steps per revolution: source {source or 'not set'}, target {target or 'not set'}; the {unknown} "
-                 "figure is unknown, so one source step is one pulse")
+        unknown = "the target's is" if source > 0 else "the source's is" if target > 0 else "both are"
+        scale = (f"steps per revolution: source {source or 'not set'}, target {target or 'not set'}; {unknown} "
+                 "unknown, so one source step is one pulse")
     boot = str(profile.get("arcus.boot_move_mode", "abs")).upper()
-    axes = ", ".join(f"{name}->{letter}" for name, letter in ctx.axes.map.items()) or "none"
+    axes = ", ".join(f"{name or '(unnamed)'}->{letter}" for name, letter in ctx.axes.map.items()) or "none"
     return [
         f"; compiled by mcc from {module.dialect} ({module.path or 'source'}, profile {module.profile})",
         f"; {scale}",

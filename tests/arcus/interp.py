@@ -43,11 +43,16 @@ class Machine:
         return hash((ref.meaning, ref.axis, ref.index, len(self.events))) % 4
 
     def seconds(self, expr) -> float:
-        return float(expr.value) if isinstance(expr, ir.Const) else float(self.value(expr))
+        """A value that may be fractional (seconds, a ramp time): constants keep their fraction."""
+        if isinstance(expr, ir.Const):
+            return float(expr.value)
+        if isinstance(expr, ir.BinOp) and expr.op == "*" and isinstance(expr.right, ir.Const):
+            return self.seconds(expr.left) * float(expr.right.value)
+        return float(self.value(expr))
 
     def value(self, expr) -> int:
         if isinstance(expr, ir.Const):
-            return int(expr.value)
+            return int(round(expr.value)) if isinstance(expr.value, float) else int(expr.value)
         if isinstance(expr, ir.Var):
             return self.vars.get(expr.name.upper(), 0)
         if isinstance(expr, (ir.DeviceRef, ir.Status)):
@@ -96,7 +101,11 @@ class Machine:
         elif isinstance(op, ir.WaitMotion):
             self.event("wait", op.axis)
         elif isinstance(op, ir.SetMotion):
-            self.event("set", op.param.value, op.axis, self.value(op.value))
+            self.event("set", op.param.value, op.axis, round(self.seconds(op.value), 6))
+        elif isinstance(op, ir.Setting):
+            self.event("setting", op.name, op.axis, round(self.seconds(op.value), 6))
+        elif isinstance(op, ir.DriveEnable):
+            self.event("enable", op.axis, self.value(op.on))
         elif isinstance(op, ir.Call):
             if op.cond is None or self.test(op.cond):
                 self.call(op.routine)

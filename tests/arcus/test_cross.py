@@ -147,7 +147,7 @@ def test_the_header_states_the_assumptions_and_the_output_checks_clean() -> None
     listing = backend.emit(module("x150", move(ir.MoveMode.ABSOLUTE, ("1", 1)), steps_per_rev=4000), PROFILE)
     header = [line for line in listing.text.splitlines() if line.startswith(";")]
     assert header[0].startswith("; compiled by mcc from x150")
-    assert "source 4000" in header[1] and "target not set" in header[1]
+    assert "source 4000" in header[1] and "target not set" in header[1] and "the target's is unknown" in header[1]
     assert "1->X" in header[2] and "ABS" in header[2]
     read_back(listing)
     assert not backend.emit(module("arcus", move(ir.MoveMode.ABSOLUTE, ("X", 1))), PROFILE).text.startswith(";")
@@ -162,6 +162,13 @@ def test_axes_map_in_order_and_a_fifth_axis_is_refused() -> None:
     assert code_lines(listing)[:4] == ["X1", "Y1", "Z1", "U1"]
     [message] = errors(listing)
     assert "axis 'E'" in message and "5 axes" in message
+
+
+def test_the_one_unnamed_axis_of_a_single_axis_drive_is_x() -> None:
+    listing = backend.emit(module("mcode", move(ir.MoveMode.RELATIVE, ("", 20000)), ir.WaitMotion(""),
+                                  setm(ir.MotionParam.MAX_SPEED, 800, SPS, axis="")), PROFILE)
+    assert code_lines(listing) == ["INC", "X20000", "WAITX", "HSPDX=800", "END"]
+    assert "(unnamed)->X" in listing.text.splitlines()[2]
 
 
 def test_neutral_readings_become_arcus_registers() -> None:
@@ -195,6 +202,23 @@ def test_arcus_settings_round_trip_through_their_neutral_names() -> None:
     result = driver.compile_file("t.prg", "arcus", text=text)
     assert not result.has_errors, result.diagnostics
     assert result.listing.text == text
+
+
+def arcus_programs() -> list[str]:
+    files = sample_files("arcus") + sorted(GOLDEN.joinpath("arcus").glob("*/*.prg"))
+    return [str(path) for path in files]
+
+
+@pytest.mark.parametrize("path", arcus_programs(), ids=lambda v: v.split("/")[-2] + "/" + v.split("/")[-1])
+def test_arcus_programs_do_the_same_after_compiling(path: str) -> None:
+    """The same moves (with their modes), outputs, settings, waits and calls in the same order."""
+    checked = driver.check_file(path, "arcus")
+    if checked.has_errors:
+        return
+    result = driver.compile_file(path, "arcus")
+    compiled = read_back(result.listing)
+    before, after = Machine(checked.analysis.module).run(), Machine(compiled).run()
+    assert (before.outcome, before.events) == (after.outcome, after.events)
 
 
 # --- every sample and golden program of the other dialects ------------------------------------
