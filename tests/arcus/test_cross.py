@@ -123,6 +123,17 @@ def test_a_module_that_starts_unknown_writes_the_mode_first() -> None:
     assert code_lines(listing) == ["ABS", "X5", "END"]
 
 
+def test_a_profile_can_ask_for_the_first_mode_to_be_written_once_before_any_loop() -> None:
+    profile = target_profile(arcus={**PROFILE.data["arcus"], "write_initial_move_mode": True})
+    loop = ir.Routine("main", ir.RoutineKind.MAIN, [
+        ir.Block("h", [], ir.Branch(ir.Compare("<", ir.Var("V1"), ir.Const(3)), "b", "x")),
+        ir.Block("b", [move(ir.MoveMode.ABSOLUTE, ("X", 5)), ir.Assign(ir.Var("V1"), ir.Const(4))], ir.Jump("h")),
+        ir.Block("x", [move(ir.MoveMode.ABSOLUTE, ("X", 0))], ir.End())])
+    source = ir.Module("arcus", "src", routines=[loop])
+    assert code_lines(backend.emit(source, profile)) == ["ABS", "WHILE V1<3", "X5", "V1=4", "ENDWHILE", "X0", "END"]
+    assert code_lines(backend.emit(source, PROFILE)) == ["WHILE V1<3", "X5", "V1=4", "ENDWHILE", "X0", "END"]
+
+
 def test_a_subroutine_called_in_its_mode_costs_no_switch() -> None:
     sub = ir.Routine("K", ir.RoutineKind.SUBROUTINE,
                      [ir.Block("k", [move(ir.MoveMode.RELATIVE, ("1", 1))], ir.Return())])
