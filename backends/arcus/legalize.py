@@ -30,6 +30,8 @@ CONSTANT_TESTS = {"=": lambda a, b: a == b, "!=": lambda a, b: a != b, "<": lamb
 POSITION_UNITS = frozenset({ir.Unit.NONE, ir.Unit.STEPS})  # what Arcus positions may be given in
 RAMP_PARAMS = (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME, ir.MotionParam.ACCEL, ir.MotionParam.DECEL)
 SPEED_PARAMS = (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED)
+MOTION_NAMES = {ir.MotionParam.MAX_SPEED: "HSPD", ir.MotionParam.INITIAL_SPEED: "LSPD"}
+SPEED_NAMES = ("HSPD", "LSPD", "SSPD")
 RAMP_TOLERANCE_MS = 1  # two ramp times this close are the same ACC (Arcus writes whole ms)
 
 
@@ -105,7 +107,8 @@ class Legalizer:
             raise Refused(f"the {param.value.replace('_', ' ')} setting has no Arcus statement (Arcus has HSPD, LSPD, "
                           "ACC and SCV)")
         self.check_unit(op.value, ir.Unit.STEPS_PER_S, param.value.replace("_", " "))
-        self.emit(ir.SetMotion(param, axis, self.value(self.ctx.scale.rate(self.arcus(op.value)), op), op.span))
+        value = self.ranged(MOTION_NAMES[param], self.ctx.scale.rate(self.arcus(op.value)), op)
+        self.emit(ir.SetMotion(param, axis, self.value(value, op), op.span))
         if param in SPEED_PARAMS:
             self.ramp_after_speed(op, axis)
 
@@ -166,6 +169,26 @@ class Legalizer:
             raise Refused(f"the speed changes while an acceleration of {accel.value:g} steps/s^2 is in force: Arcus "
                           "needs the ramp time (ACC) again, which depends on a speed computed at run time")
         self.emit(ir.SetMotion(ir.MotionParam.ACCEL, axis, ir.Const(ramp), op.span))
+
+    def ranged(self, name: str, value: ir.Expr, op, index: int | None = None) -> ir.Expr:
+        """A constant inside the range the PMX-4EX-SA accepts for `name` (catalog `range`): a speed
+        just under the minimum (0 pulses/s) is written as the minimum with warning G005; anything
+        else outside is refused. Ranges the catalog only warns about are left to the check."""
+        if not isinstance(value, ir.Const):
+            return value
+        keyword = self.ctx.cat.lookup(name, index=index)
+        bounds = keyword.range if keyword is not None else None
+        if bounds is None or keyword.get("range_check", "error") != "error":
+            return value
+        low, high = bounds
+        if low <= value.value <= high:
+            return value
+        if name in SPEED_NAMES and 0 <= value.value < low:
+            self.ctx.diags.add("G005", self.ctx.span_of(op),
+                               f"the speed {value.value:g} is below the PMX-4EX-SA's minimum of {low} pulse/s "
+                               f"({name}): written as {low}")
+            return ir.Const(low, value.unit, value.span)
+        raise Refused(f"{value.value:g} is outside what the PMX-4EX-SA accepts for {name} ({low} to {high})")
 
     def ramp_known(self, op) -> None:
         """A move under an acceleration in steps/s^2 needs the speeds that make it a ramp time."""
@@ -241,7 +264,8 @@ class Legalizer:
         self.check_unit(op.duration, ir.Unit.S, "delay")
         if not isinstance(op.duration, ir.Const):
             self.literal(op.duration, op, "DELAY")
-        self.emit(ir.Delay(self.literal(convert.ms(op.duration, "delay"), op, "DELAY"), op.span))
+        self.emit(ir.Delay(self.literal(self.ranged("DELAY", convert.ms(op.duration, "delay"), op), op, "DELAY"),
+                           op.span))
 
     def op_setoutput(self, op: ir.SetOutput) -> None:
         if op.index is not None and not 1 <= op.index <= 8:
@@ -249,7 +273,8 @@ class Legalizer:
             raise Skip
         if isinstance(op.value, ir.Pattern):
             raise Refused(f"an output pattern ({op.value.bits}) has no Arcus form: write DO=<bit mask>")
-        self.emit(ir.SetOutput(op.index, self.value(self.arcus(op.value), op), op.span))
+        value = self.ranged("DO", self.arcus(op.value), op, index=op.index)
+        self.emit(ir.SetOutput(op.index, self.value(value, op), op.span))
 
     def op_setposition(self, op: ir.SetPosition) -> None:
         self.check_unit(op.value, ir.Unit.STEPS, "position")
@@ -284,6 +309,7 @@ class Legalizer:
             value = ctx.scale.rate(value)
         elif kind == "ms":
             value = convert.ms(value, op.name.replace("_", " "))
+        value = self.ranged(name, value, op)
         value = self.literal(value, op, name) if keyword.literal_only else self.value(value, op)
         self.emit(ir.Native(DIALECT, keyword.spell(axis), (value,), "=", axis, op.span))
 
@@ -297,6 +323,7 @@ class Legalizer:
             self.emit(ir.Native(DIALECT, "EO", (ir.Const(mask),), "=", "", op.span))
             return
         bit = convert.Axes.LETTERS.index(axis) + 1
+        value = self.ranged("EO", value, op, index=bit)
         self.emit(ir.Native(DIALECT, f"EO{bit}", (self.value(value, op),), "=", "", op.span))
 
     def op_call(self, op: ir.Call) -> None:

@@ -267,3 +267,43 @@ def test_compile_into_arcus_from_the_command_line(tmp_path) -> None:
     assert result.returncode == 1
     assert "Traceback" not in result.stdout + result.stderr
     assert f"{source}:1:1" in result.stdout + result.stderr
+
+
+# --- properties ------------------------------------------------------------------------------------
+
+from fractions import Fraction  # noqa: E402
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as hs  # noqa: E402
+
+
+@settings(max_examples=60, deadline=None)
+@given(position=hs.integers(-10**7, 10**7), source=hs.sampled_from([200, 400, 4000, 25000, 51200]),
+       target=hs.sampled_from([200, 1000, 4000, 10000]))
+def test_a_position_is_scaled_exactly_or_refused(position: int, source: int, target: int) -> None:
+    listing = backend.emit(module("mcode", move(ir.MoveMode.ABSOLUTE, ("1", position)), steps_per_rev=source),
+                           target_profile(steps_per_rev=target))
+    scaled = Fraction(position * target, source)
+    if scaled.denominator == 1:
+        assert code_lines(listing) == [f"X{scaled.numerator}", "END"]
+    else:
+        assert code_lines(listing) == ["END"] and len(errors(listing)) == 1
+
+
+@settings(max_examples=60, deadline=None)
+@given(initial=hs.integers(0, 5000), span=hs.integers(1, 200000), accel=hs.integers(1, 10**6))
+def test_an_acceleration_becomes_the_ramp_time_of_the_speeds_in_force(initial: int, span: int, accel: int) -> None:
+    listing = backend.emit(module("x150", setm(ir.MotionParam.INITIAL_SPEED, initial, SPS),
+                                  setm(ir.MotionParam.MAX_SPEED, initial + span, SPS),
+                                  setm(ir.MotionParam.ACCEL, accel, SPS2)), PROFILE)
+    ramp = max(1, round(span / accel * 1000))
+    assert code_lines(listing)[2] == f"ACCX={ramp}"
+
+
+def test_values_outside_the_controllers_ranges_are_clamped_with_a_warning_or_refused() -> None:
+    listing = backend.emit(module("x150", setm(ir.MotionParam.INITIAL_SPEED, 0, SPS),
+                                  setm(ir.MotionParam.MAX_SPEED, 7_000_000, SPS), ir.SetOutput(3, ir.Const(2)),
+                                  ir.Setting("compare_pulse", "1", ir.Const(0.02, S))), PROFILE)
+    assert code_lines(listing) == ["LSPDX=1", "END"]
+    assert [d.code for d in listing.diagnostics] == ["G005", "G003", "G003", "G003"]
+    assert "6000000" in errors(listing)[0] and "SYNT" in errors(listing)[2]
