@@ -271,8 +271,13 @@ class Legalizer:
         if op.index is not None and not 1 <= op.index <= 8:
             self.ctx.unsupported(op, f"output {op.index}: the PMX-4EX-SA has DO1-DO8")
             raise Skip
-        if isinstance(op.value, ir.Pattern):
-            raise Refused(f"an output pattern ({op.value.bits}) has no Arcus form: write DO=<bit mask>")
+        if isinstance(op.value, ir.Pattern):  # 0/1 set that output, X leaves it (output 1 first)
+            bits = [(i + 1, int(b)) for i, b in enumerate(op.value.bits) if b in "01"]
+            if any(index > 8 for index, _ in bits):
+                raise Refused(f"the output pattern {op.value.bits} sets outputs beyond DO8")
+            for index, bit in bits:
+                self.emit(ir.SetOutput(index, ir.Const(bit), op.span))
+            return
         value = self.ranged("DO", self.arcus(op.value), op, index=op.index)
         self.emit(ir.SetOutput(op.index, self.value(value, op), op.span))
 
@@ -514,6 +519,8 @@ class Legalizer:
             return ir.Compare(op, cond.left, cond.right, cond.span)
         if isinstance(cond, ir.Truth):
             return ir.Compare("!=", cond.expr, ir.Const(0), cond.span)
+        if isinstance(cond, ir.InputMatch):
+            return self.normal(input_match(cond))
         if isinstance(cond, ir.Logic) and cond.op in ("and", "or"):
             return ir.Logic(cond.op, self.normal(cond.left), self.normal(cond.right), cond.span)
         if isinstance(cond, ir.Not):
@@ -622,6 +629,21 @@ class Legalizer:
         self.ctx.unsupported_at(getattr(cond, "span", None),
                                 f"this condition ({type(cond).__name__}) has no Arcus form")
 
+
+
+def input_match(cond: ir.InputMatch) -> ir.Cond:
+    """Inputs matching a 0/1/X pattern (input 1 first) as comparisons of DI bits joined by AND."""
+    bits = [(i + 1, int(b)) for i, b in enumerate(cond.pattern.bits) if b in "01"]
+    if any(index > 8 for index, _ in bits):
+        raise Refused(f"the input pattern {cond.pattern.bits} tests inputs beyond DI8")
+    tests: list[ir.Cond] = [ir.Compare("=", ir.DeviceRef(DIALECT, "DI", "input", "", index), ir.Const(bit), cond.span)
+                            for index, bit in bits]
+    if not tests:
+        return ir.Compare("=", ir.Const(1), ir.Const(1), cond.span)
+    result = tests[0]
+    for test in tests[1:]:
+        result = ir.Logic("and", result, test, cond.span)
+    return result
 
 
 def describe(op) -> str:

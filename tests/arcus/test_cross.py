@@ -307,3 +307,15 @@ def test_values_outside_the_controllers_ranges_are_clamped_with_a_warning_or_ref
     assert code_lines(listing) == ["LSPDX=1", "END"]
     assert [d.code for d in listing.diagnostics] == ["G005", "G003", "G003", "G003"]
     assert "6000000" in errors(listing)[0] and "SYNT" in errors(listing)[2]
+
+
+def test_input_and_output_patterns_become_bit_tests_and_bit_writes() -> None:
+    source = module("x150", ir.WaitInput(ir.InputMatch(ir.Pattern("1X0"))), ir.SetOutput(None, ir.Pattern("X10")))
+    listing = backend.emit(source, PROFILE)
+    assert errors(listing) == []
+    lines = code_lines(listing)
+    assert lines.index("DO2=1") + 1 == lines.index("DO3=0")  # X leaves output 1 alone
+    assert "IF DI1=1" in lines and "IF DI3=0" in lines  # the AND of both bits, through a flag
+    read_back(listing)
+    too_wide = backend.emit(module("x150", ir.WaitInput(ir.InputMatch(ir.Pattern("XXXXXXXX1")))), PROFILE)
+    assert "beyond DI8" in errors(too_wide)[0]
