@@ -151,6 +151,10 @@ def _axes_used(module: ir.Module) -> list[str]:
                 for node in ir.walk_expr(expr):
                     if isinstance(node, ir.Status) and node.axis:
                         add(node.axis)
+        for expr in ir.term_exprs(block.terminator):  # readings in IF/WHILE conditions (IF MSTX=0)
+            for node in ir.walk_expr(expr):
+                if isinstance(node, ir.Status) and node.axis:
+                    add(node.axis)
     return list(seen)
 
 

@@ -554,7 +554,9 @@ class Legalizer:
         """An expression or condition with its neutral readings as Arcus registers (refused: Refused)."""
         if isinstance(node, ir.Status):
             letter = self.ctx.axes.letter(node.axis) if node.axis else ""
-            found = convert.reading(node, letter or "")
+            if letter is None:
+                raise Refused(f"axis '{node.axis}' of the reading '{node.meaning}' has no axis left on the target")
+            found = convert.reading(node, letter)
             if found is None:
                 where = f" of axis {node.axis}" if node.axis not in ("", ir.ALL_AXES) else ""
                 index = f" {node.index}" if node.index is not None else ""

@@ -319,3 +319,10 @@ def test_input_and_output_patterns_become_bit_tests_and_bit_writes() -> None:
     read_back(listing)
     too_wide = backend.emit(module("x150", ir.WaitInput(ir.InputMatch(ir.Pattern("XXXXXXXX1")))), PROFILE)
     assert "beyond DI8" in errors(too_wide)[0]
+
+
+def test_readings_in_conditions_keep_their_axis() -> None:
+    text = "IF MSTX=0\nDO=6\nELSEIF MSTY=0\nDO=3\nENDIF\nWHILE PZ<100\nZ100\nENDWHILE\nEND\n"
+    result = driver.compile_file("t.prg", "arcus", text=text)
+    assert not result.has_errors, result.diagnostics
+    assert result.listing.text == text
