@@ -96,6 +96,12 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("input_pending"),  # 1 while a value typed for an INPUT statement is waiting (MCode IF)
     Reading("hmt_status"),  # the closed-loop (hMT) status bits (MCode AF)
     Reading("locked_rotor"),  # 1 after a closed-loop drive detected a locked rotor (MCode LR)
+    Reading("accel_time", Unit.S),  # the ramp time in force (initial to maximum speed)
+    Reading("profile"),  # the velocity profile in force: 0 trapezoidal, 1 S-curve
+    Reading("motor_status"),  # status bits: 0 accel, 1 decel, 2 constant speed, 3 alarm in, 4 +limit in, 5 -limit in, 6 home in, 7 +limit error, 8 -limit error, 9 alarm error
+    Reading("enable_outputs"),  # every drive-enable output as a bit mask, the first axis in bit 0
+    Reading("countdown", Unit.S),  # time left on the countdown timer (it counts down to 0)
+    Reading("compare_state"),  # the position-compare output: 0 off, 1 armed, 2 fired
 )}
 
 # SetHandler events: what makes the handler run.
@@ -139,6 +145,22 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("input_active_high", Unit.NONE, "1: input `index` is active at a high level, 0: low", ("mcode",)),
     SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS", ("mcode",)),
     SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode",)),
+    SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis", ("arcus",)),
+    SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again",
+                ("arcus",)),
+    SettingInfo("enable_outputs", Unit.NONE, "every drive-enable output as a bit mask, the first axis in bit 0",
+                ("arcus",)),
+    SettingInfo("countdown", Unit.S, "loads the countdown timer, which then counts down to 0", ("arcus",)),
+    SettingInfo("speed_change", Unit.STEPS_PER_S, "changes the speed of the move in progress on the fly",
+                ("arcus",)),
+    SettingInfo("compare_condition", Unit.NONE, "when the position-compare output fires: 1 encoder = position, "
+                "2 encoder > position, 3 encoder < position", ("arcus",)),
+    SettingInfo("compare_position", Unit.STEPS, "the encoder position the position-compare output tests",
+                ("arcus",)),
+    SettingInfo("compare_pulse", Unit.S, "pulse width of the compare output at equality (0: while equal)",
+                ("arcus",)),
+    SettingInfo("compare_output", Unit.NONE, "1 arms the position-compare output, 0 turns it off (its digital "
+                "output is then the program's again)", ("arcus",)),
 )}
 
 # The values of the input_function and output_function settings (an `ir.Text`).

@@ -3,23 +3,28 @@
 `emit(module, profile)` is the whole interface. The work is done in five passes, one module each:
 
 1. **Legalize** (legalize.py): a copy of each routine's CFG in which every operation is one Arcus
-   statement, expressions split through the reserved temporaries (temporaries.py).
-2. **Move modes** (move_modes.py): ABS/INC where a move needs a mode not known to be in force.
-3. **Structure** (mcc.backends.structure, shared by targets without GOTO): IF/ELSEIF/ELSE and WHILE
+   statement, expressions split through the reserved temporaries (temporaries.py), units and
+   neutral names converted (convert.py).
+2. **Structure** (mcc.backends.structure, shared by targets without GOTO): IF/ELSEIF/ELSE and WHILE
    rebuilt from the CFG; loops left from one other place get a flag variable; anything else makes
    the routine a dispatch loop on a reserved variable, reported as a note (A202).
+3. **Move modes** (move_modes.py): ABS/INC where a move needs a mode not known to be in force, on
+   the structured program over all routines, so that the output read back means the same.
 4. **Layout** (writer.py): main program, END, then the SUB blocks, one canonical statement per line.
 5. **Cost** (costmodel.py): every statement expanded into the assembly lines of the profile's cost
    model, numbered like the controller's program counter; over the budget is an error (A201).
 
 The backend reads only the IR, the profile and the Arcus catalog (for keyword spellings and what a
-register may be used for); it never sees a syntax tree. What the passes share lives in context.py
+register may be used for); it never sees a syntax tree. Programs of any dialect come in: the
+units and neutral names are converted in convert.py, and what the PMX-4EX-SA cannot express is
+refused (G003) with the construct, its line and why. A program from another dialect starts with
+a comment block stating the assumptions of the conversion (header.py). What the passes share lives in context.py
 (the names given, the diagnostics) and target.py (the target's tables and the profile's settings).
 """
 
 from __future__ import annotations
 
-from mcc.backends.arcus import costmodel, move_modes, temporaries
+from mcc.backends.arcus import costmodel, header, move_modes, temporaries
 from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.legalize import Legalizer
 from mcc.backends.arcus.target import DIALECT
@@ -27,7 +32,6 @@ from mcc.backends.arcus.writer import Writer
 from mcc.backends.listing import Listing
 from mcc.backends.structure import EndNode, structure
 from mcc.compiler import ir
-from mcc.compiler.arcus import modes
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -39,14 +43,13 @@ MEMORY_CODES = ("A201", "A204", "A240")  # what `mcc check` reports of the cost 
 def emit(module: ir.Module, profile: Profile) -> Listing:
     """Canonical Arcus standalone text and its assembly-level listing for an IR module."""
     ctx, stmts, dispatched = program(module, profile)
-    return listing(ctx, stmts, dispatched)
+    return listing(ctx, stmts, dispatched, header.lines(module, profile, ctx))
 
 
 def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     """Passes 1-4: the program's statements in layout order (not yet priced), the context and
     how many routines became dispatch loops."""
     ctx = Context(module, profile)
-    moved = modes.changers(module, explicit_moves=True)
     ctx.number_subroutines()
     main: list = []
     subs: list[tuple[ir.Routine, list, Span | None]] = []
@@ -57,7 +60,7 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
             ctx.unsupported_at(routine.span, f"{routine.name} is a {kind.value} routine; Arcus has no event "
                                              "handlers or power-up entry")
             continue
-        code, end_span, fallback = compile_routine(ctx, routine, moved)
+        code, end_span, fallback = compile_routine(ctx, routine)
         dispatched += fallback
         if kind is ir.RoutineKind.SUBROUTINE:
             subs.append((routine, code, end_span))
@@ -65,6 +68,7 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
             main = [n for n in code if not isinstance(n, EndNode)] + main
         else:
             main += code
+    move_modes.write_switches(main, subs, profile)
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
     return ctx, stmts, dispatched
@@ -87,10 +91,9 @@ def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:
     return usage, [d for d in ctx.diags if d.code in MEMORY_CODES]
 
 
-def compile_routine(ctx: Context, routine: ir.Routine, moved: set[str]) -> tuple[list, Span | None, bool]:
-    """Passes 1-3 for one routine: its structured tree, where it ends, and whether it is a dispatch loop."""
+def compile_routine(ctx: Context, routine: ir.Routine) -> tuple[list, Span | None, bool]:
+    """Passes 1-2 for one routine: its structured tree, where it ends, and whether it is a dispatch loop."""
     legal = Legalizer(ctx, routine).run()
-    move_modes.insert(legal, ctx, moved)
     temps = ctx.temps
     temps.start_routine()
 
@@ -106,11 +109,14 @@ def compile_routine(ctx: Context, routine: ir.Routine, moved: set[str]) -> tuple
     return done.body, done.exit_span, done.fallback is not None
 
 
-def listing(ctx: Context, stmts: list, dispatched: int) -> Listing:
-    """Passes 4-5 put together: the text, its priced assembly rows, statistics and the budget check."""
+def listing(ctx: Context, stmts: list, dispatched: int, comments: list[str] = ()) -> Listing:
+    """Passes 4-5 put together: the text, its priced assembly rows, statistics and the budget check.
+    `comments` (the conversion's assumptions) head the text; comments cost no assembly line."""
     config = ctx.config
     total = costmodel.price(stmts, config)
     result = Listing(DIALECT)
+    for comment in comments:
+        result.emit(comment)
     for stmt in stmts:
         result.emit(stmt.text, *stmt.spans)
     result.detail = costmodel.assembly_rows(stmts, total)

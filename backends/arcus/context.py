@@ -11,9 +11,10 @@ from __future__ import annotations
 import re
 from functools import cached_property
 
+from mcc.backends.arcus.convert import Axes, Scale
 from mcc.backends.arcus.target import DIALECT, Config
 from mcc.backends.arcus.temporaries import Temps
-from mcc.compiler import ir
+from mcc.compiler import in_force, ir
 from mcc.compiler.arcus import catalog as arcus_catalog
 from mcc.compiler.diagnostics import Diagnostics, Severity
 from mcc.compiler.profiles import Profile
@@ -34,6 +35,16 @@ class Context:
         self.sub_numbers: dict[str, int] = {}
         self.entries = {r.blocks[0].label: r for r in module.routines if r.blocks}  # entry label -> routine
         self.reported: dict[int, object] = {}
+        self.scale = Scale(module.steps_per_rev, profile.steps_per_rev)
+        self.axes = Axes(module, self.config.axes)
+        self._in_force: dict[int, in_force.State] | None = None
+
+    def in_force_before(self, op: ir.Op) -> in_force.State:
+        """The motion settings in force just before `op` (constants known by data flow)."""
+        if self._in_force is None:
+            analysis = in_force.InForce(self.module)
+            self._in_force = {id(o): state for r in self.module.routines for _, _, o, state in analysis.walk(r)}
+        return self._in_force.get(id(op), {})
 
     # diagnostics ------------------------------------------------------------------------------
     def file_span(self) -> Span:

@@ -15,17 +15,24 @@ The result obeys what backends/structure.py assumes of a routine.
 
 from __future__ import annotations
 
+from mcc.backends.arcus import convert
 from mcc.backends.arcus.context import Context
-from mcc.backends.arcus.target import AXES, DIALECT, HOME_KEYWORDS, MOTION_IR
+from mcc.backends.arcus.convert import Refused
+from mcc.backends.arcus.target import DIALECT, HOME_KEYWORDS, MOTION_IR
 from mcc.backends.structure import NEGATE, negate
-from mcc.compiler import ir
+from mcc.compiler import ir, units
 from mcc.compiler.span import Span
 
 ARCUS_BINARY = {"+", "-", "*", "/", "%", "&", "|", "<<", ">>"}
 COMPARE_SPELLING = {"==": "=", "<>": "!="}
 CONSTANT_TESTS = {"=": lambda a, b: a == b, "!=": lambda a, b: a != b, "<": lambda a, b: a < b,
                   "<=": lambda a, b: a <= b, ">": lambda a, b: a > b, ">=": lambda a, b: a >= b}
-POSITION_UNITS = frozenset({ir.Unit.NONE, ir.Unit.STEPS, ir.Unit.COUNTS})  # what Arcus positions may be given in
+POSITION_UNITS = frozenset({ir.Unit.NONE, ir.Unit.STEPS})  # what Arcus positions may be given in
+RAMP_PARAMS = (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME, ir.MotionParam.ACCEL, ir.MotionParam.DECEL)
+SPEED_PARAMS = (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED)
+MOTION_NAMES = {ir.MotionParam.MAX_SPEED: "HSPD", ir.MotionParam.INITIAL_SPEED: "LSPD"}
+SPEED_NAMES = ("HSPD", "LSPD", "SSPD")
+RAMP_TOLERANCE_MS = 1  # two ramp times this close are the same ACC (Arcus writes whole ms)
 
 
 class Skip(Exception):
@@ -42,11 +49,13 @@ class Legalizer:
         self.labels = {block.label for block in routine.blocks}
         self.block: ir.Block | None = None
         self.split = 0
+        self.source_ops: list[ir.Op] = []
 
     def run(self) -> ir.Routine:
         for block in self.routine.blocks:
             self.block = ir.Block(block.label, span=block.span, named=block.named)
             self.out.blocks.append(self.block)
+            self.source_ops = block.ops
             for op in block.ops:
                 self.op(op)
             self.terminator(block.terminator, block.span)
@@ -70,36 +79,145 @@ class Legalizer:
         try:
             handler = getattr(self, "op_" + type(op).__name__.lower(), None)
             if handler is None:
-                ctx.unsupported(op, f"{type(op).__name__} has no Arcus statement")
+                ctx.unsupported(op, f"{describe(op)} has no Arcus statement")
             else:
                 handler(op)
+        except Refused as refused:
+            ctx.unsupported(op, str(refused))
         except Skip:
             pass
         temps.live = base
 
     def op_assign(self, op: ir.Assign) -> None:
         target = self.ctx.var(op.target)
-        self.assign(target, op.value, op.span)
+        self.assign(target, self.arcus(op.value), op.span)
 
     def op_setmotion(self, op: ir.SetMotion) -> None:
-        name = MOTION_IR.get(op.param)
-        if name is None:
-            self.ctx.unsupported(op, f"the {op.param.value} setting has no Arcus statement (Arcus has HSPD, LSPD "
-                                     "and ACC, a ramp time used for both acceleration and deceleration)")
-            raise Skip
-        unit = op.value.unit if isinstance(op.value, ir.Const) else ir.Unit.NONE
-        allowed = {ir.Unit.NONE, ir.Unit.MS} if op.param is ir.MotionParam.ACCEL else \
-            {ir.Unit.NONE, ir.Unit.STEPS_PER_S}
-        if unit not in allowed:
-            arcus_unit = "a ramp time in ms" if op.param is ir.MotionParam.ACCEL else "in pulses/s"
-            self.ctx.unsupported(op, f"the {op.param.value.replace('_', ' ')} is given in {unit.value}, and the "
-                                     f"Arcus setting is {arcus_unit}: convert it in the source", code="G005")
-            raise Skip
-        self.emit(ir.SetMotion(op.param, self.axis(op.axis, op, setting=True), self.value(op.value, op),
-                               op.span))
+        param = op.param
+        axis = self.axis(op.axis, op, setting=True)
+        if param is ir.MotionParam.PROFILE:
+            value = self.value(self.arcus(op.value), op)
+            for letter in (self.ctx.config.axes if axis == ir.ALL_AXES else (axis,)):
+                self.emit(ir.Native(DIALECT, f"SCV{letter}", (value,), "=", letter, op.span))
+            return
+        if param in RAMP_PARAMS:
+            self.ramp(op, axis)
+            return
+        if MOTION_IR.get(param) is None:
+            raise Refused(f"the {param.value.replace('_', ' ')} setting has no Arcus statement (Arcus has HSPD, LSPD, "
+                          "ACC and SCV)")
+        self.check_unit(op.value, ir.Unit.STEPS_PER_S, param.value.replace("_", " "))
+        value = self.ranged(MOTION_NAMES[param], self.ctx.scale.rate(self.arcus(op.value)), op)
+        self.emit(ir.SetMotion(param, axis, self.value(value, op), op.span))
+        if param in SPEED_PARAMS:
+            self.ramp_after_speed(op, axis)
+
+    # ramps: Arcus has one ramp time (ACC, ms) for speeding up and slowing down ------------------------
+    def state(self, op) -> dict:
+        return self.ctx.in_force_before(op)
+
+    def ramp(self, op: ir.SetMotion, axis: str) -> None:
+        """ACC for a ramp time, or for an acceleration with the speeds in force (in_force.py)."""
+        param = op.param
+        state = self.state(op)
+        if param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME):
+            self.check_unit(op.value, ir.Unit.S, param.value.replace("_", " "))
+            value = convert.ms(op.value, "ramp time") if isinstance(op.value, ir.Const) else \
+                self.ms_value(op.value, op)
+        else:
+            self.check_unit(op.value, ir.Unit.STEPS_PER_S2, param.value)
+            if not isinstance(op.value, ir.Const):
+                raise Refused(f"the {param.value}eration is computed at run time and Arcus sets a ramp time (ACC, ms) "
+                              "that depends on it and on the speeds: set it with a constant")
+            ramp = ramp_ms(op.value.value, state, op.axis)
+            if ramp is None:
+                return  # written when the speeds are set (ramp_after_speed); a move before that is refused
+            value = ir.Const(ramp, ir.Unit.NONE, op.value.span)
+        if param in (ir.MotionParam.DECEL_TIME, ir.MotionParam.DECEL):
+            up = accel_ramp_ms(state, op.axis)
+            if isinstance(value, ir.Const) and up is not None and abs(up - value.value) <= RAMP_TOLERANCE_MS:
+                return  # the ACC written for the acceleration already ramps down the same way
+            if isinstance(value, ir.Var) and self.same_ramp_var(op, state):
+                return
+            raise Refused(f"the {param.value.replace('_', ' ')} differs from the acceleration ramp in force, and Arcus "
+                          "ramps down in the same time it ramps up (one ACC): set both to the same ramp")
+        self.emit(ir.SetMotion(ir.MotionParam.ACCEL, axis, self.value(value, op), op.span))
+
+    def same_ramp_var(self, op: ir.SetMotion, state: dict) -> bool:
+        """DECEL_TIME = v*0.001 just after ACCEL_TIME = v*0.001 (how Arcus `ACC=V3` lowers)."""
+        ops = self.source_ops
+        index = next((i for i, o in enumerate(ops) if o is op), None)
+        if not index:
+            return False
+        before = ops[index - 1]
+        return isinstance(before, ir.SetMotion) and before.param is ir.MotionParam.ACCEL_TIME and \
+            before.axis == op.axis and before.value == op.value
+
+    def ramp_after_speed(self, op: ir.SetMotion, axis: str) -> None:
+        """A speed changed while an acceleration in steps/s^2 is in force: the ramp time changes."""
+        state = dict(self.state(op))
+        if lookup(state, ir.MotionParam.ACCEL, op.axis) is None:
+            return
+        state[(op.param, op.axis)] = op.value if isinstance(op.value, ir.Const) else None
+        accel = lookup(state, ir.MotionParam.ACCEL, op.axis)
+        ramp = ramp_ms(accel.value, state, op.axis) if isinstance(op.value, ir.Const) else None
+        if ramp is None:
+            partner = ir.MotionParam.INITIAL_SPEED if op.param is ir.MotionParam.MAX_SPEED else \
+                ir.MotionParam.MAX_SPEED
+            if lookup(state, partner, op.axis) is None:
+                return  # the ramp is written once the other speed is set
+            raise Refused(f"the speed changes while an acceleration of {accel.value:g} steps/s^2 is in force: Arcus "
+                          "needs the ramp time (ACC) again, which depends on a speed computed at run time")
+        self.emit(ir.SetMotion(ir.MotionParam.ACCEL, axis, ir.Const(ramp), op.span))
+
+    def ranged(self, name: str, value: ir.Expr, op, index: int | None = None) -> ir.Expr:
+        """A constant inside the range the PMX-4EX-SA accepts for `name` (catalog `range`): a speed
+        just under the minimum (0 pulses/s) is written as the minimum with warning G005; anything
+        else outside is refused. Ranges the catalog only warns about are left to the check."""
+        if not isinstance(value, ir.Const):
+            return value
+        keyword = self.ctx.cat.lookup(name, index=index)
+        bounds = keyword.range if keyword is not None else None
+        if bounds is None or keyword.get("range_check", "error") != "error":
+            return value
+        low, high = bounds
+        if low <= value.value <= high:
+            return value
+        if name in SPEED_NAMES and 0 <= value.value < low:
+            self.ctx.diags.add("G005", self.ctx.span_of(op),
+                               f"the speed {value.value:g} is below the PMX-4EX-SA's minimum of {low} pulse/s "
+                               f"({name}): written as {low}")
+            return ir.Const(low, value.unit, value.span)
+        raise Refused(f"{value.value:g} is outside what the PMX-4EX-SA accepts for {name} ({low} to {high})")
+
+    def ramp_known(self, op) -> None:
+        """A move under an acceleration in steps/s^2 needs the speeds that make it a ramp time."""
+        state = self.state(op)
+        for axis, _ in getattr(op, "targets", ()):
+            if lookup(state, ir.MotionParam.ACCEL_TIME, axis) is not None:
+                continue
+            accel = lookup(state, ir.MotionParam.ACCEL, axis)
+            if accel is not None and ramp_ms(accel.value, state, axis) is None:
+                raise Refused(f"the move runs with an acceleration of {accel.value:g} steps/s^2 and speeds that are not "
+                              "known here, and Arcus sets a ramp time (ACC) that depends on them: set the initial "
+                              "and maximum speeds before the move")
+
+    def ms_value(self, value: ir.Expr, op) -> ir.Expr:
+        return self.value(convert.ms(self.arcus(value), "ramp time"), op)
+
+    def check_unit(self, value: ir.Expr, unit: ir.Unit, what: str) -> None:
+        if isinstance(value, ir.Const) and value.unit not in (unit, ir.Unit.NONE):
+            raise Refused(f"the {what} is given in '{value.unit.value}', not in {unit.value} as the IR requires")
 
     def op_move(self, op: ir.Move) -> None:
-        targets = tuple((self.axis(axis, op), self.value(value, op, units=POSITION_UNITS))
+        if op.mode not in (ir.MoveMode.ABSOLUTE, ir.MoveMode.RELATIVE):
+            raise Refused("the move is in 'whatever mode is in force' and the source did not say which: Arcus "
+                          "needs it absolute or relative")
+        for _, value in op.targets:
+            self.check_unit(value, ir.Unit.STEPS, "move target")
+        self.ramp_known(op)
+        targets = tuple((self.axis(axis, op), self.value(self.ctx.scale.steps(self.arcus(value)), op,
+                                                         units=POSITION_UNITS))
                         for axis, value in op.targets)
         if op.options:
             self.ctx.unsupported(op, "move options (MCode MA p2/p3) have no Arcus form; the move is written "
@@ -110,8 +228,16 @@ class Legalizer:
         if tuple(op.axes) != ("X", "Y"):
             self.ctx.unsupported(op, "Arcus ARC/CIR move the X and Y axes only")
             raise Skip
-        center = tuple(self.literal(c, op, "ARC/CIR centre") for c in op.center)
-        angle = None if op.angle is None else self.literal(op.angle, op, "ARC angle")
+        center = tuple(self.literal(self.ctx.scale.steps(c), op, "ARC/CIR centre") for c in op.center)
+        angle = None
+        if op.angle is not None:
+            self.check_unit(op.angle, ir.Unit.DEGREES, "ARC angle")
+            if not isinstance(op.angle, ir.Const):
+                self.literal(op.angle, op, "ARC angle")
+            millidegrees = op.angle.value * 1000
+            if abs(millidegrees - round(millidegrees)) > 1e-6:
+                raise Refused(f"the arc angle {op.angle.value:g} degrees is not a whole number of 1/1000 degree")
+            angle = ir.Const(round(millidegrees), ir.Unit.NONE, op.angle.span)
         self.emit(ir.Arc(op.axes, center, op.clockwise, angle, op.span))
 
     def op_slew(self, op: ir.Slew) -> None:
@@ -135,20 +261,75 @@ class Legalizer:
         self.emit(ir.WaitMotion(self.axis(op.axis, op, setting=True), op.span))
 
     def op_delay(self, op: ir.Delay) -> None:
-        duration = op.duration
-        if isinstance(duration, ir.Const) and duration.unit is ir.Unit.S:
-            duration = ir.Const(duration.value * 1000, ir.Unit.MS, duration.span)
-        self.emit(ir.Delay(self.literal(duration, op, "DELAY"), op.span))
+        self.check_unit(op.duration, ir.Unit.S, "delay")
+        if not isinstance(op.duration, ir.Const):
+            self.literal(op.duration, op, "DELAY")
+        self.emit(ir.Delay(self.literal(self.ranged("DELAY", convert.ms(op.duration, "delay"), op), op, "DELAY"),
+                           op.span))
 
     def op_setoutput(self, op: ir.SetOutput) -> None:
         if op.index is not None and not 1 <= op.index <= 8:
             self.ctx.unsupported(op, f"output {op.index}: the PMX-4EX-SA has DO1-DO8")
             raise Skip
-        self.emit(ir.SetOutput(op.index, self.value(op.value, op), op.span))
+        if isinstance(op.value, ir.Pattern):  # 0/1 set that output, X leaves it (output 1 first)
+            bits = [(i + 1, int(b)) for i, b in enumerate(op.value.bits) if b in "01"]
+            if any(index > 8 for index, _ in bits):
+                raise Refused(f"the output pattern {op.value.bits} sets outputs beyond DO8")
+            for index, bit in bits:
+                self.emit(ir.SetOutput(index, ir.Const(bit), op.span))
+            return
+        value = self.ranged("DO", self.arcus(op.value), op, index=op.index)
+        self.emit(ir.SetOutput(op.index, self.value(value, op), op.span))
 
     def op_setposition(self, op: ir.SetPosition) -> None:
-        self.emit(ir.SetPosition(self.axis(op.axis, op), self.value(op.value, op, units=POSITION_UNITS),
-                                 op.span))
+        self.check_unit(op.value, ir.Unit.STEPS, "position")
+        self.emit(ir.SetPosition(self.axis(op.axis, op), self.value(self.ctx.scale.steps(self.arcus(op.value)), op,
+                                                                    units=POSITION_UNITS), op.span))
+
+    def op_setting(self, op: ir.Setting) -> None:
+        """A neutral setting the PMX-4EX-SA has, in its spelling; the others are refused by name."""
+        ctx = self.ctx
+        if op.name in ("clear_error", "compare_output"):
+            axis = self.axis(op.axis, op)
+            on = isinstance(op.value, ir.Const) and op.value.value != 0
+            if op.name == "clear_error":
+                if not on:
+                    raise Skip  # writing 0 clears nothing
+                self.emit(ir.Native(DIALECT, f"ECLEAR{axis}", (), "", axis, op.span))
+            elif isinstance(op.value, ir.Const):
+                self.emit(ir.Native(DIALECT, f"SYN{axis}{'O' if on else 'F'}", (), "", axis, op.span))
+            else:
+                raise Refused("the position-compare output is switched by a value computed at run time; Arcus has "
+                              "only SYN<axis>O and SYN<axis>F")
+            return
+        if op.name not in convert.SETTINGS:
+            raise Refused(f"the setting '{op.name}' has no Arcus statement")
+        name, kind = convert.SETTINGS[op.name]
+        keyword = ctx.cat.lookup(name)
+        axis = self.axis(op.axis, op) if keyword.get("axis") == "required" else ""
+        value = self.arcus(op.value)
+        if kind == "steps":
+            value = ctx.scale.steps(value)
+        elif kind == "rate":
+            value = ctx.scale.rate(value)
+        elif kind == "ms":
+            value = convert.ms(value, op.name.replace("_", " "))
+        value = self.ranged(name, value, op)
+        value = self.literal(value, op, name) if keyword.literal_only else self.value(value, op)
+        self.emit(ir.Native(DIALECT, keyword.spell(axis), (value,), "=", axis, op.span))
+
+    def op_driveenable(self, op: ir.DriveEnable) -> None:
+        axis = self.axis(op.axis, op, setting=True)
+        value = self.arcus(op.on)
+        if axis == ir.ALL_AXES:
+            if not isinstance(value, ir.Const):
+                raise Refused("enabling every drive from a value computed at run time has no Arcus form")
+            mask = (1 << len(self.ctx.config.axes)) - 1 if value.value else 0
+            self.emit(ir.Native(DIALECT, "EO", (ir.Const(mask),), "=", "", op.span))
+            return
+        bit = convert.Axes.LETTERS.index(axis) + 1
+        value = self.ranged("EO", value, op, index=bit)
+        self.emit(ir.Native(DIALECT, f"EO{bit}", (self.value(value, op),), "=", "", op.span))
 
     def op_call(self, op: ir.Call) -> None:
         if self.sub_number(op.routine, op) is None:
@@ -173,7 +354,8 @@ class Legalizer:
 
     def op_native(self, op: ir.Native) -> None:
         if op.dialect != DIALECT:
-            self.ctx.unsupported(op, f"{op.dialect} {op.mnemonic or 'statement'} has no Arcus equivalent")
+            self.ctx.unsupported(op, f"the {op.dialect} command {op.mnemonic or '(unnamed)'} has no counterpart "
+                                     "on the PMX-4EX-SA")
             raise Skip
         keyword = self.ctx.keyword_of(op.mnemonic)
         args = op.args
@@ -218,7 +400,7 @@ class Legalizer:
         if isinstance(value, ir.Const):
             if units is not None and value.unit not in units:
                 self.ctx.unsupported(op, f"a value in {value.unit.value} cannot be written for Arcus, which counts "
-                                         "pulses", code="G005")
+                                         "pulses")
                 raise Skip
             return self.atom(value)
         if isinstance(value, ir.Var):
@@ -284,7 +466,11 @@ class Legalizer:
 
     def test(self, cond: ir.Cond, then: str, otherwise: str, span: Span | None) -> None:
         """Ends the current block with a branch on `cond`, as one Arcus comparison."""
-        cond = self.normal(cond)
+        try:
+            cond = self.normal(self.arcus(cond))
+        except Refused as refused:
+            self.ctx.unsupported_at(span or getattr(cond, "span", None), str(refused))
+            raise Skip from None
         if isinstance(cond, ir.Compare) and isinstance(cond.left, ir.Const) and isinstance(cond.right, ir.Const):
             # A constant condition (WHILE 1=1) is a plain jump: the loop it makes has no exit.
             holds = CONSTANT_TESTS[cond.op](cond.left.value, cond.right.value)
@@ -333,6 +519,8 @@ class Legalizer:
             return ir.Compare(op, cond.left, cond.right, cond.span)
         if isinstance(cond, ir.Truth):
             return ir.Compare("!=", cond.expr, ir.Const(0), cond.span)
+        if isinstance(cond, ir.InputMatch):
+            return self.normal(input_match(cond))
         if isinstance(cond, ir.Logic) and cond.op in ("and", "or"):
             return ir.Logic(cond.op, self.normal(cond.left), self.normal(cond.right), cond.span)
         if isinstance(cond, ir.Not):
@@ -351,17 +539,49 @@ class Legalizer:
 
     # what Arcus can name and compute ----------------------------------------------------------------
     def axis(self, axis: str, op, setting: bool = False) -> str:
-        """An IR axis name as an Arcus axis letter ("*" stays "*" for global settings and stops)."""
-        upper = axis.upper()
-        if upper in AXES:
-            return upper
-        config = self.ctx.config
-        if upper in ("", ir.ALL_AXES):
-            return ir.ALL_AXES if setting else config.axes[0]
-        if len(config.axes) and upper.isdigit() and 1 <= int(upper) <= len(config.axes):
-            return config.axes[int(upper) - 1]
-        self.ctx.unsupported(op, f"axis '{axis}' has no Arcus axis letter (X, Y, Z, U)")
-        raise Skip
+        """An IR axis as the target's axis letter ("*" stays "*" for global settings and stops)."""
+        ctx = self.ctx
+        letter = ctx.axes.letter(axis)
+        if letter == ir.ALL_AXES:
+            return ir.ALL_AXES if setting else ctx.config.axes[0]
+        if letter is None:
+            raise Refused(f"axis '{axis}' has no axis left on the target: the program uses {ctx.axes.count} axes "
+                          f"and the profile has {len(ctx.config.axes)} ({', '.join(ctx.config.axes)})")
+        return letter
+
+    # neutral readings as Arcus registers --------------------------------------------------------------
+    def arcus(self, node):
+        """An expression or condition with its neutral readings as Arcus registers (refused: Refused)."""
+        if isinstance(node, ir.Status):
+            letter = self.ctx.axes.letter(node.axis) if node.axis else ""
+            if letter is None:
+                raise Refused(f"axis '{node.axis}' of the reading '{node.meaning}' has no axis left on the target")
+            found = convert.reading(node, letter)
+            if found is None:
+                where = f" of axis {node.axis}" if node.axis not in ("", ir.ALL_AXES) else ""
+                index = f" {node.index}" if node.index is not None else ""
+                raise Refused(f"the reading '{node.meaning}{index}'{where} has no Arcus register")
+            return found
+        if isinstance(node, ir.DeviceRef) and node.dialect != DIALECT:
+            raise Refused(f"the {node.dialect} register {node.name} has no Arcus counterpart")
+        if isinstance(node, ir.BinOp):
+            register = convert.ms_register(node, lambda a: self.ctx.axes.letter(a) or "")
+            if register is not None:
+                return register
+            return ir.BinOp(node.op, self.arcus(node.left), self.arcus(node.right), node.span)
+        if isinstance(node, ir.UnOp):
+            return ir.UnOp(node.op, self.arcus(node.operand), node.span)
+        if isinstance(node, ir.Func):
+            raise Refused(f"the function {node.name} has no Arcus form")
+        if isinstance(node, ir.Compare):
+            return ir.Compare(node.op, self.arcus(node.left), self.arcus(node.right), node.span)
+        if isinstance(node, ir.Logic):
+            return ir.Logic(node.op, self.arcus(node.left), self.arcus(node.right), node.span)
+        if isinstance(node, ir.Not):
+            return ir.Not(self.arcus(node.cond), node.span)
+        if isinstance(node, ir.Truth):
+            return ir.Truth(self.arcus(node.expr), node.span)
+        return node
 
     def sub_number(self, routine: str, op, span: Span | None = None) -> int | None:
         if routine not in self.ctx.sub_numbers:
@@ -411,3 +631,56 @@ class Legalizer:
         self.ctx.unsupported_at(getattr(cond, "span", None),
                                 f"this condition ({type(cond).__name__}) has no Arcus form")
 
+
+
+def input_match(cond: ir.InputMatch) -> ir.Cond:
+    """Inputs matching a 0/1/X pattern (input 1 first) as comparisons of DI bits joined by AND."""
+    bits = [(i + 1, int(b)) for i, b in enumerate(cond.pattern.bits) if b in "01"]
+    if any(index > 8 for index, _ in bits):
+        raise Refused(f"the input pattern {cond.pattern.bits} tests inputs beyond DI8")
+    tests: list[ir.Cond] = [ir.Compare("=", ir.DeviceRef(DIALECT, "DI", "input", "", index), ir.Const(bit), cond.span)
+                            for index, bit in bits]
+    if not tests:
+        return ir.Compare("=", ir.Const(1), ir.Const(1), cond.span)
+    result = tests[0]
+    for test in tests[1:]:
+        result = ir.Logic("and", result, test, cond.span)
+    return result
+
+
+def describe(op) -> str:
+    """An operation as a user reads it in a refusal."""
+    names = {"WaitInput": "waiting for an input", "Print": "printing", "SetHandler": "an event handler",
+             "Save": "saving to non-volatile memory", "Slew": "a slew"}
+    name = type(op).__name__
+    if isinstance(op, ir.SetHandler):
+        return f"an event handler (on {op.event})"
+    return names.get(name, name)
+
+
+def lookup(state: dict, param: ir.MotionParam, axis: str) -> ir.Const | None:
+    found = state.get((param, axis))
+    if found is None and axis != ir.ALL_AXES:
+        found = state.get((param, ir.ALL_AXES))
+    return found if isinstance(found, ir.Const) else None
+
+
+def ramp_ms(accel: float, state: dict, axis: str) -> int | None:
+    """The Arcus ramp time (whole ms, at least 1) of an acceleration with the speeds in force."""
+    initial = lookup(state, ir.MotionParam.INITIAL_SPEED, axis)
+    maximum = lookup(state, ir.MotionParam.MAX_SPEED, axis)
+    if initial is None or maximum is None:
+        return None
+    ramp = units.ramp_from_accel(accel, initial.value, maximum.value)
+    if ramp is None:
+        return None
+    return max(1, round(units.s_to_ms(ramp)))
+
+
+def accel_ramp_ms(state: dict, axis: str) -> float | None:
+    """The ramp time (ms) the acceleration in force gives: a ramp time, or an acceleration with speeds."""
+    ramp = lookup(state, ir.MotionParam.ACCEL_TIME, axis)
+    if ramp is not None:
+        return units.s_to_ms(ramp.value)
+    accel = lookup(state, ir.MotionParam.ACCEL, axis)
+    return ramp_ms(accel.value, state, axis) if accel is not None else None

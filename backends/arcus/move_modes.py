@@ -1,78 +1,204 @@
-"""Pass 2: an ABS or INC statement before a move whose mode is not known to be the one in force.
+"""Pass 4: ABS or INC before each move whose mode is not the one in force, and nowhere else.
 
-Moves in the IR say whether they are absolute, relative, or in whatever mode the program selected
-last (MODAL). Arcus has only the modal form, so the legalised CFG gets an ABS/INC wherever the
-mode written so far is not the one the move needs. Two states flow through the CFG (the lattice is
-`mcc.compiler.arcus.modes`): the mode the IR's own ABS/INC select (what a
-MODAL move means) and the mode the written program has in force (which an inserted ABS/INC
-changes). An ABSOLUTE/RELATIVE move needs the written mode to be its own; a MODAL move needs it to
-be the IR's mode when that one is known, and is reported (A208) when an inserted ABS/INC may have
-changed a mode the source left unknown.
+In the IR every move is absolute or relative; Arcus has only the mode selected by the last ABS or
+INC (L1775, L2288). The pass runs on the structured routines, the program exactly as it will be
+written, so that reading the output back finds every move in the mode it was written for. The
+state at a point is the set of modes that may be in force ({ABS}, {INC} or both); a move leaves
+its own mode in force, since it gets a switch whenever another may be in force before it.
+
+It is interprocedural like the frontend's analysis (compiler/arcus/modes.py): the main program
+starts in the profile's `boot_move_mode` (or in either mode with `[arcus]
+write_initial_move_mode = true`, spec 7.3); a subroutine starts in the modes of its GOSUBs (one
+never called starts like the main program); after a GOSUB the modes are those the subroutine
+ends in (unchanged when it moves nothing). A routine that may start in either mode gets the
+switch of its first move at its very start, before any loop, so that one switch serves it all.
 """
 
 from __future__ import annotations
 
-from mcc.backends.arcus.context import Context
+from dataclasses import replace
+
 from mcc.backends.arcus.target import DIALECT
+from mcc.backends.structure import EndNode, IfNode, Simple, WhileNode
 from mcc.compiler import ir
-from mcc.compiler.arcus import modes
+from mcc.compiler.profiles import Profile
+
+ABS, INC = "ABS", "INC"
+BOTH = frozenset({ABS, INC})
+NONE: frozenset[str] = frozenset()
+NEED = {ir.MoveMode.ABSOLUTE: ABS, ir.MoveMode.RELATIVE: INC}
+
+State = frozenset[str]
+MAIN = "<main>"  # the main program's body (with any setup lines before it); no GOSUB names it
 
 
-def insert(routine: ir.Routine, ctx: Context, moved: set[str]) -> None:
-    """ABS/INC before each move of `routine` whose mode is not the one in force, in place.
-
-    `moved` names the routines a call to which leaves the mode unknown (`modes.changers`)."""
-    entry = modes.entry_state(routine, ctx.profile)
-
-    def transfer(block: ir.Block, state: tuple[str, str, bool], ops: list | None) -> tuple[str, str, bool]:
-        meant, written, changed = state  # changed: an inserted switch may hide an unknown mode
-        for op in block.ops:
-            if isinstance(op, ir.Move):
-                need = modes.STATE_OF.get(op.mode) or (meant if meant != modes.UNKNOWN else None)
-                if need is not None and written != need:
-                    written = need
-                    changed = changed or meant != written
-                    if ops is not None:
-                        ops.append(ir.Native(DIALECT, need, span=op.span))
-                elif need is None and changed and ops is not None:
-                    uncertain(op, ctx)
-            if ops is not None:
-                ops.append(op)
-            selected = modes.switch(op)
-            if selected is not None:
-                meant = written = selected
-                changed = False
-            elif isinstance(op, ir.Call) and op.routine in moved:
-                meant = written = modes.UNKNOWN
-        return meant, written, changed
-
-    if not routine.blocks:
-        return
-    blocks = {b.label: b for b in routine.blocks}
-    states: dict[str, tuple[str, str, bool]] = {routine.blocks[0].label: (entry, entry, False)}
-    work = [routine.blocks[0].label]
-    while work:
-        label = work.pop()
-        out = transfer(blocks[label], states[label], None)
-        for succ in ir.successors(blocks[label].terminator):
-            if succ not in blocks:
-                continue
-            old = states.get(succ)
-            new = out if old is None else (modes.meet(old[0], out[0]), modes.meet(old[1], out[1]),
-                                           old[2] or out[2])
-            if old != new:
-                states[succ] = new
-                work.append(succ)
-    for block in routine.blocks:
-        if block.label in states:
-            ops: list[ir.Op] = []
-            transfer(block, states[block.label], ops)
-            block.ops = ops
+def boot_state(profile: Profile) -> State:
+    """The modes the written program may start in: the profile's power-up mode, or either when the
+    profile wants programs that do not rely on it (`write_initial_move_mode = true`)."""
+    if profile.get("arcus.write_initial_move_mode", False):
+        return BOTH
+    boot = str(profile.get("arcus.boot_move_mode", "abs")).upper()
+    return frozenset({boot}) if boot in (ABS, INC) else BOTH
 
 
-def uncertain(op: ir.Move, ctx: Context) -> None:
-    if ctx.first_report(op):
-        ctx.diags.add("A208", ctx.span_of(op),
-                      "this move uses the ABS/INC mode in force, which is not known here, and an ABS or INC "
-                      "written for an earlier move with an explicit mode may have changed it: make the move's "
-                      "mode explicit in the source")
+def need(node) -> str | None:
+    op = getattr(node, "op", None)
+    return NEED.get(op.mode) if isinstance(op, ir.Move) else None
+
+
+def walk(nodes: list):
+    """Every Simple node of a structured body, depth first in written order."""
+    for node in nodes:
+        if isinstance(node, Simple):
+            yield node
+        elif isinstance(node, IfNode):
+            for _, body in node.arms:
+                yield from walk(body)
+            yield from walk(node.orelse)
+        elif isinstance(node, WhileNode):
+            yield from walk(node.body)
+
+
+class Modes:
+    """The fixpoint over the structured routines, then the switches written into them."""
+
+    def __init__(self, routines: dict[str, list], profile: Profile):
+        self.routines = routines  # routine name -> structured body ("<main>" first)
+        self.boot = boot_state(profile)
+        calls = {name: {n.op.routine for n in walk(body) if isinstance(n.op, ir.Call)}
+                 for name, body in routines.items()}
+        called = set().union(*calls.values()) if calls else set()
+        self.fixed = {name for name in routines if name == MAIN or name not in called}
+        self.moving = {name for name, body in routines.items() if any(need(n) for n in walk(body))}
+        changed = True
+        while changed:  # a routine that calls a moving routine may change the mode too
+            changed = False
+            for name, callees in calls.items():
+                if name not in self.moving and callees & self.moving:
+                    self.moving.add(name)
+                    changed = True
+        self.entry: dict[str, State] = {name: self.boot if name in self.fixed else NONE for name in routines}
+        self.exit: dict[str, State | None] = {name: None for name in routines}
+        self.prefix: dict[str, str] = {}
+
+    # the analysis -------------------------------------------------------------------------------
+    def start(self, name: str) -> State:
+        if name in self.prefix:
+            return frozenset({self.prefix[name]})
+        return self.entry[name] or self.boot  # called only from code that never runs: as if uncalled
+
+    def after(self, op: ir.Op, state: State) -> State:
+        if not state:
+            return state
+        if isinstance(op, ir.Move) and op.mode in NEED:
+            return frozenset({NEED[op.mode]})
+        if isinstance(op, ir.Native) and op.dialect == DIALECT and not op.args and op.mnemonic in (ABS, INC):
+            return frozenset({op.mnemonic})
+        if isinstance(op, ir.Call) and op.routine in self.moving:
+            returns = self.exit.get(op.routine)
+            if returns is None:
+                return NONE  # not solved yet: a later round knows
+            return returns or BOTH  # it never ends here; the frontend may still see an end (WHILE 1=1)
+        return state
+
+    def flow(self, nodes: list, state: State, seen: dict[tuple, State], calls: dict[str, State],
+             path: tuple = ()) -> State:
+        """The modes after `nodes`; `seen` collects the modes before each move, `calls` at each GOSUB.
+        Places are named by their path in the tree: the structurer may put one node in two places."""
+        for index, node in enumerate(nodes):
+            where = path + (index,)
+            if isinstance(node, Simple):
+                op = node.op
+                if need(node):
+                    seen[where] = seen.get(where, NONE) | state
+                elif isinstance(op, ir.Call) and state:
+                    calls[op.routine] = calls.get(op.routine, NONE) | state
+                state = self.after(op, state)
+            elif isinstance(node, EndNode):
+                state = NONE
+            elif isinstance(node, IfNode):
+                out = NONE
+                for arm, (_, body) in enumerate(node.arms):
+                    out |= self.flow(body, state, seen, calls, where + (arm,))
+                state = out | self.flow(node.orelse, state, seen, calls, where + ("else",))
+            elif isinstance(node, WhileNode):
+                head = state
+                for _ in range(4):  # three non-empty states: the loop settles quickly
+                    end = self.flow(node.body, head, seen, calls, where)
+                    if end <= head:
+                        break
+                    head = head | end
+                state = head  # the loop ends at its test
+        return state
+
+    def solve(self) -> dict[str, dict[tuple, State]]:
+        for _ in range(3 * len(self.routines) + 4):
+            seen: dict[str, dict[tuple, State]] = {}
+            calls: dict[str, State] = {}
+            changed = False
+            for name, body in self.routines.items():
+                out = self.flow(body, self.start(name), seen.setdefault(name, {}), calls)
+                if out != self.exit[name]:
+                    self.exit[name] = out
+                    changed = True
+            for name in self.routines:
+                if name not in self.fixed and calls.get(name, NONE) != self.entry[name]:
+                    self.entry[name] = calls.get(name, NONE)  # afresh: exits may narrow what follows a call
+                    changed = True
+            if not changed:
+                return seen
+        self.entry = {name: BOTH for name in self.routines}  # not settled (a guard): trust nothing
+        self.exit = {name: BOTH for name in self.routines}
+        self.prefix = {}
+        seen = {}
+        for name, body in self.routines.items():
+            self.flow(body, BOTH, seen.setdefault(name, {}), {})
+        return seen
+
+    # writing the switches -------------------------------------------------------------------------
+    def write(self) -> None:
+        seen = self.solve()
+        for name, body in self.routines.items():  # one switch at the start of a routine entered in either mode
+            if self.start(name) == BOTH:
+                first = next((need(n) for n in walk(body) if need(n)), None)
+                if first is not None:
+                    self.prefix[name] = first
+        if self.prefix:
+            seen = self.solve()
+        for name, body in self.routines.items():
+            insert(body, seen.get(name, {}))
+            if name in self.prefix:
+                body.insert(0, Simple(ir.Native(DIALECT, self.prefix[name])))
+
+
+def insert(nodes: list, seen: dict[tuple, State], path: tuple = ()) -> None:
+    """ABS/INC before each move that may find another mode in force. A node the structurer put in
+    two places is one object: compound nodes are copied, never changed in place."""
+    out: list = []
+    for index, node in enumerate(nodes):
+        where = path + (index,)
+        mode = need(node)
+        if mode is not None and seen.get(where, NONE) != {mode}:
+            out.append(Simple(ir.Native(DIALECT, mode, span=node.op.span)))
+        elif isinstance(node, IfNode):
+            node = replace(node, arms=[(cond, _inserted(body, seen, where + (arm,)))
+                                       for arm, (cond, body) in enumerate(node.arms)],
+                           orelse=_inserted(node.orelse, seen, where + ("else",)))
+        elif isinstance(node, WhileNode):
+            node = replace(node, body=_inserted(node.body, seen, where))
+        out.append(node)
+    nodes[:] = out
+
+
+def _inserted(nodes: list, seen: dict[tuple, State], path: tuple) -> list:
+    copy = list(nodes)
+    insert(copy, seen, path)
+    return copy
+
+
+def write_switches(main: list, subs: list[tuple[ir.Routine, list, object]], profile: Profile) -> None:
+    """The whole pass: the main program's body and each subroutine's, in place."""
+    routines = {MAIN: main}
+    for routine, body, _ in subs:
+        routines[routine.name] = body
+    Modes(routines, profile).write()

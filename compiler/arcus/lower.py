@@ -10,9 +10,15 @@ diagnostic naming both ends and the rest of the file is still lowered: a closer 
 match the innermost open block closes the blocks above the one it matches (reported once), and
 blocks left open at the end of the file are closed there.
 
-Moves: the IR `Move` carries ABSOLUTE or RELATIVE when the ABS/INC mode in force is known on every
-path to it (a forward data-flow pass, `modes.py`), MODAL otherwise; ABS and INC themselves stay in
-the IR as `Native` operations so that the mode switch is written back where the source had it.
+Units and names (docs/dialects/arcus.md, "Lowering to the IR"): pulses are the IR's steps
+(`Module.steps_per_rev` is the profile's, 0 when unknown: one pulse per step), speeds are steps/s,
+`ACC` (a ramp time in ms, used for acceleration and deceleration) is `accel_time` and `decel_time`
+in seconds, delays and timers are seconds. Registers read as neutral `Status` readings (`PX` is
+position, `DI3` input 3, `MSTX` the motor status bits) and the settings other controllers could
+share as `Setting`s (`ECLEARX` clear_error, `EO` enable_outputs, `SYNXP` compare_position, ...).
+
+Moves: ABS and INC select the mode of later moves; the lowering resolves them by data flow
+(`modes.py`) so that every `Move` is ABSOLUTE or RELATIVE, and the switches themselves leave the IR.
 """
 
 from __future__ import annotations
@@ -20,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from mcc.compiler import ir
+from mcc.compiler import ir, units
 from mcc.compiler.arcus import modes
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler.arcus.resolve import (ASSIGN, BARE, COLON, CONDITION, CONTROL, MOVE, NUMBERED, WRITE, Resolved,
@@ -30,9 +36,24 @@ from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
 DIALECT = "arcus"
-UNITS = {"pps": ir.Unit.STEPS_PER_S, "ms": ir.Unit.MS, "pulses": ir.Unit.STEPS}
-MOTION = {"max_speed": ir.MotionParam.MAX_SPEED, "initial_speed": ir.MotionParam.INITIAL_SPEED,
-          "accel": ir.MotionParam.ACCEL}
+UNITS = {"pps": ir.Unit.STEPS_PER_S, "pulses": ir.Unit.STEPS}
+MOTION = {"max_speed": ir.MotionParam.MAX_SPEED, "initial_speed": ir.MotionParam.INITIAL_SPEED}
+AXES = ("X", "Y", "Z", "U")
+# Registers read as neutral readings: catalog name -> ir_names.STATUS meaning. EO<bit> is the
+# enable of axis <bit> ("enabled"), the indexed DI/DO are "input"/"output" n.
+READINGS = {"P": "position", "E": "encoder", "PS": "velocity", "MST": "motor_status", "DI": "inputs",
+            "DO": "outputs", "EO": "enable_outputs", "HSPD": "max_speed", "LSPD": "initial_speed",
+            "SCV": "profile", "SYNS": "compare_state"}
+INDEXED_READINGS = {"DI": "input", "DO": "output"}
+# Readings kept in the dialect's milliseconds by multiplying the neutral seconds back (`V1=TR` is
+# V1 = countdown * 1000): the variable gets the number the Arcus program computed with.
+MS_READINGS = {"TR": "countdown", "ACC": "accel_time"}
+# Writes that become neutral settings: catalog name -> (ir_names.SETTINGS name, unit of the value).
+SETTINGS = {"E": ("encoder_position", ir.Unit.STEPS), "SSPD": ("speed_change", ir.Unit.STEPS_PER_S),
+            "SYNC": ("compare_condition", ir.Unit.NONE), "SYNP": ("compare_position", ir.Unit.STEPS),
+            "SYNT": ("compare_pulse", ir.Unit.S), "TR": ("countdown", ir.Unit.S)}
+# Bare actions that become a setting written with a fixed value.
+ACTIONS = {"ECLEAR": ("clear_error", 1), "SYNO": ("compare_output", 1), "SYNF": ("compare_output", 0)}
 HOME_METHODS = {0: "switch", 1: "limit", 2: "switch+index", 3: "index"}  # ASCII homing modes (L656-L680)
 OPENERS = {"ENDIF": "IF", "ENDWHILE": "WHILE", "ENDSUB": "SUB"}
 CLOSERS = {opener: closer for closer, opener in OPENERS.items()}
@@ -76,7 +97,7 @@ class Lowering:
         self.diags = diags
         self.resolver = Resolver(profile, diags)
         self.cat = self.resolver.cat
-        self.module = ir.Module(DIALECT, profile.name, path=tree.path)
+        self.module = ir.Module(DIALECT, profile.name, path=tree.path, steps_per_rev=profile.steps_per_rev)
         self.main = ir.Routine("main", ir.RoutineKind.MAIN)
         self.module.routines.append(self.main)
         self.program = Program()
@@ -87,7 +108,7 @@ class Lowering:
         self.dead_warned = False
         self.last_span: Span | None = None
         self.builders: dict[str, Callable[[Resolved], ir.Op]] = {
-            "max_speed": self.set_motion, "initial_speed": self.set_motion, "accel": self.set_motion,
+            "max_speed": self.set_motion, "initial_speed": self.set_motion, "accel": self.set_ramp,
             "jog": self.jog, "home": self.home, "stop": self.stop, "abort": self.stop,
             "wait_motion": self.wait, "delay": self.delay, "outputs": self.output, "output": self.output,
             "position": self.position, "assign": self.assign, "move": self.move, "arc": self.arc,
@@ -105,7 +126,7 @@ class Lowering:
             self.statement(res)
             self.last_span = res.span
         self.finish()
-        modes.assign_move_modes(self.module, self.profile)
+        self.tree.arc_modes = modes.resolve(self.module, self.profile, self.diags)
         return self.module
 
     def placeholder(self, line: st.Line) -> Resolved:
@@ -154,9 +175,11 @@ class Lowering:
             self.block.span = res.span
         return self.block
 
-    def emit(self, res: Resolved, op: ir.Op | None) -> None:
+    def emit(self, res: Resolved, op: ir.Op | list[ir.Op] | None) -> None:
         block = self.current(res)
-        if op is not None:
+        if isinstance(op, list):
+            block.ops.extend(op)
+        elif op is not None:
             block.ops.append(op)
 
     def terminate(self, res: Resolved | None, term: ir.Terminator) -> None:
@@ -383,6 +406,19 @@ class Lowering:
     def set_motion(self, res: Resolved) -> ir.Op:
         return ir.SetMotion(MOTION[res.keyword.ir], self.axis(res), self.expr(res.value, self.unit(res)), res.span)
 
+    def set_ramp(self, res: Resolved) -> list[ir.Op]:
+        """ACC is one ramp time for speeding up and slowing down (L1789-L1805): both IR ramp times."""
+        value = self.seconds(self.expr(res.value))
+        return [ir.SetMotion(param, self.axis(res), value, res.span)
+                for param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME)]
+
+    @staticmethod
+    def seconds(value: ir.Expr) -> ir.Expr:
+        """A value written in ms as seconds: a literal converted, a variable scaled by 0.001."""
+        if isinstance(value, ir.Const):
+            return ir.Const(units.ms_to_s(value.value), ir.Unit.S, value.span)
+        return ir.BinOp("*", value, ir.Const(1 / units.MS_PER_S), value.span if hasattr(value, "span") else None)
+
     def jog(self, res: Resolved) -> ir.Op:
         return ir.Slew(res.match.axis, direction=res.match.direction, span=res.span)
 
@@ -397,7 +433,7 @@ class Lowering:
         return ir.WaitMotion(res.match.axis, res.span)
 
     def delay(self, res: Resolved) -> ir.Op:
-        return ir.Delay(self.expr(res.value, ir.Unit.MS), res.span)
+        return ir.Delay(self.seconds(self.expr(res.value)), res.span)
 
     def output(self, res: Resolved) -> ir.Op:
         return ir.SetOutput(res.match.index, self.expr(res.value), res.span)
@@ -417,12 +453,30 @@ class Lowering:
         values = [ir.Const(n.value, ir.Unit.STEPS, n.span) for n in res.operands]
         angle = None
         if res.keyword.ir == "arc":
-            angle = ir.Const(res.operands[2].value, ir.Unit.MILLIDEGREES, res.operands[2].span)
+            angle = ir.Const(res.operands[2].value / 1000, ir.Unit.DEGREES, res.operands[2].span)
         axes = tuple(self.cat.limit("axes.arc_circle_axes", ["X", "Y"]))
         return ir.Arc((axes[0], axes[1]), (values[0], values[1]), clockwise=res.match.suffix == "P", angle=angle,
                       span=res.span)
 
     def native(self, res: Resolved) -> ir.Op:
+        """A keyword with no builder: a neutral setting when it has a meaning others could share,
+        else Native (ABS/INC only until the move modes are resolved, then they leave the IR)."""
+        name, axis = res.keyword.name, res.match.axis
+        if name in SETTINGS and res.shape == WRITE:
+            setting, unit = SETTINGS[name]
+            value = self.expr(res.value, unit)
+            if unit is ir.Unit.S:
+                value = self.seconds(self.expr(res.value))
+            return ir.Setting(setting, axis, value, res.span)
+        if name in ACTIONS and res.shape == BARE:
+            setting, value = ACTIONS[name]
+            return ir.Setting(setting, axis, ir.Const(value), res.span)
+        if name == "SCV" and res.shape == WRITE:
+            return ir.SetMotion(ir.MotionParam.PROFILE, axis, self.expr(res.value), res.span)
+        if name == "EO" and res.shape == WRITE:
+            if res.match.index is not None and 1 <= res.match.index <= len(AXES):
+                return ir.DriveEnable(AXES[res.match.index - 1], self.expr(res.value), res.span)
+            return ir.Setting("enable_outputs", ir.ALL_AXES, self.expr(res.value), res.span)
         args: tuple = ()
         if res.shape == WRITE:
             args = (self.expr(res.value, self.unit(res)),)
@@ -446,9 +500,23 @@ class Lowering:
                 return self.variable(info.spelled, node.span)
             keyword, match = info.keyword, info.match
             axis = match.axis or (ir.ALL_AXES if keyword.axis == "optional" else "")
-            return ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
+            return self.reading(keyword.name, axis, match.index, node.span) or \
+                ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
         if isinstance(node, st.Unary):
-            return ir.UnOp(node.op, self.expr(node.operand), node.span)
+            return ir.UnOp("~" if node.op == "~" else node.op, self.expr(node.operand), node.span)
         if isinstance(node, st.Binary):
             return ir.BinOp(node.op, self.expr(node.left), self.expr(node.right), node.span)
         raise TypeError(f"unexpected node {type(node).__name__}")
+
+    def reading(self, name: str, axis: str, index: int | None, span: Span) -> ir.Expr | None:
+        """A register read as a neutral reading (None: the register has none)."""
+        if index is not None and name in INDEXED_READINGS:
+            return ir.Status(INDEXED_READINGS[name], "", index, span)
+        if name == "EO" and index is not None:
+            return ir.Status("enabled", AXES[index - 1], None, span) if 1 <= index <= len(AXES) else None
+        if name in READINGS:
+            return ir.Status(READINGS[name], axis, None, span)
+        if name in MS_READINGS:
+            status = ir.Status(MS_READINGS[name], axis, None, span)
+            return ir.BinOp("*", status, ir.Const(units.MS_PER_S), span)
+        return None

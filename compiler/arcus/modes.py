@@ -1,28 +1,32 @@
 """Which move mode (ABS or INC) is in force at each move: a forward data-flow pass over the IR.
 
 Arcus move targets are absolute or incremental according to the last ABS or INC executed (L1775,
-L2288). The frontend records a move as ABSOLUTE or RELATIVE only where the mode is the same on
-every path to it, MODAL otherwise; the backend runs the same analysis over the program it writes
-and inserts ABS/INC where a move needs a mode that is not in force. It works on the IR only
-(ABS and INC are `Native('arcus', 'ABS'|'INC')`), so both can use it.
+L2288). In the IR a move is ABSOLUTE or RELATIVE, so the lowering resolves the modes here and
+then takes ABS and INC out of the IR (their effect is in the moves). During lowering they are
+`Native('arcus', 'ABS'|'INC')`.
 
-The state entering the main program is the profile's `arcus.boot_move_mode` ("unknown" by
-default: a host or an earlier run may have left INC); a subroutine starts in an unknown mode (the
-host can call it with GS, L823); a call makes the mode unknown when the callee (or anything it
-calls) contains ABS or INC.
+The state at a point is the set of modes that may be in force there. The main program starts in
+the profile's `arcus.boot_move_mode` ("abs" by default, the mode the Arcus software shows at
+power-up, L974; "unknown" allows both). The pass is interprocedural: a subroutine starts in the
+modes of all its GOSUBs (one that no GOSUB calls starts like the main program, as a host GS would
+run it), and after a GOSUB the modes are the ones the subroutine returns in (unchanged when it
+never switches). A move where both modes are possible cannot be written as one IR move: it is
+reported (A128) with what to add.
 """
 
 from __future__ import annotations
 
-from typing import Callable
-
 from mcc.compiler import ir
+from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 
-ABS, INC, UNKNOWN = "ABS", "INC", "?"
+ABS, INC = "ABS", "INC"
+BOTH = frozenset({ABS, INC})
+NONE: frozenset[str] = frozenset()
 SWITCHES = {"ABS": ABS, "INC": INC}
 MODE_OF = {ABS: ir.MoveMode.ABSOLUTE, INC: ir.MoveMode.RELATIVE}
-STATE_OF = {ir.MoveMode.ABSOLUTE: ABS, ir.MoveMode.RELATIVE: INC}
+
+State = frozenset[str]
 
 
 def switch(op: ir.Op) -> str | None:
@@ -32,18 +36,19 @@ def switch(op: ir.Op) -> str | None:
     return None
 
 
-def changers(module: ir.Module, explicit_moves: bool = False) -> set[str]:
-    """Routines that may change the mode, directly or through the routines they call.
+def boot_state(profile: Profile | None) -> State:
+    boot = str(profile.get("arcus.boot_move_mode", "abs") if profile is not None else "abs").upper()
+    return frozenset({boot}) if boot in (ABS, INC) else BOTH
 
-    With `explicit_moves` (the backend's view) a routine with an ABSOLUTE or RELATIVE move counts
-    too: the backend may write ABS or INC before that move."""
+
+def changers(module: ir.Module) -> set[str]:
+    """Routines that may switch the mode, directly or through the routines they call."""
     direct: set[str] = set()
     calls: dict[str, set[str]] = {}
     for routine in module.routines:
         for block in routine.blocks:
             for op in block.ops:
-                if switch(op) is not None or (explicit_moves and isinstance(op, ir.Move)
-                                              and op.mode is not ir.MoveMode.MODAL):
+                if switch(op) is not None:
                     direct.add(routine.name)
                 elif isinstance(op, ir.Call):
                     calls.setdefault(routine.name, set()).add(op.routine)
@@ -58,61 +63,117 @@ def changers(module: ir.Module, explicit_moves: bool = False) -> set[str]:
     return result
 
 
-def entry_state(routine: ir.Routine, profile: Profile | None) -> str:
-    if routine.kind is ir.RoutineKind.MAIN and profile is not None:
-        boot = str(profile.get("arcus.boot_move_mode", "unknown")).upper()
-        return boot if boot in (ABS, INC) else UNKNOWN
-    return UNKNOWN
+class _Flow:
+    """The fixpoint over routines: entry and return states per routine."""
 
+    def __init__(self, module: ir.Module, boot: State):
+        self.module = module
+        self.boot = boot
+        self.changing = changers(module)
+        called = {op.routine for _, block in module.blocks() for op in block.ops if isinstance(op, ir.Call)}
+        self.entry: dict[str, State] = {}
+        for routine in module.routines:
+            uncalled = routine.kind is not ir.RoutineKind.SUBROUTINE or routine.name not in called
+            self.entry[routine.name] = boot if uncalled else NONE
+        self.uncalled = {name for name, state in self.entry.items() if state}
+        self.exit: dict[str, State] = {r.name: NONE for r in module.routines}
+        self.blocks: dict[str, State] = {}
 
-def transfer(block: ir.Block, state: str, moved: set[str],
-             visit: Callable[[ir.Op, str], None] | None = None) -> str:
-    for op in block.ops:
-        if visit is not None:
-            visit(op, state)
+    def after(self, op: ir.Op, state: State, calls: dict[str, State] | None) -> State:
+        if not state:
+            return state  # unreachable stays unreachable
         selected = switch(op)
         if selected is not None:
-            state = selected
-        elif isinstance(op, ir.Call) and op.routine in moved:
-            state = UNKNOWN
-    return state
+            return frozenset({selected})
+        if isinstance(op, ir.Call):
+            if calls is not None:
+                calls[op.routine] = calls.get(op.routine, NONE) | state
+            if op.routine in self.changing and state:
+                returned = self.exit.get(op.routine, BOTH) if op.routine in self.exit else BOTH
+                # A subroutine that never returns (it ENDs the program) leaves what follows the
+                # call unreachable; its moves keep the modes in force at the call, so that
+                # compiling the program again writes them the same way.
+                return returned or state
+        return state
 
-
-def meet(a: str | None, b: str) -> str:
-    return b if a is None or a == b else UNKNOWN
-
-
-def analyse(routine: ir.Routine, entry: str, moved: set[str]) -> dict[str, str]:
-    """The mode entering each reachable block."""
-    if not routine.blocks:
-        return {}
-    blocks = {b.label: b for b in routine.blocks}
-    states: dict[str, str] = {routine.blocks[0].label: entry}
-    work = [routine.blocks[0].label]
-    while work:
-        label = work.pop()
-        block = blocks[label]
-        out = transfer(block, states[label], moved)
-        for succ in ir.successors(block.terminator):
-            if succ not in blocks:
-                continue
-            new = meet(states.get(succ), out)
-            if states.get(succ) != new:
-                states[succ] = new
-                work.append(succ)
-    return states
-
-
-def assign_move_modes(module: ir.Module, profile: Profile | None) -> None:
-    """Give each MODAL move of an Arcus module the mode in force, where it is known."""
-    moved = changers(module)
-    for routine in module.routines:
-        states = analyse(routine, entry_state(routine, profile), moved)
-
-        def visit(op: ir.Op, state: str) -> None:
-            if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL and state in MODE_OF:
-                op.mode = MODE_OF[state]
-
+    def routine(self, routine: ir.Routine, calls: dict[str, State]) -> State:
+        """Solve one routine from its entry state; the union of the states it returns in."""
+        if not routine.blocks:
+            return NONE
+        blocks = {b.label: b for b in routine.blocks}
+        states: dict[str, State] = {b.label: NONE for b in routine.blocks}
+        first = routine.blocks[0].label
+        states[first] = self.entry[routine.name]
+        work = [first]
+        returns = NONE
+        while work:
+            label = work.pop()
+            state = states[label]
+            for op in blocks[label].ops:
+                state = self.after(op, state, None)
+            for succ in ir.successors(blocks[label].terminator):
+                if succ in states and not state <= states[succ]:
+                    states[succ] = states[succ] | state
+                    work.append(succ)
         for block in routine.blocks:
-            if block.label in states:
-                transfer(block, states[block.label], moved, visit)
+            state = states[block.label]
+            for op in block.ops:
+                state = self.after(op, state, calls)
+            if isinstance(block.terminator, (ir.Return, ir.FallOff)):
+                returns |= state
+        self.blocks.update(states)
+        return returns
+
+    def solve(self) -> None:
+        for _ in range(2 * len(self.module.routines) + 4):  # states only grow: a few rounds suffice
+            calls: dict[str, State] = {}
+            changed = False
+            for routine in self.module.routines:
+                returns = self.routine(routine, calls)
+                if returns != self.exit[routine.name]:
+                    self.exit[routine.name] = returns
+                    changed = True
+            for routine in self.module.routines:
+                if routine.name in self.uncalled or routine.kind is not ir.RoutineKind.SUBROUTINE:
+                    continue
+                new = self.entry[routine.name] | calls.get(routine.name, NONE)
+                if new != self.entry[routine.name]:
+                    self.entry[routine.name] = new
+                    changed = True
+            if not changed:
+                return
+
+
+def resolve(module: ir.Module, profile: Profile | None, diags: Diagnostics) -> dict[tuple[int, int], State]:
+    """Give every move of an Arcus module its mode, report moves whose mode depends on the path
+    (A128), and take ABS/INC out of the IR. Returns the modes possible at each ARC/CIR."""
+    flow = _Flow(module, boot_state(profile))
+    flow.solve()
+    arcs: dict[tuple[int, int], State] = {}
+    for routine in module.routines:
+        for block in routine.blocks:
+            state = flow.blocks.get(block.label, NONE)
+            kept: list[ir.Op] = []
+            for op in block.ops:
+                if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:
+                    op.mode = _mode(op, state, flow.boot, diags)
+                elif isinstance(op, ir.Arc) and op.span is not None:
+                    arcs[(op.span.line, op.span.column)] = state
+                state = flow.after(op, state, None)
+                if switch(op) is None:
+                    kept.append(op)
+            block.ops = kept
+    return arcs
+
+
+def _mode(op: ir.Move, state: State, boot: State, diags: Diagnostics) -> ir.MoveMode:
+    if len(state) == 1:
+        return MODE_OF[next(iter(state))]
+    if not state:  # unreachable (after END, reported as A110): read it as the program starts
+        return MODE_OF[next(iter(boot))] if len(boot) == 1 else ir.MoveMode.ABSOLUTE
+    if op.span is not None:
+        why = "the program starts in an unknown mode (profile arcus.boot_move_mode = \"unknown\")" \
+            if boot == BOTH else "ABS is in force on some paths to it and INC on others"
+        diags.add("A128", op.span, f"this move is absolute or incremental depending on how it is reached: {why}; "
+                                   "write ABS or INC before it so that it means one thing")
+    return ir.MoveMode.ABSOLUTE

@@ -142,6 +142,9 @@ class Line:
 class SyntaxTree:
     path: str
     lines: list[Line] = field(default_factory=list)
+    # The ABS/INC modes that may be in force at each ARC/CIR, by (line, column): the modes leave the
+    # IR with the lowering (they are in the moves), and lint rule A310 still needs them for arcs.
+    arc_modes: dict[tuple[int, int], frozenset[str]] = field(default_factory=dict)
 
     def statements(self):
         for line in self.lines:

@@ -1,8 +1,8 @@
 """Lint rules for the Arcus Performax standalone language (A3xx); pages in codes/arcus-lint.toml.
 
-The IR of an Arcus program keeps motion as neutral operations (Move, Slew for JOG, Home, Arc,
-Stop, WaitMotion per axis) and every other keyword as `Native("arcus", <spelling>)`: the rules
-recognise those through the catalog's patterns (`SSPDX` is SSPD on axis X), never by tables here.
+The IR of an Arcus program is neutral (Move, Slew for JOG, Home, Arc, Stop, WaitMotion per axis,
+SetMotion for HSPD/LSPD/ACC/SCV, Setting for SSPD/SYN.../EO, Status readings); what stays
+`Native("arcus", <spelling>)` (SSPDM) is recognised through the catalog's patterns.
 """
 
 from __future__ import annotations
@@ -19,8 +19,10 @@ from mcc.compiler.lint.rules import Context, rule
 
 ARCUS = "arcus"
 MOTION = (ir.Move, ir.Slew, ir.Home, ir.Arc)
-SPEED_PARAMS = (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED, ir.MotionParam.ACCEL)
-PARAM_NAMES = {ir.MotionParam.MAX_SPEED: "HSPD", ir.MotionParam.INITIAL_SPEED: "LSPD", ir.MotionParam.ACCEL: "ACC"}
+SPEED_PARAMS = (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED, ir.MotionParam.ACCEL_TIME)
+PARAM_NAMES = {ir.MotionParam.MAX_SPEED: "HSPD", ir.MotionParam.INITIAL_SPEED: "LSPD",
+               ir.MotionParam.ACCEL_TIME: "ACC"}
+SETTING_KEYWORDS = {"speed_change": "SSPD", "compare_output": "SYNO"}  # neutral settings the rules follow
 READ_WHILE_MOVING = ("position", "encoder")  # IR meanings of P[axis] and E[axis]
 FINITE_MOTION = (ir.Move, ir.Home, ir.Arc)  # motion that ends by itself (a jog does not)
 AXES = ("X", "Y", "Z", "U")
@@ -32,7 +34,15 @@ def catalog() -> acat.ArcusCatalog:
 
 
 def keyword(op) -> tuple[str, str]:
-    """(catalog name, axis) of a Native operation: `SSPDX` -> ("SSPD", "X"), `SYNXO` -> ("SYNO", "X")."""
+    """(catalog name, axis) of an operation the rules follow: `SSPDMX` -> ("SSPDM", "X"), the
+    setting speed_change on X -> ("SSPD", "X"), compare_output on X -> ("SYNO", "X") (its value
+    says on or off), SCVX=1 -> ("SCV", "X"), EO -> ("EO", ...)."""
+    if isinstance(op, ir.Setting) and op.name in SETTING_KEYWORDS:
+        return SETTING_KEYWORDS[op.name], op.axis
+    if isinstance(op, ir.Setting) and op.name == "enable_outputs" or isinstance(op, ir.DriveEnable):
+        return "EO", op.axis
+    if isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.PROFILE:
+        return "SCV", op.axis
     if not isinstance(op, ir.Native) or op.dialect != ARCUS:
         return "", ""
     found = catalog().match(op.mnemonic.upper())
@@ -41,6 +51,16 @@ def keyword(op) -> tuple[str, str]:
 
 def const(expr) -> int | None:
     return int(expr.value) if isinstance(expr, ir.Const) else None
+
+
+def argument(op) -> ir.Expr | None:
+    """The value an operation writes (a setting's value, a Native's first argument)."""
+    if isinstance(op, (ir.Setting, ir.SetMotion)):
+        return op.value
+    if isinstance(op, ir.DriveEnable):
+        return op.on
+    args = getattr(op, "args", ())
+    return args[0] if args else None
 
 
 def motion_axes(op) -> tuple[str, ...]:
@@ -78,7 +98,7 @@ def position_read_while_moving(ctx: Context) -> None:
     def transfer(moving: frozenset, item) -> frozenset:
         if isinstance(item, ir.WaitMotion):
             return frozenset(m for m in moving if m[0] != item.axis)
-        polled = {n.axis for n in reads(item) if isinstance(n, ir.DeviceRef) and n.meaning == "status"}
+        polled = {n.axis for n in reads(item) if isinstance(n, ir.Status) and n.meaning == "motor_status"}
         if polled:
             moving = frozenset(m for m in moving if m[0] not in polled)
         axes = motion_axes(item) if isinstance(item, FINITE_MOTION) else ()
@@ -88,11 +108,12 @@ def position_read_while_moving(ctx: Context) -> None:
         if not moving:
             continue
         for node in reads(item):
-            if isinstance(node, ir.DeviceRef) and node.meaning in READ_WHILE_MOVING:
+            if isinstance(node, ir.Status) and node.meaning in READ_WHILE_MOVING:
                 lines = sorted(line for axis, line in moving if axis == node.axis)
                 if lines:
+                    name = "P" if node.meaning == "position" else "E"
                     ctx.report(node.span or item.span,
-                               f"{node.name}{node.axis} is read while the move at line {lines[-1]} may still be "
+                               f"{name}{node.axis} is read while the move at line {lines[-1]} may still be "
                                f"running: add WAIT{node.axis} before reading it (L2706)")
 
 
@@ -165,7 +186,7 @@ def switch_state(name_on: str, name_off: str | None, on_value=lambda v: v != 0):
     def transfer(on: frozenset, item) -> frozenset:
         name, axis = keyword(item)
         if name == name_on:
-            value = const(item.args[0]) if getattr(item, "args", ()) else 1
+            value = const(argument(item))
             if value is None or on_value(value):
                 return on | {axis}
             return on - {axis}
@@ -194,7 +215,7 @@ def speed_mode_not_reset(ctx: Context) -> None:
     def transfer(state: frozenset, item) -> frozenset:
         name, axis = keyword(item)
         if name == "SSPDM":
-            value = const(item.args[0]) if item.args else None
+            value = const(argument(item))
             cleared = frozenset(f for f in state if f[1] != axis)
             return cleared if value == 0 else cleared | {("armed", axis)}
         if name == "SSPD" and ("armed", axis) in state:
@@ -211,7 +232,7 @@ def speed_mode_not_reset(ctx: Context) -> None:
 
 @rule("A312", ARCUS)
 def output_used_by_sync(ctx: Context) -> None:
-    transfer = switch_state("SYNO", "SYNF")
+    transfer = switch_state("SYNO", None)
     for _, item, on in forward_all(ctx.module, transfer):
         if not isinstance(item, ir.SetOutput) or not on:
             continue
@@ -229,7 +250,7 @@ def drives_never_enabled(ctx: Context) -> None:
     first = next((op for _, _, op in flow.ops(ctx.module, MOTION)), None)
     if first is None:
         return
-    if any(keyword(op)[0] == "EO" for _, _, op in flow.ops(ctx.module, ir.Native)):
+    if any(keyword(op)[0] == "EO" for _, _, op in flow.ops(ctx.module, (ir.Setting, ir.DriveEnable))):
         return
     ctx.report(first.span, "the program moves axes but never sets the enable outputs (EO): drives wired to them "
                            "stay disabled (L748)")
@@ -341,23 +362,12 @@ def division_by_zero(ctx: Context) -> None:
 
 @rule("A310", ARCUS)
 def arc_in_incremental_mode(ctx: Context) -> None:
-    from mcc.compiler.arcus import modes
-
-    def transfer(possible: frozenset, item) -> frozenset:
-        mode = modes.switch(item) if item is not None and not isinstance(item, ir.Call) else None
-        return frozenset({mode}) if mode else possible
-
-    for routine in ctx.module.routines:
-        boot = modes.entry_state(routine, ctx.profile)  # the profile's arcus.boot_move_mode for main
-        entry = frozenset({boot}) if boot in (modes.ABS, modes.INC) else frozenset({modes.ABS, modes.INC})
-        states = flow.forward(routine, entry, transfer, frozenset.union)
-        for block in routine.blocks:
-            if block.label not in states:
-                continue
-            for item, possible in flow.replay(block, states[block.label], transfer):
-                if isinstance(item, ir.Arc) and modes.INC in possible:
-                    ctx.report(item.span, "ARC/CIR while INC may be in force: whether the centre is then relative is "
-                                          "not documented (L586); write ABS before it")
+    """The lowering resolves ABS/INC into the moves and keeps the modes possible at each arc."""
+    arc_modes = getattr(ctx.tree, "arc_modes", {})
+    for _, _, item in flow.ops(ctx.module, ir.Arc):
+        if item.span is not None and "INC" in arc_modes.get((item.span.line, item.span.column), ()):
+            ctx.report(item.span, "ARC/CIR while INC may be in force: whether the centre is then relative is "
+                                  "not documented (L586); write ABS before it")
 
 
 # A313 / A315 — how it is written --------------------------------------------------------------------

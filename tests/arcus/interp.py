@@ -38,15 +38,24 @@ class Machine:
         if len(self.events) >= self.max_events:
             raise Stop("events")
 
-    def read(self, ref: ir.DeviceRef) -> int:
-        return hash((ref.name, ref.axis, ref.index, len(self.events))) % 4
+    def read(self, ref: ir.DeviceRef | ir.Status) -> int:
+        """A device reading, the same for an Arcus register and its neutral meaning (DI3, input 3)."""
+        return hash((ref.meaning, ref.axis, ref.index, len(self.events))) % 4
+
+    def seconds(self, expr) -> float:
+        """A value that may be fractional (seconds, a ramp time): constants keep their fraction."""
+        if isinstance(expr, ir.Const):
+            return float(expr.value)
+        if isinstance(expr, ir.BinOp) and expr.op == "*" and isinstance(expr.right, ir.Const):
+            return self.seconds(expr.left) * float(expr.right.value)
+        return float(self.value(expr))
 
     def value(self, expr) -> int:
         if isinstance(expr, ir.Const):
-            return int(expr.value)
+            return int(round(expr.value)) if isinstance(expr.value, float) else int(expr.value)
         if isinstance(expr, ir.Var):
             return self.vars.get(expr.name.upper(), 0)
-        if isinstance(expr, ir.DeviceRef):
+        if isinstance(expr, (ir.DeviceRef, ir.Status)):
             return self.read(expr)
         if isinstance(expr, ir.UnOp):
             operand = self.value(expr.operand)
@@ -88,11 +97,15 @@ class Machine:
         elif isinstance(op, ir.SetOutput):
             self.event("out", op.index, self.value(op.value))
         elif isinstance(op, ir.Delay):
-            self.event("delay", self.value(op.duration))
+            self.event("delay", round(self.seconds(op.duration), 3))
         elif isinstance(op, ir.WaitMotion):
             self.event("wait", op.axis)
         elif isinstance(op, ir.SetMotion):
-            self.event("set", op.param.value, op.axis, self.value(op.value))
+            self.event("set", op.param.value, op.axis, round(self.seconds(op.value), 6))
+        elif isinstance(op, ir.Setting):
+            self.event("setting", op.name, op.axis, round(self.seconds(op.value), 6))
+        elif isinstance(op, ir.DriveEnable):
+            self.event("enable", op.axis, self.value(op.on))
         elif isinstance(op, ir.Call):
             if op.cond is None or self.test(op.cond):
                 self.call(op.routine)

@@ -101,19 +101,23 @@ def test_apostrophe_comments_are_read_with_one_warning() -> None:
 # --- lowering ---------------------------------------------------------------------------------------
 
 def test_speed_settings_lower_to_set_motion_with_units_and_global_axis() -> None:
-    hspd, lspdx, acc, accv = main_ops("HSPD=1000\nLSPDX=100\nACC=300\nACCY=V3\n")
+    hspd, lspdx, acc, dec, accv, decv = main_ops("HSPD=1000\nLSPDX=100\nACC=300\nACCY=V3\n")
     assert (hspd.param, hspd.axis, hspd.value.value, hspd.value.unit) == \
         (ir.MotionParam.MAX_SPEED, "*", 1000, ir.Unit.STEPS_PER_S)
     assert (lspdx.param, lspdx.axis) == (ir.MotionParam.INITIAL_SPEED, "X")
-    assert (acc.param, acc.value.unit) == (ir.MotionParam.ACCEL, ir.Unit.MS)
-    assert (accv.axis, accv.value) == ("Y", ir.Var("V3", accv.value.span))
+    # ACC is one ramp time (ms) for both ramps: accel_time and decel_time in seconds
+    assert [(op.param, op.value.value, op.value.unit) for op in (acc, dec)] == [
+        (ir.MotionParam.ACCEL_TIME, 0.3, ir.Unit.S), (ir.MotionParam.DECEL_TIME, 0.3, ir.Unit.S)]
+    # a variable holds milliseconds: scaled to seconds in the IR
+    assert (accv.axis, accv.value.op, accv.value.left.name, accv.value.right.value) == ("Y", "*", "V3", 0.001)
+    assert decv.param is ir.MotionParam.DECEL_TIME
 
 
 def test_motion_statements_lower_to_neutral_operations() -> None:
     arc, cir, jog, home, zhome, zome, stop, abort, wait, delay = main_ops(
         "ARCP0:100:30000\nCIRN0:2000\nJOGX-\nHOMEZ+\nZHOMEX+\nZOMEY-\nSTOPX\nABORT\nWAITY\nDELAY=1000\n")
-    assert (arc.axes, arc.clockwise, arc.angle.value, arc.angle.unit) == (("X", "Y"), True, 30000,
-                                                                         ir.Unit.MILLIDEGREES)
+    assert (arc.axes, arc.clockwise, arc.angle.value, arc.angle.unit) == (("X", "Y"), True, 30,
+                                                                         ir.Unit.DEGREES)
     assert [c.value for c in arc.center] == [0, 100]
     assert (cir.clockwise, cir.angle) == (False, None)
     assert (jog.axis, jog.direction, jog.velocity) == ("X", -1, None)
@@ -121,7 +125,7 @@ def test_motion_statements_lower_to_neutral_operations() -> None:
         [("Z", "switch", 1), ("X", "switch+index", 1), ("Y", "index", -1)]
     assert (stop.axis, stop.ramp, abort.axis, abort.ramp) == ("X", True, "*", False)
     assert wait.axis == "Y"
-    assert (delay.duration.value, delay.duration.unit) == (1000, ir.Unit.MS)
+    assert (delay.duration.value, delay.duration.unit) == (1, ir.Unit.S)
 
 
 def test_io_positions_variables_and_registers() -> None:
@@ -130,19 +134,31 @@ def test_io_positions_variables_and_registers() -> None:
     assert (px.axis, px.value.value) == ("X", 0)
     assert isinstance(v1.value, ir.BinOp) and v1.value.op == "+"
     assert isinstance(v2.value, ir.UnOp) and v2.value.op == "~"
-    ref = v2.value.operand
-    assert (ref.dialect, ref.name, ref.meaning) == ("arcus", "EO", "enable_output")
-    assert (v3.value.name, v3.value.meaning, v3.value.axis) == ("PS", "speed", "X")
-    assert (v4.value.name, v4.value.meaning, v4.value.index) == ("DI", "input", 1)
+    assert v2.value.operand == ir.Status("enable_outputs", "", None, v2.value.operand.span)
+    assert (v3.value.meaning, v3.value.axis) == ("velocity", "X")
+    assert (v4.value.meaning, v4.value.index) == ("input", 1)
     assert set(analyze("V1=V2+1\n").module.variables) == {"V1", "V2"}
 
 
-def test_settings_without_a_neutral_meaning_are_native() -> None:
-    ops = main_ops("SCVX=1\nSSPDMX=1\nSSPDX=V1\nSYNXC=1\nSYNXO\nTR=100\nECLEARU\nEO1=1\nEY=0\nABS\nINC\n")
-    assert all(isinstance(op, ir.Native) and op.dialect == "arcus" for op in ops)
-    assert [(op.mnemonic, op.form, op.axis) for op in ops[:5]] == [
-        ("SCVX", "=", "X"), ("SSPDMX", "=", "X"), ("SSPDX", "=", "X"), ("SYNXC", "=", "X"), ("SYNXO", "", "X")]
-    assert [op.mnemonic for op in ops[5:]] == ["TR", "ECLEARU", "EO1", "EY", "ABS", "INC"]
+def test_settings_with_a_neutral_meaning_are_neutral_and_the_rest_native() -> None:
+    ops = main_ops("SCVX=1\nSSPDMX=1\nSSPDX=V1\nSYNXC=1\nSYNXO\nSYNXF\nTR=100\nECLEARU\nEO1=1\nEO=3\nEY=0\n"
+                   "ABS\nINC\n")
+    assert (ops[0].param, ops[0].axis) == (ir.MotionParam.PROFILE, "X")
+    assert (ops[1].mnemonic, ops[1].form, ops[1].axis) == ("SSPDMX", "=", "X")  # no other dialect has it
+    settings = [(op.name, op.axis, getattr(op.value, "value", None)) for op in ops[2:8]]
+    assert settings == [("speed_change", "X", None), ("compare_condition", "X", 1), ("compare_output", "X", 1),
+                        ("compare_output", "X", 0), ("countdown", "", 0.1), ("clear_error", "U", 1)]
+    assert (ops[8].axis, ops[8].on.value) == ("X", 1)  # EO1 enables the X drive
+    assert (ops[9].name, ops[9].axis, ops[10].name) == ("enable_outputs", "*", "encoder_position")
+    assert len(ops) == 11  # ABS and INC leave the IR: their effect is in the moves
+
+
+def test_registers_read_as_neutral_readings() -> None:
+    ops = main_ops("V1=MSTX\nV2=TR\nV3=EO2\nV4=DO\nV5=EX\n")
+    assert [op.value.meaning for op in (ops[0], ops[2], ops[3], ops[4])] == \
+        ["motor_status", "enabled", "outputs", "encoder"]
+    assert (ops[1].value.op, ops[1].value.left.meaning, ops[1].value.right.value) == ("*", "countdown", 1000)
+    assert ops[2].value.axis == "Y"
 
 
 def test_control_flow_lowers_to_blocks_routines_and_calls() -> None:
@@ -160,20 +176,36 @@ def test_control_flow_lowers_to_blocks_routines_and_calls() -> None:
     assert isinstance(sub.blocks[-1].terminator, ir.Return)
 
 
-def test_move_modes_are_known_only_after_abs_or_inc_on_every_path() -> None:
-    ops = main_ops("X1\nABS\nX2\nIF V1=1\nINC\nENDIF\nX3\nINC\nX4\n")
-    moves = [op.mode for op in ops if isinstance(op, ir.Move)]
-    assert moves == [ir.MoveMode.MODAL, ir.MoveMode.ABSOLUTE, ir.MoveMode.MODAL, ir.MoveMode.RELATIVE]
-    data = {**PROFILE.data, "arcus": {**PROFILE.data["arcus"], "boot_move_mode": "abs"}}
-    abs_boot = profiles.Profile("p", "arcus", "pmx-4ex-sa", data=data)
-    module = analyze("X1\n", abs_boot).module
-    assert module.routines[0].blocks[0].ops[0].mode is ir.MoveMode.ABSOLUTE
+def profile_with(**arcus) -> profiles.Profile:
+    data = {**PROFILE.data, "arcus": {**PROFILE.data["arcus"], **arcus}}
+    return profiles.Profile("p", "arcus", "pmx-4ex-sa", data=data)
 
 
-def test_a_call_to_a_routine_that_switches_mode_makes_the_mode_unknown() -> None:
-    module = analyze("ABS\nX1\nGOSUB 1\nX2\nGOSUB 2\nX3\nEND\nSUB 1\nINC\nENDSUB\nSUB 2\nDO1=1\nENDSUB\n").module
-    moves = [op.mode for op in module.routines[0].blocks[0].ops if isinstance(op, ir.Move)]
-    assert moves == [ir.MoveMode.ABSOLUTE, ir.MoveMode.MODAL, ir.MoveMode.MODAL]
+def move_modes(module: ir.Module, routine: int = 0) -> list[ir.MoveMode]:
+    return [op.mode for b in module.routines[routine].blocks for op in b.ops if isinstance(op, ir.Move)]
+
+
+def test_move_modes_follow_abs_and_inc_from_the_boot_mode() -> None:
+    result = analyze("X1\nABS\nX2\nINC\nX3\nIF V1=1\nABS\nELSE\nABS\nENDIF\nX4\n")
+    assert move_modes(result.module) == [ir.MoveMode.ABSOLUTE, ir.MoveMode.ABSOLUTE, ir.MoveMode.RELATIVE,
+                                         ir.MoveMode.ABSOLUTE]
+    assert codes("X1\n") == []
+    assert move_modes(analyze("X1\n", profile_with(boot_move_mode="inc")).module) == [ir.MoveMode.RELATIVE]
+    assert codes("X1\nINC\nX2\n", profile_with(boot_move_mode="unknown")) == ["A128"]
+
+
+def test_a_move_whose_mode_depends_on_the_path_is_reported() -> None:
+    assert codes("IF V1=1\nINC\nENDIF\nX3\n") == ["A128"]
+    assert codes("WHILE V1=1\nX1\nINC\nX2\nENDWHILE\n") == ["A128"]  # the second pass runs in INC
+    assert codes("WHILE V1=1\nABS\nX1\nINC\nX2\nENDWHILE\n") == []
+
+
+def test_subroutines_start_in_the_mode_of_their_calls_and_return_theirs() -> None:
+    module = analyze("INC\nGOSUB 1\nX1\nGOSUB 2\nX2\nEND\nSUB 1\nX5\nABS\nENDSUB\nSUB 2\nDO1=1\nENDSUB\n").module
+    assert move_modes(module) == [ir.MoveMode.ABSOLUTE, ir.MoveMode.ABSOLUTE]
+    assert move_modes(module, 1) == [ir.MoveMode.RELATIVE]  # SUB 1 is called in INC
+    assert codes("GOSUB 1\nINC\nGOSUB 1\nEND\nSUB 1\nX1\nENDSUB\n") == ["A128"]
+    assert codes("END\nSUB 4\nX1\nENDSUB\n") == []  # never called: it starts like the program
 
 
 # --- checks -------------------------------------------------------------------------------------------
