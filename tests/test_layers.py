@@ -29,8 +29,6 @@ BACKEND_ALLOWED = {
 KNOWN_EXCEPTIONS: set[tuple[str, str]] = {
     ("backends/arcus/__init__.py", "mcc.compiler.arcus.modes"),
     ("backends/arcus/move_modes.py", "mcc.compiler.arcus.modes"),
-    ("backends/x150.py", "mcc.compiler.x150.naming"),
-    ("backends/x150.py", "mcc.compiler.x150.writer"),
 }
 
 

@@ -18,7 +18,7 @@ from mcc.compiler.x150 import catalog as cat
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.lower import OPENERS, Lowering, Site
 from mcc.compiler.x150.structure import Unit
-from mcc.compiler.x150.writer import sequence_sizes
+from mcc.compiler.x150.format import command_text
 
 PRODUCT_NAMES = {"bdhxe": "BDHX-E", "pdhxe": "PDHX-E", "blhx": "BLHX", "pdhx": "PDHX", "x150ds": "X150DS"}
 QUOTED = re.compile(r'"[^"]*"?')
@@ -362,17 +362,34 @@ class Checker:
                                f"while {context[kind]} are already open: {total} > {limit} "
                                "(the controller's nesting is shared across XR calls)")
 
+    def stored_bytes(self, unit: Unit) -> int:
+        """The bytes a sequence stores: each command in its canonical form (upper case, the device
+        address in front, the B prefix on an immediate `*` command) and its delimiter, XT included
+        (L241). The X150 backend writes sequences in the same form."""
+        total = len("XT") + 1 + (len(str(unit.address)) if unit.address is not None else 0)
+        for command in unit.commands:
+            if command.info is None and not command.host:
+                continue
+            text = command_text(command)
+            address = command.address_text()
+            body = text[len(address):] if text.startswith(address) else text
+            if unit.address is not None and not address:
+                address = str(unit.address)
+            if command.info is not None and command.info.b_prefixable and not command.buffered:
+                body = "B" + body
+            total += len(address) + len(body) + 1
+        return total
+
     def check_memory(self) -> None:
         lowering = self.lowering
         store = int(self.profile.get("limits.sequence_store_bytes", self.cat.limit("sequence_store_bytes", default=8000)))
         buffer = int(self.profile.get("limits.command_buffer_bytes", self.cat.limit("command_buffer_bytes", default=2000)))
         ratio = float(self.profile.get("x150.buffer_warn_ratio", 0.9))
         latest: dict[tuple[int, int | None], tuple[Unit, int]] = {}
-        sizes = sequence_sizes(lowering.module, self.profile)
-        for unit, routine in zip(lowering.units, lowering.module.routines):
+        for unit in lowering.units:
             if not unit.is_sequence or unit.start is None:
                 continue
-            size = sizes.get(routine.name, 0)
+            size = self.stored_bytes(unit)
             latest[(unit.number or 0, unit.address)] = (unit, size)
             if size >= ratio * buffer:
                 over = "more than" if size > buffer else "close to"
