@@ -304,7 +304,8 @@ class Writer:
                                          f"routine {routine.name} needs a sequence number, but all 64 are in use")
             self.emit(f"{prefix}XE{n}", start, stored=False)
             self.emit(f"{prefix}XD{n}", end_of_start, stored=False)
-        done = structure(self.legal(routine), self.flag, self.dispatch_var, stops=STOPS, repeat=True)
+        # tail_copy=0: an XG or XRT written twice would sit inside an IF (an IF left open by XG, X112)
+        done = structure(self.legal(routine), self.flag, self.dispatch_var, tail_copy=0, stops=STOPS, repeat=True)
         if done.fallback is not None:
             self.out.diagnostics.add("X201", routine.span or self.fallback_span(),
                                      f"{done.fallback} in {routine.name}: X150 sequences have no labels, so only "
@@ -402,6 +403,13 @@ class Writer:
     def if_node(self, arms: list, orelse: list, spans: list, else_span, end_span) -> None:
         cond, body = arms[0]
         span = spans[0] if spans else None
+        hoisted = None
+        if not arms[1:] and body and orelse and ends_with(orelse) and ends_with(body, ir.GotoRoutine):
+            # IF(c) .. XGn ELSE .. (never falls through) NIF: XG after NIF, so no IF is left open (X112)
+            hoisted, body = body[-1], body[:-1]
+            arms = [(cond, body)]
+        elif not arms[1:] and body and orelse and ends_with(body) and ends_with(orelse, ir.GotoRoutine):
+            hoisted, orelse = orelse[-1], orelse[:-1]
         if isinstance(cond, ir.Not) and not self.writable(cond):
             # X150 has no NOT: `if not c: A elif ...: B else: C` is IF(c) <elif ... else C> ELSE A NIF
             rest_body = [IfNode(arms[1:], orelse, spans[1:], else_span, end_span)] if arms[1:] else orelse
@@ -424,6 +432,8 @@ class Writer:
                 self.nodes(orelse)
         self.state = meet(after, self.state)
         self.emit(f"{self.address()}NIF", end_span or span)
+        if hoisted is not None:
+            self.write_term(hoisted.term, hoisted.span)
 
     def writable(self, cond) -> bool:
         try:
@@ -897,6 +907,11 @@ class Writer:
         if info.tail and len(args) > len(info.fields):
             text += info.separator + args[len(info.fields)].value
         return text
+
+
+def ends_with(nodes: list, kind=STOPS) -> bool:
+    """The list never falls through: it ends in a stop (of `kind`)."""
+    return bool(nodes) and isinstance(nodes[-1], EndNode) and isinstance(nodes[-1].term, kind)
 
 
 def is_true(cond) -> bool:

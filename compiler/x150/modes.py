@@ -206,7 +206,8 @@ class Resolver:
             block = blocks[label]
             state = dict(entry[label] or {})
             for op in block.ops:
-                self.before[id(op)] = dict(state)
+                if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
+                    self.before[id(op)] = dict(state)
                 if isinstance(op, ir.Call):
                     sites[op.routine] = meet(sites.get(op.routine), state)
                 state = transfer(state, op, self.touched, self.exits)
@@ -301,8 +302,7 @@ class Resolver:
             read = {n for n in self.module.variables if is_distance(n)}
         for routine in self.module.routines:
             self.drop_dead_in(routine, read)
-        used = {node.name for _, block in self.module.blocks() for op in block.ops for expr in ir.op_exprs(op)
-                for node in ir.walk_expr(expr) if isinstance(node, ir.Var) and is_distance(node.name)}
+        used = {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
         used |= {op.target.name for _, block in self.module.blocks() for op in block.ops
                  if isinstance(op, ir.Assign) and is_distance(op.target.name)}
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
@@ -310,15 +310,22 @@ class Resolver:
 
     @staticmethod
     def op_reads(op) -> set[str]:
-        if isinstance(op, ir.Native) and op.mnemonic == "G":  # a G kept as text reads D
-            return {distance_var(op.axis), distance_var(ir.ALL_AXES)}
-        return {node.name for expr in ir.op_exprs(op) for node in ir.walk_expr(expr)
-                if isinstance(node, ir.Var) and is_distance(node.name)}
+        """The registers an operation reads: only moves, a G kept as text and H/H+/H- (the lowering
+        puts %D nowhere else)."""
+        if isinstance(op, ir.Native):
+            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else set()
+        if isinstance(op, ir.Move):
+            return {e.name for _, e in op.targets if isinstance(e, ir.Var) and is_distance(e.name)}
+        if isinstance(op, ir.Assign) and is_distance(op.target.name) and not isinstance(op.value, ir.Const):
+            return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
+        return set()
 
     def distance_reads(self) -> set[str]:
         return {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
 
     def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
+        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name) for b in routine.blocks for op in b.ops):
+            return
         blocks = {b.label: b for b in routine.blocks}
         live_in: dict[str, set[str]] = {label: set() for label in blocks}
 

@@ -209,3 +209,18 @@ def test_variable_targets_stay_native():
 def test_errors_still_give_a_well_formed_module():
     mod = module("XE1\nXD1\nL5\nIF(VAR1>=5)\nELSE\nN\nNWHILE\nXD2\nREPEAT\n")
     assert_well_formed(mod)
+
+
+def test_conditionals_and_loops_of_the_immediate_stream_keep_their_meaning():
+    """Issue 8: an IF .. ELSE .. NIF in the stream is a branch (not two unconditional calls), and
+    a WHILE is a loop back to its test."""
+    mod = module("1XE1\n1XD1\n1T1\n1XT\n1XE2\n1XD2\n1T2\n1XT\n"
+                 "IF(IN_1)\n1XR1\nELSE\n1XR2\nNIF\nWHILE(VAR1<5)\nVAR1=VAR1+1\nNWHILE\n")
+    stream = next(r for r in mod.routines if r.kind is ir.RoutineKind.IMMEDIATE)
+    branches = [b for b in stream.blocks if isinstance(b.terminator, ir.Branch)]
+    assert len(branches) == 2
+    test_if, test_while = branches
+    then, other = stream.block(test_if.terminator.then), stream.block(test_if.terminator.otherwise)
+    assert [op.routine for op in then.ops] == ["SEQ1@1"] and [op.routine for op in other.ops] == ["SEQ2@1"]
+    body = stream.block(test_while.terminator.then)
+    assert isinstance(body.ops[0], ir.Assign) and body.terminator.target == test_while.label  # back to the test
