@@ -285,8 +285,8 @@ class Writer:
                    if v.init is not None and not v.name.startswith(HIDDEN)]
         first = [ir.Routine("initial values", ir.RoutineKind.IMMEDIATE, [ir.Block("%init", initial, ir.FallOff())])] \
             if initial else []
-        if self.native:
-            return first + routines
+        if self.native:  # an X150 program's variables start as the device has them (0 after power-up)
+            return routines
         return first + [r for r in routines if r.kind is not ir.RoutineKind.IMMEDIATE] + \
             [r for r in routines if r.kind is ir.RoutineKind.IMMEDIATE]
 

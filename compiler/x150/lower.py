@@ -530,7 +530,9 @@ class Lowering:
     def declare(self, var: st.VarRef) -> None:
         name = var.name
         if name not in self.module.variables:
-            self.module.variables[name] = ir.Variable(name, ir.VarType.DECIMAL, None, "global", var.span)
+            # VAR1-VAR50 hold 0 until the program sets them (the default, L4569)
+            self.module.variables[name] = ir.Variable(name, ir.VarType.DECIMAL, ir.Const(0, ir.Unit.NONE, var.span),
+                                                      "global", var.span)
 
     def value(self, arg, info: cat.Command | None, unit: ir.Unit | None = None):
         """A command's value in the IR's units: rev/s and rev/s^2 times the resolution (steps/s,
