@@ -641,6 +641,9 @@ class Writer:
         if len(op.targets) != 1:
             raise CannotWrite(f"X150 moves one axis per device; a move of {len(op.targets)} axes together "
                               "(linear interpolation) has no equivalent", "X204")
+        if op.mode not in (ir.MoveMode.ABSOLUTE, ir.MoveMode.RELATIVE):
+            raise CannotWrite("this move's mode (absolute or relative) is whatever is in force on the source device, "
+                              "which X150 cannot know: the source frontend must resolve it (issue 8)", "G003")
         axis, target = op.targets[0]
         prefix = self.address(axis)
         key = self.address(axis) or ir.ALL_AXES

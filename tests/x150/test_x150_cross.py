@@ -150,3 +150,10 @@ def test_every_other_program_is_written_right_or_refused_by_line():
         third = driver.compile_file("again.x150", "x150", text=again.listing.text)
         assert third.listing.text == again.listing.text, path
     assert written + refused > 0
+
+
+def test_a_move_in_whatever_mode_is_in_force_is_refused_not_guessed():
+    module = arcus(move(ir.MoveMode.MODAL, 2, X=1000))
+    listing = backend.emit(module, PROFILE)
+    assert [(d.code, d.span.line) for d in listing.diagnostics] == [("G003", 2)]
+    assert "D1000" not in listing.text
