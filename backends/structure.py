@@ -11,7 +11,10 @@ What it produces, a list of nodes executed in order (a sequence), each one of:
 - `IfNode(arms, orelse)`: `if c1: ... elif c2: ... else: ...`, the arms tested in order;
 - `WhileNode(cond, body)`: test `cond`, run `body`, again while it holds (no break or continue:
   the only way out is the test, or an `EndNode`);
-- `EndNode`: the program stops here (an `ir.End`).
+- `EndNode`: the program stops here (an `ir.End`, or another terminator the caller lists in `stops`:
+  X150 also stops a routine with `GotoRoutine` (XG) and a `Return` (XRT) in the middle of it);
+- `RepeatNode(body, until)`: run `body`, again until `until` holds (a loop tested at its end), made
+  only when the caller passes `repeat=True` (targets with REPEAT..UNTIL or counted loops).
 
 The routine's own end (`ir.Return`, `ir.FallOff`) is the end of the list; its span is returned as
 `Structured.exit_span` for the writer's closing line.
@@ -66,8 +69,14 @@ class Unstructurable(Exception):
     """The CFG has no if/while form (the reason is the message)."""
 
 
-def negate(cond: ir.Compare) -> ir.Compare:
-    return ir.Compare(NEGATE[cond.op], cond.left, cond.right, cond.span)
+def negate(cond):
+    """The opposite condition: a comparison with the opposite operator; any other condition (a
+    target that keeps AND, OR and input patterns, such as X150) wrapped in, or taken out of, `Not`."""
+    if isinstance(cond, ir.Compare):
+        return ir.Compare(NEGATE[cond.op], cond.left, cond.right, cond.span)
+    if isinstance(cond, ir.Not):
+        return cond.cond
+    return ir.Not(cond, getattr(cond, "span", None))
 
 
 # =============================================================================================
@@ -99,9 +108,20 @@ class WhileNode:
 @dataclass
 class EndNode:
     span: Span | None = None
+    term: object = None  # the terminator that stops here (ir.End unless the caller passed `stops`)
 
 
-Node = Union[Simple, IfNode, WhileNode, EndNode]
+@dataclass
+class RepeatNode:
+    """`body` runs, then again until `until` holds (only with `structure(..., repeat=True)`)."""
+
+    body: list
+    until: object  # an ir.Cond
+    span: Span | None = None  # the loop's first block
+    end_span: Span | None = None  # the test at its end
+
+
+Node = Union[Simple, IfNode, WhileNode, EndNode, RepeatNode]
 
 
 @dataclass
@@ -115,24 +135,28 @@ class Structured:
 
 
 def structure(routine: ir.Routine, flag: Callable[[int], ir.Var | None], dispatch_var: Callable[[], ir.Var],
-              max_copied: int = 4, tail_copy: int = TAIL_COPY) -> Structured:
+              max_copied: int = 4, tail_copy: int = TAIL_COPY, stops: tuple = (ir.End,),
+              repeat: bool = False) -> Structured:
     """The routine as a structured tree, or as a dispatch loop when it has none.
 
     `flag(depth)` is the loop flag for a loop nested `depth` loops deep (None when none is left,
     which makes the routine a dispatch loop); `dispatch_var()` is asked for the dispatch variable
     only when one is needed. Both must keep their values across the routine's operations, calls
-    included."""
+    included. `stops` are the terminator kinds written in place as an `EndNode` (the routine does not
+    go on after them); `repeat=True` makes loops tested at their end `RepeatNode`s instead of
+    flagged whiles."""
     flagged = ir.Routine(routine.name, routine.kind, [copy_block(b) for b in routine.blocks], routine.span,
                          routine.number)
     try:
-        flag_loops(flagged, flag, max_copied)
-        structurer = Structurer(flagged, tail_copy)
+        flag_loops(flagged, flag, max_copied, stops, repeat)
+        structurer = Structurer(flagged, tail_copy, stops, repeat)
         return Structured(structurer.run(), structurer.exit_span)
     except Unstructurable as why:
         var = dispatch_var()
         exit_span = next((b.terminator.span for b in routine.blocks
-                          if isinstance(b.terminator, (ir.Return, ir.FallOff))), None)
-        return Structured(dispatch(routine, var), exit_span, str(why), var)
+                          if isinstance(b.terminator, (ir.Return, ir.FallOff)) and not isinstance(b.terminator, stops)),
+                         None)
+        return Structured(dispatch(routine, var, stops), exit_span, str(why), var)
 
 
 def copy_block(block: ir.Block) -> ir.Block:
@@ -152,13 +176,14 @@ def copy_block(block: ir.Block) -> ir.Block:
 class Graph:
     """Reachability, dominators and loops of one routine's CFG (with a virtual exit node)."""
 
-    def __init__(self, routine: ir.Routine):
+    def __init__(self, routine: ir.Routine, stops: tuple = (ir.End,)):
+        self.stops = stops
         self.blocks = {b.label: b for b in routine.blocks}
         self.entry = routine.blocks[0].label if routine.blocks else EXIT
         self.succ: dict[str, list[str]] = {}
         for label, block in self.blocks.items():
             term = block.terminator
-            if isinstance(term, (ir.Return, ir.FallOff)) or term is None:
+            if (isinstance(term, (ir.Return, ir.FallOff)) and not isinstance(term, stops)) or term is None:
                 self.succ[label] = [EXIT]
             else:
                 self.succ[label] = [t for t in ir.successors(term) if t in self.blocks]
@@ -286,7 +311,7 @@ class Graph:
                     continue
                 block = self.blocks[label]
                 succ = self.succ[label]
-                if isinstance(block.terminator, ir.End) or (succ and all(s in result for s in succ)):
+                if isinstance(block.terminator, self.stops) or (succ and all(s in result for s in succ)):
                     result.add(label)
                     changed = True
         return result
@@ -294,12 +319,27 @@ class Graph:
     def exits(self, header: str, body: set[str], ends: set[str]) -> list[tuple[str, str]]:
         return [(u, v) for u in body for v in self.succ[u] if v not in body and v not in ends]
 
+    def repeat_latch(self, header: str, body: set[str], ends: set[str]) -> str | None:
+        """The block that ends a loop tested at its end: the one way back to `header`, a branch whose
+        other arm is the loop's only exit (edges to blocks that END excepted); else None."""
+        latches = [u for u, v in self.back_edges if v == header]
+        if len(latches) != 1:
+            return None
+        latch = latches[0]
+        term = self.blocks[latch].terminator
+        if not isinstance(term, ir.Branch) or header not in (term.then, term.otherwise) or term.then == term.otherwise:
+            return None
+        out = term.otherwise if term.then == header else term.then
+        others = [edge for edge in self.exits(header, body, ends) if edge != (latch, out)]
+        return latch if not others and out not in body else None
+
 
 # =============================================================================================
 # Loops with a flag
 
 
-def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_copied: int) -> None:
+def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_copied: int,
+               stops: tuple = (ir.End,), repeat: bool = False) -> None:
     """Rewrites loops whose one exit is not the header's test into `f=1; WHILE f=1 ... f=0` form.
 
     The exit edge u -> e goes to a new block `f=0` that jumps to a new header testing f, whose false
@@ -312,7 +352,7 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
     counter = 0
     done: set[str] = set()
     while True:
-        graph = Graph(routine)
+        graph = Graph(routine, stops)
         if not graph.reducible:
             raise Unstructurable("the control-flow graph is irreducible (a loop is entered at two places)")
         ends = graph.terminating()
@@ -326,7 +366,7 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
             term = graph.blocks[header].terminator
             clean = isinstance(term, ir.Branch) and len(exits) == 1 and exits[0][0] == header \
                 and len(graph.blocks[header].ops) <= max_copied
-            if not exits or clean:
+            if not exits or clean or (repeat and graph.repeat_latch(header, body, ends) is not None):
                 continue
             if len(exits) > 1:
                 raise Unstructurable("a loop is left from several places")
@@ -366,8 +406,11 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
 class Structurer:
     """Rebuilds if/elif/else and while from a reducible CFG whose loops all exit at their header."""
 
-    def __init__(self, routine: ir.Routine, tail_copy: int = TAIL_COPY):
-        self.graph = Graph(routine)
+    def __init__(self, routine: ir.Routine, tail_copy: int = TAIL_COPY, stops: tuple = (ir.End,),
+                 repeat: bool = False):
+        self.stops = stops
+        self.repeat = repeat
+        self.graph = Graph(routine, stops)
         self.blocks = self.graph.blocks
         self.tail_copy = tail_copy
         self.emitted: set[str] = set()
@@ -410,7 +453,7 @@ class Structurer:
     def copyable(self, label: str) -> bool:
         """A short block that ENDs the program may be written twice (tail duplication)."""
         block = self.blocks[label]
-        return isinstance(block.terminator, ir.End) and len(block.ops) <= self.tail_copy
+        return isinstance(block.terminator, self.stops) and len(block.ops) <= self.tail_copy
 
     def is_test(self, label: str) -> bool:
         """A block that only tests (an elif): no operations, a branch, one way in."""
@@ -460,8 +503,8 @@ class Structurer:
                 label = term.target
             elif isinstance(term, ir.Branch):
                 label = self.branch(label, term, follow, forbidden, active, out)
-            elif isinstance(term, ir.End):
-                out.append(EndNode(term.span))
+            elif isinstance(term, self.stops):
+                out.append(EndNode(term.span, term))
                 label = None
             else:  # Return, FallOff: the routine's end
                 self.exit_span = getattr(term, "span", None) or self.exit_span
@@ -521,6 +564,9 @@ class Structurer:
         leaving = [(u, v) for u in body for v in graph.succ[u] if v not in body]
         tested = [v for u, v in leaving if u == header and isinstance(term, ir.Branch)]
         others = [(u, v) for u, v in leaving if not (u == header and v in tested)]
+        latch = graph.repeat_latch(header, body, self.ends) if self.repeat else None
+        if latch is not None and (latch == header or all(v in self.ends for v in tested)):
+            return self.repeat_loop(header, latch, follow, forbidden, active)
         # Edges to blocks that END are not exits: those blocks are written inside the loop.
         if len(tested) == 1 and all(v in self.ends for _, v in others):
             exit_label = tested[0]
@@ -538,13 +584,32 @@ class Structurer:
         return pre + [WhileNode(cond, code + list(pre), term.span, end_span)], exit_label
 
 
+    def repeat_loop(self, header: str, latch: str, follow: str, forbidden: frozenset,
+                    active: frozenset) -> tuple[list, str | None]:
+        """A loop tested at its end: the body runs from the header to the latch, whose branch back
+        becomes the loop's test (on the copy the structurer owns, the latch's branch is replaced by a
+        jump to the header while the body is written)."""
+        block = self.blocks[latch]
+        term = block.terminator
+        exit_label = term.otherwise if term.then == header else term.then
+        until = negate(term.cond) if term.then == header else term.cond
+        block.terminator = ir.Jump(header, term.span)
+        try:
+            code = self.region(header, header, (forbidden | {follow, exit_label}) - {header}, active | {header},
+                               first=True)
+        finally:
+            block.terminator = term
+        end_span = self.blocks[exit_label].span if exit_label in self.blocks else term.span
+        return [RepeatNode(code, until, self.blocks[header].span, end_span)], exit_label
+
+
 # =============================================================================================
 # The fallback
 
 
-def dispatch(routine: ir.Routine, var: ir.Var) -> list:
+def dispatch(routine: ir.Routine, var: ir.Var, stops: tuple = (ir.End,)) -> list:
     """while var!=0 with one if arm per basic block; var holds the next block's number (0: the end)."""
-    graph = Graph(routine)
+    graph = Graph(routine, stops)
     labels = [label for label in graph.order if label != EXIT]
     number = {label: i + 1 for i, label in enumerate(labels)}
     number[EXIT] = 0
@@ -563,8 +628,8 @@ def dispatch(routine: ir.Routine, var: ir.Var) -> list:
         elif isinstance(term, ir.Branch):
             body.append(IfNode([(term.cond, [goto(term.then, term.span)])], [goto(term.otherwise, term.span)],
                                [term.span]))
-        elif isinstance(term, ir.End):
-            body.append(EndNode(term.span))
+        elif isinstance(term, stops):
+            body.append(EndNode(term.span, term))
         else:
             body.append(goto(EXIT, getattr(term, "span", None)))
         arms.append((ir.Compare("=", var, ir.Const(number[label])), body))

@@ -6,7 +6,7 @@ accelerations in steps/s², times in seconds (docs/ARCHITECTURE.md, "Units"). Th
 | dialect | position | speed | acceleration | times |
 |---|---|---|---|---|
 | MCode | microsteps (MS per full step) | steps/s | steps/s² | ms (`H 100`) |
-| X150 | motor steps (MR per rev) | rev/s | rev/s² | s |
+| X150 | user steps (CUR per rev) | rev/s | rev/s² | s |
 | Arcus | pulses | pulses/s | a ramp time in ms (`ACC`) | ms |
 
 Frontends convert into the IR with these functions and backends convert back with their target

@@ -69,7 +69,7 @@ def usage(snap) -> Usage | None:
 def x150_sequences(snap, result: Usage) -> Usage:
     """Bytes per sequence as the X150 writer stores them (the figures of `mcc compile`)."""
     from mcc.compiler.x150 import naming
-    from mcc.compiler.x150.writer import write
+    from mcc.backends.x150.writer import write
 
     dialect = dialects.get("x150")
     try:

@@ -41,7 +41,7 @@ def program(dialect: str, line: str) -> str:
 
 
 @pytest.mark.parametrize("dialect", sorted(ASSIGN))
-@pytest.mark.parametrize("digits", [41, 400, 5000])
+@pytest.mark.parametrize("digits", [41, 400, 3000])  # longer lines are G007 (not analysed)
 def test_a_number_too_long_is_g006_at_its_place(dialect: str, digits: int) -> None:
     line = ASSIGN[dialect][1].format("7" * digits)
     found = codes(dialect, program(dialect, line))
@@ -60,7 +60,7 @@ def test_forty_digits_and_digits_in_comments_are_not_refused(dialect: str) -> No
 
 @pytest.mark.parametrize("dialect", sorted(ASSIGN))
 def test_a_statement_nested_too_deep_is_g007(dialect: str) -> None:
-    found = codes(dialect, program(dialect, LONG_EXPRESSION[dialect](3000)))
+    found = codes(dialect, program(dialect, LONG_EXPRESSION[dialect](600)))
     assert [d.code for d in found["check"] if d.code == "G031"] == ["G031"]
     shallow = codes(dialect, program(dialect, LONG_EXPRESSION[dialect](20)))
     assert not any(d.code == "G031" for d in shallow["check"])
@@ -68,7 +68,7 @@ def test_a_statement_nested_too_deep_is_g007(dialect: str) -> None:
 
 @pytest.mark.parametrize("dialect", sorted(ASSIGN))
 def test_fmt_keeps_refused_lines_as_written(dialect: str, tmp_path) -> None:
-    deep = LONG_EXPRESSION[dialect](3000)
+    deep = LONG_EXPRESSION[dialect](600)
     text = program(dialect, ASSIGN[dialect][1].format(HUGE)) + deep + "\n"
     path = tmp_path / f"f{EXTENSIONS[dialect]}"
     path.write_text(text, encoding="utf-8")
@@ -81,7 +81,8 @@ def test_fmt_keeps_refused_lines_as_written(dialect: str, tmp_path) -> None:
 @pytest.mark.parametrize("kind", ["if", "while", "ifelse"])
 def test_arcus_blocks_500_deep(kind: str) -> None:
     found = codes("arcus", nested("arcus", kind, 500))
-    assert not [d for d in found["check"] if d.severity.value == "error"]
+    # only the program memory (A201: `mcc check` prices the program since issue 12) may be over
+    assert not [d for d in found["check"] if d.severity.value == "error" and d.code != "A201"]
     fallback = [d for d in found["arcus"] if d.code == "A202"]
     assert fallback and "nest more than 64 deep" in fallback[0].message  # written as a flat dispatch loop
     assert not any(d.code == "A202" for d in codes("arcus", nested("arcus", kind, 60))["arcus"])

@@ -45,13 +45,13 @@ def const(expr) -> float | None:
 
 
 def uses_distance(move: ir.Move) -> bool:
-    """A `G` alone moves by the D in force (the lowering reads it as DeviceRef D)."""
-    return any(isinstance(value, ir.DeviceRef) and value.meaning == "distance" for _, value in move.targets)
+    """A `G` moving by a D not known where it runs (the lowering reads the register %D<device>)."""
+    return any(isinstance(value, ir.Var) and value.name.startswith("%D") for _, value in move.targets)
 
 
 def is_go(item) -> bool:
     """A move: a preset Move, or a G that stays Native (continuous mode, L2498)."""
-    return isinstance(item, ir.Move) or native(item, "G")
+    return isinstance(item, (ir.Move, ir.Slew)) or native(item, "G")
 
 
 def axis_of(item) -> str:
@@ -106,8 +106,8 @@ def setting_facts(item):
         return ((item.param, item.axis),)
     if isinstance(item, ir.Move) and not uses_distance(item):
         return (("distance", axis_of(item)),)
-    if native(item, "D") and item.args:
-        return (("distance", item.axis),)
+    if isinstance(item, ir.Assign) and item.target.name.startswith("%D"):
+        return (("distance", item.target.name[2:]),)
     return ()
 
 
@@ -358,19 +358,25 @@ def move_while_disabled(ctx: Context) -> None:
 
 @rule("X311", X150)
 def repeated_absolute_move(ctx: Context) -> None:
+    def target(item) -> tuple:
+        value = item.targets[0][1] if item.targets else None
+        return (axis_of(item), value.value if isinstance(value, ir.Const) else getattr(value, "name", None))
+
     def transfer(reached: frozenset, item) -> frozenset:
         if isinstance(item, ir.Move):
             axis = axis_of(item)
-            return reached | {axis} if item.mode is ir.MoveMode.ABSOLUTE else reached - {axis}
-        if native(item, "D"):
-            return reached - {item.axis}
-        if isinstance(item, (ir.Call, ir.Home)) or native(item, "SP", "PZ"):
+            kept = frozenset(r for r in reached if r[0] != axis)
+            return kept | {target(item)} if item.mode is ir.MoveMode.ABSOLUTE else kept
+        if isinstance(item, ir.Assign) and item.target.name.startswith("%D"):
+            return frozenset(r for r in reached if r[0] != item.target.name[2:])
+        if isinstance(item, (ir.Call, ir.Home, ir.SetPosition, ir.Slew)) or native(item, "SP", "PZ", "G"):
             return frozenset()
         return reached
 
+    # Since the lowering resolves D by data flow, a G that repeats the last absolute target (the
+    # register unchanged, or set again to the same value) has the same Move target as the last one.
     for _, item, reached in forward_all(ctx.module, transfer):
-        if isinstance(item, ir.Move) and item.mode is ir.MoveMode.ABSOLUTE and uses_distance(item) \
-                and axis_of(item) in reached:
+        if isinstance(item, ir.Move) and item.mode is ir.MoveMode.ABSOLUTE and target(item) in reached:
             ctx.report(item.span, "in absolute mode (MPA) this G goes to the position the last G already reached: "
                                   "set a new D first (L2572)")
 

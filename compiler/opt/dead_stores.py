@@ -91,10 +91,14 @@ def reads_in_handlers(module: ir.Module) -> set[str]:
 
 
 def drop_hidden(module: ir.Module) -> int:
+    """mcc's own declared temporaries (an X150 loop counter) that nothing reads. A hidden name that
+    is not a declared variable is device state (the X150 distance register `%D`, which a later `G`
+    or the host uses), never removed."""
     read = all_reads(module)
+    hidden = {n for n in module.variables if n.startswith("%")}
     removed = 0
     for _, block in module.blocks():
-        kept = [op for op in block.ops if not (isinstance(op, ir.Assign) and op.target.name.startswith("%")
+        kept = [op for op in block.ops if not (isinstance(op, ir.Assign) and op.target.name in hidden
                                                and op.target.name not in read)]
         removed += len(block.ops) - len(kept)
         block.ops[:] = kept

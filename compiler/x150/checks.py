@@ -19,7 +19,6 @@ from mcc.compiler.x150 import naming
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.lower import OPENERS, Lowering, Site
 from mcc.compiler.x150.structure import Unit
-from mcc.compiler.x150.writer import sequence_sizes
 
 PRODUCT_NAMES = {"bdhxe": "BDHX-E", "pdhxe": "PDHX-E", "blhx": "BLHX", "pdhx": "PDHX", "x150ds": "X150DS"}
 QUOTED = re.compile(r'"[^"]*"?')
@@ -369,31 +368,48 @@ class Checker:
                                "and sequence calls to 16 (L1750, L5140), but not the two together; move loops out "
                                "of the called sequence to be safe, or ignore X140 if your controller runs it")
 
+    def stored_bytes(self, unit: Unit) -> int:
+        """The bytes a sequence stores: each command in its canonical form (upper case, the device
+        address in front, the B prefix on an immediate `*` command) and its delimiter, XT included
+        (L241). The X150 backend writes sequences in the same form."""
+        from mcc.compiler.x150.format import command_text  # format imports this module's canonical_case
+        total = len("XT") + 1 + (len(str(unit.address)) if unit.address is not None else 0)
+        for command in unit.commands:
+            if command.info is None and not command.host:
+                continue
+            text = command_text(command)
+            address = command.address_text()
+            body = text[len(address):] if text.startswith(address) else text
+            if unit.address is not None and not address:
+                address = str(unit.address)
+            if command.info is not None and command.info.b_prefixable and not command.buffered:
+                body = "B" + body
+            total += len(address) + len(body) + 1
+        return total
+
     def check_memory(self) -> None:
         lowering = self.lowering
         store = int(self.profile.get("limits.sequence_store_bytes", self.cat.limit("sequence_store_bytes", default=8000)))
         buffer = int(self.profile.get("limits.command_buffer_bytes", self.cat.limit("command_buffer_bytes", default=2000)))
         ratio = float(self.profile.get("x150.buffer_warn_ratio", 0.9))
         latest: dict[tuple[int, int | None], tuple[Unit, int]] = {}
-        sizes = sequence_sizes(lowering.module, self.profile)
-        per_device: dict[str, int] = {}
-        for name, size in sizes.items():
-            device = naming.device_of(name)
-            key = str(device) if device is not None else "*"
-            per_device[key] = per_device.get(key, 0) + size
-        self.memory = {"unit": "bytes", "used": max(per_device.values(), default=0), "budget": store,
-                       "by_device": per_device, "command_buffer": buffer,
-                       "largest_sequence": max(sizes.values(), default=0)}
-        for unit, routine in zip(lowering.units, lowering.module.routines):
+        for unit in lowering.units:
             if not unit.is_sequence or unit.start is None:
                 continue
-            size = sizes.get(routine.name, 0)
+            size = self.stored_bytes(unit)
             latest[(unit.number or 0, unit.address)] = (unit, size)
             if size >= ratio * buffer:
                 over = "more than" if size > buffer else "close to"
                 self.diags.add("X124", unit.start.span,
                                f"sequence {unit.number} is {size} bytes, {over} the {buffer}-byte command buffer it is "
                                "downloaded through (L241, L4904): split it into sequences that call each other")
+        per_device: dict[str, int] = {}
+        for (_, address), (_, size) in latest.items():
+            key = str(address) if address is not None else "*"
+            per_device[key] = per_device.get(key, 0) + size
+        self.memory = {"unit": "bytes", "used": max(per_device.values(), default=0), "budget": store,
+                       "by_device": per_device, "command_buffer": buffer,
+                       "largest_sequence": max((size for _, size in latest.values()), default=0)}
         store_ratio = float(self.profile.get("x150.store_warn_ratio", 0.9))
         devices = sorted({address for _, address in latest if address is not None})
         for device in devices or [None]:

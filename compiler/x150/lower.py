@@ -13,12 +13,15 @@
   reaches zero. The blocks are laid out in source order; the backend rebuilds the constructs from
   these shapes.
 - XR/GOSUB → Call, XG/GOTO → GotoRoutine, XRT → Return, XT → FallOff (the executable end),
-  XP/XFK/XWHEN → SetHandler("powerup"/"fault"/"when", SEQn), WHEN(c) → SetHandler("when", args=(c,)).
-- Motion: A/V → SetMotion (rev/s², rev/s), `D` directly followed by `G` → one Move (RELATIVE after
-  MPI, ABSOLUTE after MPA in the same routine, MODAL when not known), a G alone → Move to the
-  distance in force (DeviceRef x150 D), a G in MC mode stays Native; T → Delay (s);
-  TRE/TRN → WaitInput(InputMatch) / WaitInput(Not(...)); VARn= → Assign (left to right); SV → Save.
-  Everything else is Native("x150", mnemonic, args, form="B" when B-prefixed, axis=address).
+  XP/XFK/XWHEN → SetHandler("power"/"fault"/"when", SEQn), WHEN(c) → SetHandler("when", args=(c,)).
+- Motion, in the IR's units (docs/IR.md): A/V → SetMotion in steps/s² and steps/s (rev × the
+  module's steps per revolution, the program's first CUR); CUR → SetMotion(RESOLUTION); D, H, H+,
+  H- → assignments to the hidden distance register `%D<device>`; G → a placeholder Move that
+  modes.py resolves by data flow into Move(ABSOLUTE|RELATIVE) + WaitMotion, or Slew in MC (the
+  mode commands disappear into the moves); T → Delay (s); TRE/TRN → WaitInput(InputMatch) /
+  WaitInput(Not(...)); TRIP → WaitMotion; PZ → SetPosition(0); O → SetOutput; HALT → End;
+  the quote command → Print; VARn= → Assign (left to right; POS/ABS are Status readings); SV → Save.
+  Everything else is Native("x150", mnemonic, args as written, form="B" when B-prefixed, axis).
 - Device addresses are axes "1".."32", "*" for none. Operations without an axis field (Assign,
   Delay, WaitInput, Save, Call, ...) take the routine's device; where a command's address differs
   from its routine's (a stream mixing devices), it stays Native so the address is kept.
@@ -27,22 +30,24 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from fractions import Fraction
 
 from mcc.compiler import ir
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
-from mcc.compiler.x150 import naming
-from mcc.compiler.x150.modes import get_mode, set_mode
+from mcc.compiler import units
+from mcc.compiler.x150 import modes, naming
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.structure import Unit, sequence_number, split_units
 
 DIALECT = "x150"
-UNITS = {"rev/s^2": ir.Unit.REVS_PER_S2, "rev/s": ir.Unit.REVS_PER_S, "user steps": ir.Unit.STEPS,
-         "motor steps": ir.Unit.STEPS, "steps": ir.Unit.STEPS, "s": ir.Unit.S, "ms": ir.Unit.MS,
-         "%": ir.Unit.PERCENT}
+UNITS = {"user steps": ir.Unit.STEPS, "steps": ir.Unit.STEPS, "s": ir.Unit.S, "%": ir.Unit.PERCENT}
+RATES = {"rev/s^2": ir.Unit.STEPS_PER_S2, "rev/s": ir.Unit.STEPS_PER_S}  # converted with the resolution
 MOTION = {"accel": ir.MotionParam.ACCEL, "max_speed": ir.MotionParam.MAX_SPEED}
-HANDLERS = {"powerup": "powerup", "fault_handler": "fault", "event_handler": "when"}
+READINGS = {"POS": "position", "ABS": "encoder"}  # chain sources with a neutral meaning (L4591-L4592)
+DIRECTION = {"H": "-", "H+": "abs", "H-": "-abs"}  # what H, H+ and H- do to the distance register
+HANDLERS = {"powerup": "power", "fault_handler": "fault", "event_handler": "when"}
 ROLE_KINDS = {"call": ir.RoutineKind.SUBROUTINE, "powerup": ir.RoutineKind.POWERUP,
               "fault_handler": ir.RoutineKind.HANDLER, "event_handler": ir.RoutineKind.HANDLER}
 KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKind.SUBROUTINE: 1,
@@ -51,8 +56,6 @@ OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
 CLOSERS = {"loop_end": "L", "endif": "IF", "endwhile": "WHILE", "until": "REPEAT", "else": "IF"}
 CLOSER_NAMES = {"L": "N", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL(...)"}
 LOOP_VAR = "%L"
-MOVE_MODES = ("mode_normal", "mode_continuous", "mode_queued")  # MN MC MQ
-CONTINUOUS = "mode_continuous"  # in MC a G runs at V until stopped: no Move (L2498)
 
 
 @dataclass
@@ -103,14 +106,13 @@ class Lowering:
         self.block: ir.Block | None = None
         self.device: int | None = None
         self.frames: list[Frame] = []
-        self.pending_d: tuple[st.Command, ir.Native] | None = None
-        self.position_mode: dict[str, ir.MoveMode] = {}
-        self.move_mode: dict[str, str] = {}
         self.leading = True
         self.after_skip: st.Command | None = None  # the SKE/SKN whose next command may be skipped
 
     # -- driver ----------------------------------------------------------------------------------
     def run(self) -> ir.Module:
+        self.cur: dict[str, int] = {}  # user steps per revolution of each device (CUR)
+        self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
         self.name_units()
         self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
@@ -118,8 +120,43 @@ class Lowering:
         for unit in self.units:
             self.lower_unit(unit, kinds)
         self.module.externals = external_routines(self.module)
+        modes.resolve(self.module, self.diags)
         return self.module
 
+    def resolution(self) -> int:
+        """User steps per revolution: the CUR the program sets with a number (the IR's step), else
+        the profile's. A second, different CUR or a CUR(VARn) is reported (X141): positions written
+        after it are in other steps than mcc converts with."""
+        found: int | None = None
+        for command in self.tree.commands():
+            if command.info is None or not command.ok or command.mnemonic != "CUR" or command.arg is None:
+                continue
+            arg = command.arg
+            device = str(command.address) if command.address is not None else ir.ALL_AXES
+            earlier = self.cur.get(device)
+            if isinstance(arg, st.Number) and isinstance(arg.value, int) and arg.value > 0 \
+                    and (earlier is None or earlier == arg.value):
+                self.cur[device] = arg.value
+                found = found or arg.value
+                continue
+            self.diags.add("X143", command.span,
+                           f"the user resolution changes here ({command.text}) after CUR{earlier} (or is not known "
+                           "statically): mcc converts every distance of this device with its first CUR, so "
+                           "positions after this line are not what it reports; set CUR once per device, with a "
+                           "number, before the first move")
+        return found or self.profile.steps_per_rev
+
+    def distance(self, arg, axis: str):
+        """A distance in user steps of its device (CUR) as IR steps (the module's first CUR)."""
+        cur = self.cur.get(axis, self.cur.get(ir.ALL_AXES, self.profile.steps_per_rev or self.module.steps_per_rev))
+        factor = Fraction(self.module.steps_per_rev, cur) if cur else Fraction(1)
+        if factor == 1:
+            return self.value(arg, None, ir.Unit.STEPS)
+        if isinstance(arg, st.Number):
+            scaled = Fraction(arg.value) * factor if isinstance(arg.value, int) else arg.value * float(factor)
+            value = int(scaled) if isinstance(scaled, Fraction) and scaled.denominator == 1 else float(scaled)
+            return ir.Const(value, ir.Unit.STEPS, arg.span)
+        return ir.BinOp("*", self.value(arg, None), ir.Const(float(factor), ir.Unit.NONE), getattr(arg, "span", None))
     def name_units(self) -> None:
         copies: dict[tuple[int, int | None], int] = {}
         streams = 0
@@ -168,6 +205,8 @@ class Lowering:
     # -- units, routines, blocks -----------------------------------------------------------------
     def lower_unit(self, unit: Unit, kinds: dict[str, ir.RoutineKind]) -> None:
         span = unit.start.span if unit.start is not None else (unit.commands[0].span if unit.commands else None)
+        if unit.erase is not None and span is not None:
+            span = unit.erase.span.to(span)  # XEn XDn: the backend maps each of the two lines back
         if unit.is_sequence:
             kind = kinds.get(unit.name, ir.RoutineKind.MAIN)
             number = unit.number
@@ -178,26 +217,20 @@ class Lowering:
         self.module.routines.append(self.routine)
         self.device = naming.device_of(unit.name)
         self.frames = []
-        self.pending_d = None
         self.after_skip = None
-        self.position_mode = {}
-        self.move_mode = {}
         self.leading = unit.is_sequence
         self.leading_nifs[unit.name] = 0
         self.block = None
         self.new_block(span)
         for command in unit.commands:
             self.lower_command(command)
-        self.flush()
         end = unit.end or unit.start
         self.close_all(end, "XT" if unit.is_sequence else "the end of the stream")
+        end_span = unit.end.span if unit.end is not None else self.block.span
+        if self.block.terminator is not None and unit.end is not None:
+            self.new_block(end_span)  # the XT after an XG/XRT: kept for the source map
         if self.block.terminator is None:
-            self.block.terminator = ir.FallOff(unit.end.span if unit.end is not None else self.block.span)
-        if unit.is_sequence and unit.start is not None and unit.end is not None:
-            # a sequence's span is its whole definition, XEn (when sent) through XT, so the listing
-            # maps XE and XT to their own lines even when XT follows an XG (the entry block keeps XD's)
-            first = unit.erase.span if unit.erase is not None else unit.start.span
-            self.routine.span = first.to(unit.end.span)
+            self.block.terminator = ir.FallOff(end_span)
 
     def label(self) -> str:
         self.generated += 1
@@ -242,10 +275,6 @@ class Lowering:
         structural = role in OPENERS or role in CLOSERS
         if command.problems and not structural:
             return
-        if self.pending_d is not None:
-            if role == "go" and self.fuse(command):
-                return
-            self.flush()
         if self.leading and not (role == "endif" and not self.frames):
             self.leading = False
         skip, self.after_skip = self.after_skip, (command if role == "skip" else None)
@@ -272,15 +301,29 @@ class Lowering:
             self.emit(ir.Native(DIALECT, "!", (self.expr(arg),), axis=axis, span=span))
             return
         fits = self.fits(command) and not command.buffered
-        if role in MOTION and arg is not None:
+        axis_ok = not command.buffered  # operations that carry the axis keep the address themselves
+        name = command.mnemonic
+        if role in MOTION and arg is not None and axis_ok:
             self.emit(ir.SetMotion(MOTION[role], axis, self.value(arg, info), span))
-        elif role == "distance" and arg is not None:
-            op = self.native(command)
-            self.emit(op)
-            if skip is None:  # after SKE/SKN the D alone may be skipped: it stays its own operation
-                self.pending_d = (command, op)
-        elif role == "go" and arg is None:
-            self.go(command, None)
+        elif role == "distance" and arg is not None and axis_ok and not isinstance(arg, st.Pattern):
+            self.emit(ir.Assign(ir.Var(modes.distance_var(axis), span), self.distance(arg, axis), span))
+        elif name in DIRECTION and arg is None and axis_ok:
+            var = ir.Var(modes.distance_var(axis), span)
+            how = DIRECTION[name]
+            value = ir.UnOp("-", var, span) if how == "-" else ir.Func("abs", (var,), span)
+            if how == "-abs":
+                value = ir.UnOp("-", value, span)
+            self.emit(ir.Assign(var, value, span))
+        elif role == "go" and arg is None and axis_ok:
+            self.emit(ir.Move(ir.MoveMode.MODAL, ((axis, ir.Var(modes.distance_var(axis), span)),), span=span))
+        elif name == "CUR" and isinstance(arg, st.Number):  # BCUR in a sequence is the same setting
+            self.emit(ir.SetMotion(ir.MotionParam.RESOLUTION, axis, ir.Const(arg.value, ir.Unit.NONE, arg.span), span))
+        elif name == "O" and isinstance(arg, st.Pattern) and fits:
+            self.emit(self.outputs(arg, span))
+        elif name == "TRIP" and arg is None and axis_ok:
+            self.emit(ir.WaitMotion(axis, span))
+        elif name == "PZ" and arg is None and axis_ok:
+            self.emit(ir.SetPosition(axis, ir.Const(0, ir.Unit.STEPS, span), span))
         elif role == "delay" and arg is not None and fits:
             self.emit(ir.Delay(self.value(arg, info), span))
         elif role == "wait_input" and isinstance(arg, st.Pattern) and fits:
@@ -288,11 +331,16 @@ class Lowering:
             if info.entry.get("negated", False):
                 cond = ir.Not(cond, arg.span)
             self.emit(ir.WaitInput(cond, span))
-        elif role == "assign" and isinstance(arg, st.VarStatement) and arg.value is not None and fits:
+        elif role == "assign" and isinstance(arg, st.VarStatement) and arg.value is not None and fits \
+                and self.neutral_chain(arg.value):
             self.declare(arg.var)
             self.emit(ir.Assign(ir.Var(arg.var.name, arg.var.span), self.chain(arg.value, axis), span))
         elif role == "save" and fits:
             self.emit(ir.Save(span))
+        elif name == '"' and isinstance(arg, st.Text) and fits:  # '_' is sent as a space (L5589)
+            self.emit(ir.Print((ir.Text(arg.text.replace("_", " "), arg.span),), False, span))
+        elif name == "HALT" and arg is None and fits:
+            self.terminate(ir.End(span))  # stops execution and clears the buffer (L1883)
         elif role == "return" and fits:
             self.terminate(ir.Return(span))
         elif role == "when" and isinstance(arg, st.Condition) and fits:
@@ -300,45 +348,20 @@ class Lowering:
         else:
             op = self.native(command)
             self.emit(op)
-            self.track_modes(command.mnemonic, op.axis)
 
-    def track_modes(self, mnemonic: str, axis: str) -> None:
-        """MPA/MPI and MN/MC/MQ are modal; the lowering follows them in source order per routine."""
-        info = self.cat.lookup(mnemonic)
-        role = info.ir if info is not None else ""
-        if role in ("mode_absolute", "mode_incremental"):
-            mode = ir.MoveMode.ABSOLUTE if role == "mode_absolute" else ir.MoveMode.RELATIVE
-            set_mode(self.position_mode, axis, mode)
-        elif role in MOVE_MODES:
-            set_mode(self.move_mode, axis, role)
+    def outputs(self, pattern: st.Pattern, span) -> ir.SetOutput:
+        """`O` with one output set (the others X) is that output; any other pattern stays a pattern."""
+        bits = pattern.bits
+        set_bits = [(i, b) for i, b in enumerate(bits) if b != "X"]
+        if len(set_bits) == 1:
+            index, bit = set_bits[0]
+            return ir.SetOutput(index + 1, ir.Const(int(bit), ir.Unit.NONE, pattern.span), span)
+        return ir.SetOutput(None, ir.Pattern(bits, pattern.span), span)
 
-    def flush(self) -> None:
-        self.pending_d = None
-
-    def fuse(self, command: st.Command) -> bool:
-        """`D<value>` directly followed by `G` (same address) is one Move."""
-        d_command, d_op = self.pending_d
-        if command.address != d_command.address or command.arg is not None or self.block.terminator is not None \
-                or not self.block.ops or self.block.ops[-1] is not d_op:
-            return False
-        axis = self.axis(command)
-        if get_mode(self.move_mode, axis) == CONTINUOUS:
-            return False
-        self.block.ops.pop()
-        self.pending_d = None
-        target = self.value(d_command.arg, d_command.info)
-        mode = get_mode(self.position_mode, axis) or ir.MoveMode.MODAL
-        self.emit(ir.Move(mode, ((axis, target),), span=d_command.span.to(command.span)))
-        return True
-
-    def go(self, command: st.Command, target) -> None:
-        axis = self.axis(command)
-        if get_mode(self.move_mode, axis) == CONTINUOUS:
-            self.emit(self.native(command))
-            return
-        distance = ir.DeviceRef(DIALECT, "D", "distance", axis, None, command.span)
-        mode = get_mode(self.position_mode, axis) or ir.MoveMode.MODAL
-        self.emit(ir.Move(mode, ((axis, distance),), span=command.span))
+    def neutral_chain(self, chain: st.Chain) -> bool:
+        """A chain reads only variables, numbers and readings with a neutral meaning (POS, ABS)."""
+        operands = [chain.first] + [operand for _, operand in chain.rest]
+        return all(not isinstance(o, st.Source) or o.name in READINGS for o in operands)
 
     def transfer(self, command: st.Command, role: str) -> None:
         """XR/GOSUB (call), XG/GOTO (goto), XP/XFK/XWHEN (handler selection)."""
@@ -507,10 +530,22 @@ class Lowering:
     def declare(self, var: st.VarRef) -> None:
         name = var.name
         if name not in self.module.variables:
-            self.module.variables[name] = ir.Variable(name, ir.VarType.DECIMAL, None, "global", var.span)
+            # VAR1-VAR50 hold 0 until the program sets them (the default, L4569)
+            self.module.variables[name] = ir.Variable(name, ir.VarType.DECIMAL, ir.Const(0, ir.Unit.NONE, var.span),
+                                                      "global", var.span)
 
-    def value(self, arg, info: cat.Command | None):
-        unit = UNITS.get(info.entry.unit, ir.Unit.NONE) if info is not None else ir.Unit.NONE
+    def value(self, arg, info: cat.Command | None, unit: ir.Unit | None = None):
+        """A command's value in the IR's units: rev/s and rev/s^2 times the resolution (steps/s,
+        steps/s^2); a (VARn) holding rev/s becomes VARn * steps per rev."""
+        written = info.entry.unit if info is not None else ""
+        spr = self.module.steps_per_rev
+        if written in RATES:
+            if isinstance(arg, st.Number):
+                return ir.Const(units.revs_to_steps(arg.value, spr), RATES[written], arg.span)
+            if isinstance(arg, st.VarRef):
+                self.declare(arg)
+                return ir.BinOp("*", ir.Var(arg.name, arg.span), ir.Const(spr, ir.Unit.NONE, arg.span), arg.span)
+        unit = unit or UNITS.get(written, ir.Unit.NONE)
         if isinstance(arg, st.Number):
             return ir.Const(arg.value, unit, arg.span)
         if isinstance(arg, st.VarRef):
@@ -524,6 +559,8 @@ class Lowering:
         if isinstance(node, st.VarRef):
             self.declare(node)
             return ir.Var(node.name, node.span)
+        if node.name in READINGS:
+            return ir.Status(READINGS[node.name], axis, None, node.span)
         meaning = self.cat.sources.get(node.name, {}).get("ir", "")
         return ir.DeviceRef(DIALECT, node.name, meaning, axis, None, node.span)
 
@@ -575,7 +612,7 @@ class Lowering:
             return (var,) + ((self.chain(arg.value, axis),) if arg.value is not None else ())
         if isinstance(arg, st.Condition):
             return (self.cond(arg, axis),)
-        return (self.value(arg, command.info),)
+        return (self.expr(arg),)  # as written: a Native keeps the dialect's own units
 
     def native(self, command: st.Command) -> ir.Native:
         mnemonic = command.mnemonic if command.info is not None else "!"

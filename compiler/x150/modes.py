@@ -1,21 +1,385 @@
-"""Modal state (MPA/MPI, MN/MC/MQ) followed per device in source order.
+"""X150's modal moves resolved by data flow: what each `G` does, as a neutral operation.
 
-The lowering gives each Move the position mode in force before it, and the writer follows the
-same state while writing to decide when a Move from another dialect needs an MPA or MPI first.
-Both use these two functions, so a program's Moves and its mode commands always agree.
-A mode set without an address ("*") applies to every device and replaces per-device settings.
+An X150 `G` moves by the distance register D in the way the modes in force say (docs/dialects/x150.md,
+"Moves"): MN (normal, the factory default) with MPI (incremental, the factory default, L2608) moves
+by D, with MPA to D; MC (continuous, L2498) runs at V in the direction of D's sign until stopped; MQ
+moves like MN but lets the next commands run during the move (L2631). `D` sets the register, `H`
+reverses its sign and `H+`/`H-` set it (L1828, L1864).
+
+The lowering writes placeholders in source order: each mode command as a Native (MPA MPI MN MC MQ),
+each `D`/`H`/`H+`/`H-` as an assignment to a hidden per-device variable `%D<device>`, each `G` as a
+`Move(MODAL, %D<device>)`. `resolve` then follows the modes and the register forward through every
+routine's graph (a sequence starts with what holds at every one of its calls, an immediate stretch
+with what the stretch before it left, and what nothing in the file runs with the factory defaults)
+and rewrites each G:
+
+- MN (or MQ) with a known position mode: `Move(ABSOLUTE|RELATIVE, D)`, D a constant when the
+  register is known there, else the variable `%D<device>`; after an MN move a `WaitMotion` (the next
+  command runs when the move has ended, unlike MQ);
+- MC with a known sign of D: `Slew(direction=±1)` (at the max speed in force);
+- anything not known statically (two paths with different modes, MC with an unknown direction): the
+  `G` stays Native and X140 says why, so no backend but X150's own writes it.
+
+The mode commands themselves disappear (their effect is in the moves), MQ excepted; assignments to
+`%D` that nothing reads any more disappear too.
 """
 
 from __future__ import annotations
 
-from mcc.compiler.ir import ALL_AXES
+from mcc.compiler import ir
+from mcc.compiler.diagnostics import Diagnostics
+
+DIALECT = "x150"
+DISTANCE = "%D"
+POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
+MOVE_MODES = ("MN", "MC", "MQ")
+DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN"}  # L2608, L2520
+
+State = dict  # ("pos"|"move"|"D", axis) -> "MPA"/"MPI", "MN"/"MC"/"MQ", or an ir.Const
 
 
-def set_mode(table: dict, axis: str, value) -> None:
-    if axis == ALL_AXES:
-        table.clear()
-    table[axis] = value
+def distance_var(axis: str) -> str:
+    return DISTANCE + axis
 
 
-def get_mode(table: dict, axis: str):
-    return table.get(axis, table.get(ALL_AXES))
+def is_distance(name: str) -> bool:
+    return name.startswith(DISTANCE)
+
+
+def set_key(state: State, kind: str, axis: str, value) -> None:
+    """A setting for every device ("*") replaces the per-device ones."""
+    if axis == ir.ALL_AXES:
+        for key in [k for k in state if k[0] == kind]:
+            del state[key]
+    if value is None:
+        state.pop((kind, axis), None)
+    else:
+        state[(kind, axis)] = value
+
+
+def get_key(state: State, kind: str, axis: str):
+    found = state.get((kind, axis))
+    return found if found is not None else state.get((kind, ir.ALL_AXES))
+
+
+def meet(a: State | None, b: State) -> State:
+    if a is None:
+        return dict(b)
+    return {k: v for k, v in a.items() if k in b and same(b[k], v)}
+
+
+def same(a, b) -> bool:
+    if isinstance(a, ir.Const) and isinstance(b, ir.Const):
+        return a.value == b.value
+    return a == b
+
+
+def register_value(op: ir.Assign, state: State):
+    """The constant D holds after an assignment to %D (None: not known)."""
+    axis = op.target.name[len(DISTANCE):]
+    value = op.value
+    if isinstance(value, ir.Const):
+        return ir.Const(value.value, ir.Unit.STEPS, value.span)
+    old = get_key(state, "D", axis)
+    if not isinstance(old, ir.Const):
+        return None
+    if isinstance(value, ir.UnOp) and value.op == "-":
+        inner = value.operand
+        if isinstance(inner, ir.Var):
+            return ir.Const(-old.value, ir.Unit.STEPS)
+        if isinstance(inner, ir.Func) and inner.name == "abs":
+            return ir.Const(-abs(old.value), ir.Unit.STEPS)
+    if isinstance(value, ir.Func) and value.name == "abs":
+        return ir.Const(abs(old.value), ir.Unit.STEPS)
+    return None
+
+
+def register_sign(op: ir.Assign, state: State, value) -> int | None:
+    """The sign of D after an assignment (H- makes it negative whatever D held, L1864)."""
+    if isinstance(value, ir.Const):  # D without a sign (D0 too) is positive (L814)
+        return -1 if value.value < 0 else 1
+    expr = op.value
+    if isinstance(expr, ir.Func) and expr.name == "abs":
+        return 1
+    if isinstance(expr, ir.UnOp) and isinstance(expr.operand, ir.Func):
+        return -1
+    old = get_key(state, "sign", op.target.name[len(DISTANCE):])
+    if isinstance(expr, ir.UnOp) and old is not None:
+        return -old
+    return None
+
+
+def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State | None]) -> State:
+    if isinstance(op, ir.Native) and op.dialect == DIALECT:
+        if op.mnemonic in POSITION_MODES:
+            set_key(state, "pos", op.axis, op.mnemonic)
+        elif op.mnemonic in MOVE_MODES:
+            set_key(state, "move", op.axis, op.mnemonic)
+    elif isinstance(op, ir.Assign) and is_distance(op.target.name):
+        axis = op.target.name[len(DISTANCE):]
+        value = register_value(op, state)
+        set_key(state, "sign", axis, register_sign(op, state, value))
+        set_key(state, "D", axis, value)
+    elif isinstance(op, ir.Call) and touched.get(op.routine, True):
+        end = exits.get(op.routine)
+        state.clear()
+        if end:
+            state.update(end)
+    return state
+
+
+class Resolver:
+    def __init__(self, module: ir.Module, diags: Diagnostics):
+        self.module = module
+        self.diags = diags
+        self.touched = self.touching()
+        self.entries: dict[str, State | None] = {}
+        self.exits: dict[str, State | None] = {}
+        self.before: dict[int, State] = {}  # id(op) -> the state just before it
+
+    def touching(self) -> dict[str, bool]:
+        """Routines that may change a mode or D, themselves or through what they call."""
+        direct: dict[str, bool] = {}
+        calls: dict[str, set[str]] = {}
+        for routine in self.module.routines:
+            direct[routine.name] = False
+            calls[routine.name] = set()
+            for block in routine.blocks:
+                for op in block.ops:
+                    if (isinstance(op, ir.Native) and op.mnemonic in (*POSITION_MODES, *MOVE_MODES)) or \
+                            (isinstance(op, ir.Assign) and is_distance(op.target.name)):
+                        direct[routine.name] = True
+                    elif isinstance(op, ir.Call):
+                        calls[routine.name].add(op.routine)
+        result = dict(direct)
+        for name in self.module.externals:
+            result[name] = True
+        changed = True
+        while changed:
+            changed = False
+            for name, called in calls.items():
+                if not result[name] and any(result.get(c, True) for c in called):
+                    result[name] = True
+                    changed = True
+        return result
+
+    def solve(self) -> None:
+        routines = self.module.routines
+        for _ in range(len(routines) + 3):
+            sites: dict[str, State | None] = {}
+            carried: State = dict(DEFAULTS)
+            changed = False
+            for routine in routines:
+                if routine.kind is ir.RoutineKind.IMMEDIATE:
+                    start = carried
+                elif routine.kind is ir.RoutineKind.SUBROUTINE:
+                    start = self.entries.get(routine.name) or {}
+                else:
+                    start = dict(DEFAULTS)  # run by the host, at power-up or by an event: assumed defaults
+                end = self.routine(routine, start, sites)
+                if routine.kind is ir.RoutineKind.IMMEDIATE and end is not None:
+                    carried = end
+                if not states_equal(self.exits.get(routine.name), end):
+                    self.exits[routine.name] = end
+                    changed = True
+            for routine in routines:
+                if routine.kind is ir.RoutineKind.SUBROUTINE:
+                    new = sites.get(routine.name) or {}
+                    if not states_equal(self.entries.get(routine.name), new):
+                        self.entries[routine.name] = new
+                        changed = True
+            if not changed:
+                break
+
+    def routine(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
+        if not routine.blocks:
+            return None
+        blocks = {b.label: b for b in routine.blocks}
+        entry: dict[str, State | None] = {b.label: None for b in routine.blocks}
+        entry[routine.blocks[0].label] = dict(start)
+        work = [routine.blocks[0].label]
+        end: State | None = None
+        visits: dict[str, int] = {}
+        while work:
+            label = work.pop()
+            visits[label] = visits.get(label, 0) + 1
+            block = blocks[label]
+            state = dict(entry[label] or {})
+            for op in block.ops:
+                if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
+                    self.before[id(op)] = dict(state)
+                if isinstance(op, ir.Call):
+                    sites[op.routine] = meet(sites.get(op.routine), state)
+                state = transfer(state, op, self.touched, self.exits)
+            term = block.terminator
+            if isinstance(term, ir.GotoRoutine):
+                sites[term.routine] = meet(sites.get(term.routine), state)
+            if isinstance(term, (ir.FallOff, ir.Return)) or term is None:
+                end = meet(end, state)
+            for succ in ir.successors(term):
+                if succ not in blocks:
+                    continue
+                old = entry[succ]
+                new = meet(old, state)
+                if old is None or not states_equal(old, new):
+                    entry[succ] = new
+                    if visits.get(succ, 0) < 64:
+                        work.append(succ)
+        return end
+
+    # -- rewriting ---------------------------------------------------------------------------------
+    def rewrite(self) -> None:
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                out: list = []
+                for op in block.ops:
+                    out += self.rewrite_op(op, block.ops, out)
+                block.ops = out
+        kept_go = any(isinstance(op, ir.Native) and op.mnemonic == "G" for _, b in self.module.blocks() for op in b.ops)
+        if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
+            for _, block in self.module.blocks():
+                block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
+                                                            and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
+        self.drop_unread_distances()
+
+    def rewrite_op(self, op, ops: list, done: list) -> list:
+        if not (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL):
+            return [op]
+        state = self.before.get(id(op), {})
+        axis = op.targets[0][0]
+        move = get_key(state, "move", axis)
+        register = get_key(state, "D", axis)
+        go = ir.Native(DIALECT, "G", (), axis=axis, span=op.span)
+        if move == "MC":
+            sign = get_key(state, "sign", axis)
+            if sign is not None:
+                return [ir.Slew(axis, None, sign, op.span)]
+            self.report(op.span, "G in MC runs in the direction of D's sign, which is not known here")
+            return [go]
+        if move not in ("MN", "MQ"):
+            self.report(op.span, "G moves in the move mode in force (MN, MC or MQ), which differs on the paths "
+                                 "that reach it")
+            return [go]
+        pos = get_key(state, "pos", axis)
+        if pos not in POSITION_MODES:
+            self.report(op.span, "G moves by D in the position mode in force (MPA or MPI), which differs on the "
+                                 "paths that reach it")
+            return [go]
+        span = op.span
+        if isinstance(register, ir.Const):
+            source = self.last_distance(done, axis)
+            target = ir.Const(register.value, ir.Unit.STEPS, register.span)
+            if source is not None and source.span is not None and span is not None and source.span.file == span.file \
+                    and source.span.start < span.start:
+                span = source.span.to(span)
+        else:
+            target = ir.Var(distance_var(axis), span)
+            self.declare(axis)
+        moved = [ir.Move(POSITION_MODES[pos], ((axis, target),), op.options, span)]
+        if move == "MN":
+            moved.append(ir.WaitMotion(axis, op.span))
+        return moved
+
+    @staticmethod
+    def last_distance(done: list, axis: str):
+        """The `D` that set the register in the same block before this G (for the source map)."""
+        for op in reversed(done):
+            if isinstance(op, ir.Assign) and op.target.name == distance_var(axis):
+                return op
+        return None
+
+    def declare(self, axis: str) -> None:
+        name = distance_var(axis)
+        if name not in self.module.variables:
+            self.module.variables[name] = ir.Variable(name, ir.VarType.INT32, None, "global")
+
+    def drop_unread_distances(self) -> None:
+        """Assignments to a %D that no move, native G or later H can read (backward liveness; a call,
+        a transfer and the end of a routine read every %D something in the module reads) are dropped,
+        and so is a %D variable nothing reads."""
+        read = self.distance_reads()
+        if self.module.externals:
+            read = {n for n in self.module.variables if is_distance(n)}
+        for routine in self.module.routines:
+            self.drop_dead_in(routine, read)
+        used = {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
+        used |= {op.target.name for _, block in self.module.blocks() for op in block.ops
+                 if isinstance(op, ir.Assign) and is_distance(op.target.name)}
+        for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
+            del self.module.variables[name]
+
+    @staticmethod
+    def op_reads(op) -> set[str]:
+        """The registers an operation reads: only moves, a G kept as text and H/H+/H- (the lowering
+        puts %D nowhere else)."""
+        if isinstance(op, ir.Native):
+            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else set()
+        if isinstance(op, ir.Move):
+            return {e.name for _, e in op.targets if isinstance(e, ir.Var) and is_distance(e.name)}
+        if isinstance(op, ir.Assign) and is_distance(op.target.name) and not isinstance(op.value, ir.Const):
+            return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
+        return set()
+
+    def distance_reads(self) -> set[str]:
+        return {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
+
+    def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
+        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name) for b in routine.blocks for op in b.ops):
+            return
+        blocks = {b.label: b for b in routine.blocks}
+        live_in: dict[str, set[str]] = {label: set() for label in blocks}
+
+        def live_out(block) -> set[str]:
+            term = block.terminator
+            if isinstance(term, (ir.FallOff, ir.Return, ir.GotoRoutine, ir.End)) or term is None:
+                return set(read) if not isinstance(term, ir.End) else set()
+            out: set[str] = set()
+            for succ in ir.successors(term):
+                out |= live_in.get(succ, set(read))
+            return out
+
+        def through(block, live: set[str], drop: bool) -> set[str]:
+            kept = []
+            for op in reversed(block.ops):
+                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                    if op.target.name not in live and drop:
+                        continue
+                    live = (live - {op.target.name}) | self.op_reads(op)
+                elif isinstance(op, ir.Call):
+                    live = live | read
+                else:
+                    live = live | self.op_reads(op)
+                kept.append(op)
+            if drop:
+                block.ops = kept[::-1]
+            return live
+
+        changed = True
+        rounds = 0
+        while changed and rounds < 4 * len(blocks) + 4:
+            changed = False
+            rounds += 1
+            for block in reversed(routine.blocks):
+                new = through(block, live_out(block), False)
+                if new != live_in[block.label]:
+                    live_in[block.label] = new
+                    changed = True
+        for block in routine.blocks:
+            through(block, live_out(block), True)
+
+    def report(self, span, why: str) -> None:
+        if span is not None:
+            self.diags.add("X142", span, f"{why}: mcc keeps this G as X150 text, so it compiles to X150 only; "
+                                         "set the mode (MN/MC, MPA/MPI) and D on every path before G")
+
+
+def states_equal(a: State | None, b: State | None) -> bool:
+    if a is None or b is None:
+        return a is b
+    return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+
+
+def resolve(module: ir.Module, diags: Diagnostics) -> None:
+    resolver = Resolver(module, diags)
+    resolver.solve()
+    resolver.rewrite()

@@ -13,7 +13,7 @@ from mcc.compiler.ir_verify import verify
 DIALECTS = ("mcode", "arcus", "x150")
 # Dialects whose lowering already keeps the meaning half of the contract (units, move modes,
 # neutral names). A dialect joins when its frontend is converted; the list only grows.
-MEANING_KEPT: set[str] = {"mcode", "arcus"}
+MEANING_KEPT: set[str] = {"mcode", "arcus", "x150"}
 
 
 def block(label, ops, term):
@@ -102,6 +102,9 @@ def test_lowering_keeps_the_meaning(dialect):
 
 
 NATIVE_SHARE_TARGET = 0.10
+# Dialects still above the target, with the measured share (bench/ir_report.py); issue 8 stays open.
+NATIVE_SHARE_OPEN = {"x150": "X150: about 25 % of operations are Native (following, RP240 display, servo tuning, "
+                             "mixed-device streams); target 10 %"}
 
 
 @pytest.mark.parametrize("dialect", DIALECTS)
@@ -111,6 +114,8 @@ def test_native_share(dialect):
     prints the share on any tree (the manuals' examples among them)."""
     if dialect not in MEANING_KEPT:
         pytest.xfail(f"{dialect} lowering not yet converted (issue 8)")
+    if dialect in NATIVE_SHARE_OPEN:
+        pytest.xfail(NATIVE_SHARE_OPEN[dialect])
     total = native = 0
     for path in sample_files(dialect):
         m = lowered(path, dialect)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 
-from x150_helpers import assert_well_formed, module
+from x150_helpers import assert_well_formed, check, module
 
 
 def ops(routine: ir.Routine) -> list:
@@ -38,7 +38,7 @@ def test_routines_in_stream_order_with_names_numbers_and_kinds():
         ("immediate@1", "immediate", None), ("SEQ20@1", "handler", 20), ("SEQ10@1", "powerup", 10),
         ("SEQ11@1", "subroutine", 11), ("SEQ12", "main", 12), ("immediate.2@1", "immediate", None)]
     handlers = [op for op in ops(mod.routines[-1]) if isinstance(op, ir.SetHandler)]
-    assert [(h.event, h.routine) for h in handlers] == [("fault", "SEQ20@1"), ("powerup", "SEQ10@1")]
+    assert [(h.event, h.routine) for h in handlers] == [("fault", "SEQ20@1"), ("power", "SEQ10@1")]
     assert isinstance(ops(mod.routines[-1])[-1], ir.Save)
     assert_well_formed(mod)
 
@@ -93,7 +93,8 @@ def test_goto_terminates_and_keeps_what_follows():
     seq1 = mod.routine("SEQ1")
     gotos = [b.terminator for b in seq1.blocks if isinstance(b.terminator, ir.GotoRoutine)]
     assert [g.routine for g in gotos] == ["SEQ2", "SEQ2"]
-    assert any(isinstance(op, ir.Native) and op.mnemonic == "D" for op in ops(seq1))  # dead code kept
+    # dead code kept: the D after XG (SEQ2's G reads the register it may set)
+    assert any(isinstance(op, ir.Assign) and op.target.name == "%D*" for op in ops(seq1))
     seq2 = mod.routine("SEQ2")
     assert isinstance(ops(seq2)[0], ir.Native) and ops(seq2)[0].mnemonic == "NIF"  # leading NIF
     assert_well_formed(mod)
@@ -103,25 +104,58 @@ def test_motion_units_and_moves():
     mod = module("1A10\n1V5\n1MPA\n1D4000\n1G\n1MPI\n1D-200\n1G\n1H\n1G\n1MC\n1G\n1T0.5\n1TRE_X1\n1TRN_X1\n")
     found = ops(mod.routines[0])
     accel, speed = found[0], found[1]
+    # rev/s^2 and rev/s times the profile's 4000 steps per revolution
     assert (accel.param, accel.axis, accel.value.value, accel.value.unit) == (
-        ir.MotionParam.ACCEL, "1", 10, ir.Unit.REVS_PER_S2)
-    assert (speed.param, speed.value.unit) == (ir.MotionParam.MAX_SPEED, ir.Unit.REVS_PER_S)
+        ir.MotionParam.ACCEL, "1", 40000, ir.Unit.STEPS_PER_S2)
+    assert (speed.param, speed.value.value, speed.value.unit) == (ir.MotionParam.MAX_SPEED, 20000, ir.Unit.STEPS_PER_S)
     moves = [op for op in found if isinstance(op, ir.Move)]
-    assert [(m.mode, m.targets[0][0]) for m in moves] == [
-        (ir.MoveMode.ABSOLUTE, "1"), (ir.MoveMode.RELATIVE, "1"), (ir.MoveMode.RELATIVE, "1")]
-    assert moves[0].targets[0][1].value == 4000 and moves[0].targets[0][1].unit is ir.Unit.STEPS
-    assert isinstance(moves[2].targets[0][1], ir.DeviceRef) and moves[2].targets[0][1].name == "D"
-    assert [op.mnemonic for op in found if isinstance(op, ir.Native)][-1] == "G"  # G in MC mode
+    # D then G; D-200 G; H reverses D: the third G moves +200 (L1828)
+    assert [(m.mode, m.targets[0][0], m.targets[0][1].value) for m in moves] == [
+        (ir.MoveMode.ABSOLUTE, "1", 4000), (ir.MoveMode.RELATIVE, "1", -200), (ir.MoveMode.RELATIVE, "1", 200)]
+    assert all(m.targets[0][1].unit is ir.Unit.STEPS for m in moves)
+    assert sum(isinstance(op, ir.WaitMotion) for op in found) == 3  # in MN the next command waits for the move
+    slew = next(op for op in found if isinstance(op, ir.Slew))  # G in MC runs in D's direction (L2498)
+    assert (slew.axis, slew.direction, slew.velocity) == ("1", 1, None)
+    assert not any(isinstance(op, ir.Native) for op in found)  # MPA, MPI, MC and D disappear into the moves
     delay = next(op for op in found if isinstance(op, ir.Delay))
     assert (delay.duration.value, delay.duration.unit) == (0.5, ir.Unit.S)
     waits = [op for op in found if isinstance(op, ir.WaitInput)]
     assert isinstance(waits[0].cond, ir.InputMatch) and isinstance(waits[1].cond, ir.Not)
 
 
-def test_move_mode_is_modal_when_unknown():
-    mod = module("D4000\nG\n")
+def test_position_mode_defaults_to_incremental():
+    mod = module("D4000\nG\n")  # MPI is the factory default (L2608)
     move = ops(mod.routines[0])[0]
-    assert move.mode is ir.MoveMode.MODAL and move.targets[0][0] == ir.ALL_AXES
+    assert move.mode is ir.MoveMode.RELATIVE and move.targets[0] == (ir.ALL_AXES, ir.Const(4000, ir.Unit.STEPS,
+                                                                                        move.targets[0][1].span))
+
+
+def test_mode_that_depends_on_the_path_keeps_the_g_and_says_so():
+    result = check("IF(IN_1)\nMPA\nNIF\nD4000\nG\n")
+    assert [d.code for d in result.diagnostics] == ["X142"]
+    found = ops(result.analysis.module.routines[0])
+    assert [op.mnemonic for op in found if isinstance(op, ir.Native)] == ["MPA", "G"]  # modes kept for the G
+    assert not any(isinstance(op, ir.Move) for op in found)
+
+
+def test_sequence_starts_with_the_modes_of_its_calls():
+    mod = module("1MPA\n1XE1\n1XD1\n1D100\n1G\n1XT\n1XR1\n")
+    move = next(op for op in ops(mod.routine("SEQ1@1")) if isinstance(op, ir.Move))
+    assert move.mode is ir.MoveMode.ABSOLUTE
+
+
+def test_cur_sets_the_step():
+    mod = module("1CUR800\n1D1600\n1G\n1V2\n")
+    assert mod.steps_per_rev == 800
+    found = ops(mod.routines[0])
+    assert found[0].param is ir.MotionParam.RESOLUTION and found[0].value.value == 800
+    assert next(op for op in found if isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.MAX_SPEED
+                ).value.value == 1600
+
+
+def test_a_second_cur_is_reported():
+    result = check("CUR4000\nD4000\nG\nCUR800\n")
+    assert [d.code for d in result.diagnostics] == ["X143"]
 
 
 def test_assignments_are_left_to_right():
@@ -129,8 +163,8 @@ def test_assignments_are_left_to_right():
     first, second, third = ops(mod.routines[0])
     # (VAR1 - VAR2) * VAR3 (L4638-L4642)
     assert first.value.op == "*" and first.value.left.op == "-"
-    assert isinstance(second.value.left, ir.DeviceRef) and second.value.left.meaning == "position"
-    assert isinstance(third.value, ir.DeviceRef) and third.value.name == "FUN"
+    assert isinstance(second.value.left, ir.Status) and second.value.left.meaning == "position"
+    assert isinstance(third, ir.Native) and third.args[1].name == "FUN"  # the RP240 key: X150's own
     assert {"VAR1", "VAR2", "VAR3", "VAR4", "VAR8"} <= set(mod.variables)
 
 
@@ -175,3 +209,18 @@ def test_variable_targets_stay_native():
 def test_errors_still_give_a_well_formed_module():
     mod = module("XE1\nXD1\nL5\nIF(VAR1>=5)\nELSE\nN\nNWHILE\nXD2\nREPEAT\n")
     assert_well_formed(mod)
+
+
+def test_conditionals_and_loops_of_the_immediate_stream_keep_their_meaning():
+    """Issue 8: an IF .. ELSE .. NIF in the stream is a branch (not two unconditional calls), and
+    a WHILE is a loop back to its test."""
+    mod = module("1XE1\n1XD1\n1T1\n1XT\n1XE2\n1XD2\n1T2\n1XT\n"
+                 "IF(IN_1)\n1XR1\nELSE\n1XR2\nNIF\nWHILE(VAR1<5)\nVAR1=VAR1+1\nNWHILE\n")
+    stream = next(r for r in mod.routines if r.kind is ir.RoutineKind.IMMEDIATE)
+    branches = [b for b in stream.blocks if isinstance(b.terminator, ir.Branch)]
+    assert len(branches) == 2
+    test_if, test_while = branches
+    then, other = stream.block(test_if.terminator.then), stream.block(test_if.terminator.otherwise)
+    assert [op.routine for op in then.ops] == ["SEQ1@1"] and [op.routine for op in other.ops] == ["SEQ2@1"]
+    body = stream.block(test_while.terminator.then)
+    assert isinstance(body.ops[0], ir.Assign) and body.terminator.target == test_while.label  # back to the test

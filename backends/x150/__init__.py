@@ -1,21 +1,22 @@
 """The X150/X150E backend: IR → the command stream a host sends to the controllers.
 
-The text is the canonical form written by `mcc.compiler.x150.writer` (which depends on the IR and
-the catalog only, never on a syntax tree): the immediate stream in order, each sequence as
-`XEn XDn ... XT` with its structured constructs rebuilt from the CFG, device addresses in front,
-the B prefix on immediate `*` commands inside sequences, `XP`/`XFK`/`XWHEN` and `SV` where the
-program has them, no comments. The statistics count the sequence memory the way the frontend's
-memory check does: every stored character and its delimiter is one byte (L241), against the
+The text is the canonical form written by `writer.py` (which depends on the IR, the shared
+structurer and the X150 catalog only, never on a syntax tree): the immediate stream in order, each
+sequence as `XEn XDn ... XT` with its structured constructs rebuilt from the CFG, device addresses
+in front, the B prefix on immediate `*` commands inside sequences, `XP`/`XFK`/`XWHEN` and `SV`
+where the program has them. A program of another dialect starts with a comment block stating the
+assumptions of the conversion (steps per revolution, default modes, axes). The statistics count the
+sequence memory: every stored character and its delimiter is one byte (L241), against the
 8,000-byte sequence store of each device (L4871).
 """
 
 from __future__ import annotations
 
 from mcc.backends.listing import Listing
+from mcc.backends.x150 import naming
+from mcc.backends.x150.writer import write
 from mcc.compiler import ir
 from mcc.compiler.profiles import Profile
-from mcc.compiler.x150 import naming
-from mcc.compiler.x150.writer import write
 
 DIALECT = "x150"
 
@@ -23,6 +24,8 @@ DIALECT = "x150"
 def emit(module: ir.Module, profile: Profile) -> Listing:
     written = write(module, profile)
     listing = Listing(DIALECT)
+    for line in written.header:
+        listing.emit(line)
     for line in written.lines:
         listing.emit(line.text, *line.sources)
     listing.diagnostics.extend(written.diagnostics)

@@ -1,0 +1,1026 @@
+"""Writing IR as X150 command text: the canonical form of the X150 backend.
+
+The canonical form (docs/dialects/x150.md, "Backend"): upper case, one command per line, no spaces
+inside a command (`GOTO2` is written `XG2`, `1OUTLXX10X1`), the device address in front, the `B`
+prefix on immediate `*` commands stored in a sequence, no comments (a program of another dialect
+gets a comment block at the top that states the assumptions of the conversion). Each sequence is
+written `XEn XDn ... XT`.
+
+What the writer converts (docs/CROSS.md, "into x150"):
+
+- units: positions from the source's steps (`Module.steps_per_rev`) into the target's user steps
+  (the resolution the program sets with CUR, else the profile's `steps_per_rev`), refused when a
+  position falls between two target steps; speeds into rev/s and accelerations into rev/s²,
+  rounded to 0.0001; a ramp time into an acceleration with the speeds in force
+  (`mcc.compiler.in_force`);
+- moves: `D<n>` + `G` with the fewest MPA/MPI and MN/MC switches (a slew is `MC H± G`);
+- control flow: rebuilt with the structurer every backend shares (`mcc.backends.structure`):
+  IF..ELSE..NIF, WHILE..NWHILE, REPEAT..UNTIL, and `Ln..N` for the X150 counted loops;
+- axes: an X150 program keeps its device addresses; another dialect's axes map in order onto the
+  profile's axes, and a program with more axes than the profile is refused at the first command
+  that needs the extra one.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from fractions import Fraction
+
+from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
+from mcc.backends.x150 import naming
+from mcc.compiler import ir, units
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.in_force import InForce, lookup
+from mcc.compiler.profiles import Profile
+from mcc.compiler.span import Span
+from mcc.compiler.x150 import catalog as cat
+
+DIALECT = "x150"
+HANDLER_COMMANDS = {"power": "XP", "fault": "XFK", "when": "XWHEN"}
+ARITHMETIC = "+-*/"
+MAX_CONDITION_NODES = 32  # far above any writable condition; bounds the work on odd input
+LOOP_PREFIX = "%L"  # the X150 frontend's hidden L-loop counters (written as Ln .. N)
+DISTANCE = "%D"  # the X150 frontend's distance register per device (written as D, H, H+, H-)
+HIDDEN = (LOOP_PREFIX, DISTANCE)
+RATE_STEP = 0.0001  # rev/s and rev/s^2 are written to four decimals (V's smallest value, L4542)
+READINGS = {"position": "POS", "encoder": "ABS"}  # neutral readings an X150 chain can read (L4591-L4592)
+STOPS = (ir.End, ir.GotoRoutine, ir.Return)  # terminators written in place: HALT, XG, XRT
+MODE_COMMANDS = {"MPA", "MPI", "MN", "MC", "MQ", "D", "H", "H+", "H-"}
+
+
+def number(value) -> str:
+    """A number as the controller reads it: integers plain, decimals shortest, E notation (L152-L161)."""
+    if isinstance(value, bool):
+        value = int(value)
+    if isinstance(value, Fraction):
+        value = int(value) if value.denominator == 1 else float(value)
+    if isinstance(value, int):
+        return str(value)
+    if not math.isfinite(value):
+        return repr(value)
+    if value == int(value) and abs(value) < 1e15:
+        return str(int(value))
+    text = repr(float(value))
+    if "e" in text:
+        mantissa, exponent = text.split("e")
+        return f"{mantissa}E{exponent}"
+    return text
+
+
+@dataclass
+class Line:
+    text: str
+    sources: tuple[Span, ...] = ()
+    sequence: str | None = None  # the routine whose stored body this line belongs to (XD excluded)
+
+
+@dataclass
+class Written:
+    lines: list[Line] = field(default_factory=list)
+    diagnostics: Diagnostics = field(default_factory=Diagnostics)
+    sequence_bytes: dict[str, int] = field(default_factory=dict)  # routine -> bytes stored
+    header: list[str] = field(default_factory=list)  # the assumptions of a cross-dialect conversion
+
+
+class CannotWrite(Exception):
+    def __init__(self, message: str, code: str = "X202"):
+        super().__init__(message)
+        self.message = message
+        self.code = code
+
+
+State = dict  # ("pos"|"move"|"D", axis) -> the mode or D text known to be in force
+
+
+def meet(a: State, b: State) -> State:
+    return {k: v for k, v in a.items() if b.get(k) == v}
+
+
+class Writer:
+    def __init__(self, module: ir.Module, profile: Profile):
+        self.module = module
+        self.profile = profile
+        self.cat = cat.load()
+        self.out = Written()
+        self.native = module.dialect == DIALECT
+        self.source_spr = module.steps_per_rev or profile.steps_per_rev
+        self.resolution = profile.steps_per_rev or self.source_spr
+        self.cur = self.device_resolutions()
+        self.factor = units.ratio(self.source_spr, self.resolution)
+        self.axes = self.axis_map()
+        self.in_force = InForce(module)
+        self.numbers = self.sequence_numbers()
+        self.variables = self.variable_numbers()
+        self.entries = {r.blocks[0].label: r.name for r in module.routines if r.blocks}
+        self.touches = self.mode_touching()
+        self.routine: ir.Routine | None = None
+        self.device: int | None = None
+        self.in_sequence = False
+        self.state: State = {}
+        self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
+        self.reported: set[tuple[int, str]] = set()
+
+    # -- the target's step and axes -----------------------------------------------------------------
+    def device_resolutions(self) -> dict[str, int]:
+        """An X150 program's CUR per device (the first one it sets: the frontend converted every
+        distance with it). Another dialect's resolution is its own microstepping: the output keeps
+        the profile's CUR and converts the positions."""
+        found: dict[str, int] = {}
+        if not self.native:
+            return found
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                if isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.RESOLUTION \
+                        and isinstance(op.value, ir.Const) and isinstance(op.value.value, int):
+                    found.setdefault(op.axis, op.value.value)
+        return found
+
+    def resolution_of(self, axis: str) -> int:
+        return self.cur.get(axis, self.cur.get(ir.ALL_AXES, self.resolution))
+
+    def factor_of(self, axis: str) -> Fraction:
+        return units.ratio(self.source_spr, self.resolution_of(axis))
+
+    def uniform(self) -> bool:
+        """Every device counts positions in the IR's steps (no rescaling inside calculations)."""
+        return all(self.factor_of(a) == 1 for a in [ir.ALL_AXES, *self.cur])
+
+    def axis_map(self) -> dict[str, str]:
+        """Source axis -> X150 device address. An X150 program keeps its addresses; another dialect's
+        axes take the profile's axes in order of first use (the extra ones map to nothing)."""
+        if self.native:
+            return {}
+        found: list[str] = []
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                for axis in op_axes(op):
+                    if axis and axis != ir.ALL_AXES and axis not in found:
+                        found.append(axis)
+        targets = list(self.profile.axes) or ["1"]
+        return {axis: targets[i] for i, axis in enumerate(found) if i < len(targets)}
+
+    def axis(self, axis: str, span: Span | None = None) -> str:
+        """The X150 address for a source axis ("" for every device)."""
+        if self.native or axis in ("", ir.ALL_AXES):
+            return axis
+        if axis not in self.axes:
+            targets = list(self.profile.axes) or ["1"]
+            raise CannotWrite(f"axis {axis} is one axis more than profile {self.profile.name} drives "
+                              f"({len(targets)} axis: {', '.join(map(str, targets))}); a single X150 device is "
+                              "one axis: split the program per axis, or compile with --profile naming a profile "
+                              "with more axes", "X204")
+        return self.axes[axis]
+
+    # -- sequence numbers --------------------------------------------------------------------------
+    def sequence_numbers(self) -> dict[str, int]:
+        """Every non-immediate routine's sequence number (routines of other dialects get free ones)."""
+        numbers: dict[str, int] = {}
+        used = set()
+        for routine in self.module.routines:
+            if routine.kind is ir.RoutineKind.IMMEDIATE:
+                continue
+            n = naming.sequence_number(routine.name) or routine.number
+            if self.native and n:
+                numbers[routine.name] = n
+                used.add(n)
+        free = (n for n in range(1, 65) if n not in used)
+        for routine in self.module.routines:
+            if routine.kind is not ir.RoutineKind.IMMEDIATE and routine.name not in numbers:
+                n = routine.number if routine.number and routine.number not in used and 1 <= routine.number <= 64 \
+                    else next(free, 0)
+                used.add(n)
+                numbers[routine.name] = n
+        for name in self.module.externals:
+            numbers.setdefault(name, naming.sequence_number(name) or 0)
+        return numbers
+
+    def variable_numbers(self) -> dict[str, int]:
+        """VARn keeps its number; variables of other dialects get the free VAR numbers in order."""
+        numbers = {name: variable_number(name) for name in self.module.variables if variable_number(name)}
+        used = set(numbers.values())
+        self.free_vars = [n for n in range(1, 51) if n not in used]
+        for name in self.module.variables:
+            if name not in numbers and not name.startswith(HIDDEN):
+                numbers[name] = self.free_vars.pop(0) if self.free_vars else 0
+        return numbers
+
+    def var_number(self, name: str) -> int:
+        return self.variables.get(name) or variable_number(name)
+
+    def number_of(self, name: str) -> int:
+        if name in self.numbers:
+            return self.numbers[name]
+        return naming.sequence_number(name) or 0
+
+    def mode_touching(self) -> set[str]:
+        """Routines that may change a move mode or the D register (themselves or through calls)."""
+        direct: dict[str, bool] = {}
+        calls: dict[str, set[str]] = {}
+        for routine in self.module.routines:
+            touched = False
+            called: set[str] = set()
+            for block in routine.blocks:
+                for op in block.ops:
+                    if isinstance(op, (ir.Move, ir.Slew)) or (isinstance(op, ir.Native)
+                                                              and op.mnemonic in MODE_COMMANDS):
+                        touched = True
+                    elif isinstance(op, ir.Call):
+                        called.add(op.routine)
+            direct[routine.name] = touched
+            calls[routine.name] = called
+        result = {name for name, touched in direct.items() if touched} | set(self.module.externals)
+        changed = True
+        while changed:
+            changed = False
+            for name, called in calls.items():
+                if name not in result and called & result:
+                    result.add(name)
+                    changed = True
+        return result
+
+    # -- module and routines -----------------------------------------------------------------------
+    def write_module(self) -> Written:
+        if not self.native:
+            self.out.header = self.header()
+        for _, _, op, state in self.each_op():
+            self.forces[id(op)] = state
+        selected = set()
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                for op in block.ops:
+                    if isinstance(op, ir.SetHandler) and op.event == "power" and op.routine:
+                        selected.add(op.routine)
+        first = True
+        for routine in self.ordered():
+            self.write_routine(routine, first)
+            first = False
+        for routine in self.module.routines:  # a power-up routine from another dialect: select it
+            if routine.kind is ir.RoutineKind.POWERUP and routine.name not in selected:
+                self.routine, self.in_sequence = routine, False
+                self.emit(f"XP{self.number_of(routine.name)}", routine.span)
+        return self.out
+
+    def each_op(self):
+        for routine in self.module.routines:
+            yield from self.in_force.walk(routine)
+
+    def header(self) -> list[str]:
+        module, profile = self.module, self.profile
+        axes = ", ".join(f"{s} -> {t}" for s, t in self.axes.items()) or "none"
+        source = f"{module.steps_per_rev} steps/rev" if module.steps_per_rev else "steps/rev not stated: taken as the target's"
+        return [
+            f"; compiled by mcc from {module.dialect} (profile {module.profile}, {source}) "
+            f"for {profile.name} ({self.resolution} user steps/rev, CUR)",
+            f"; positions x {self.factor} (target/source steps); speeds in rev/s, accelerations in rev/s^2",
+            "; modes: MN/MC and MPA/MPI are written before the first move of each sequence; axes " + axes,
+        ]
+
+    def ordered(self) -> list[ir.Routine]:
+        """X150 programs keep their stream order. A program of another dialect is written as its
+        variables' initial values, then every sequence definition, then its immediate commands,
+        so no sequence runs before it is stored."""
+        routines = self.module.routines
+        initial = [ir.Assign(ir.Var(v.name), v.init, v.span) for v in self.module.variables.values()
+                   if v.init is not None and not v.name.startswith(HIDDEN)]
+        first = [ir.Routine("initial values", ir.RoutineKind.IMMEDIATE, [ir.Block("%init", initial, ir.FallOff())])] \
+            if initial else []
+        if self.native:  # an X150 program's variables start as the device has them (0 after power-up)
+            return routines
+        return first + [r for r in routines if r.kind is not ir.RoutineKind.IMMEDIATE] + \
+            [r for r in routines if r.kind is ir.RoutineKind.IMMEDIATE]
+
+    def write_routine(self, routine: ir.Routine, first: bool = False) -> None:
+        self.routine = routine
+        self.device = naming.device_of(routine.name) if self.native else None
+        self.in_sequence = routine.kind is not ir.RoutineKind.IMMEDIATE
+        self.state = {}  # nothing assumed: the first move of each routine writes its modes
+        prefix = str(self.device) if self.device is not None else ""
+        start, end_of_start = ends(routine.span)
+        if self.in_sequence:
+            n = self.number_of(routine.name)
+            if not 1 <= n <= 64:
+                self.out.diagnostics.add("X203", routine.span or self.fallback_span(),
+                                         f"routine {routine.name} needs a sequence number, but all 64 are in use")
+            self.emit(f"{prefix}XE{n}", start, stored=False)
+            self.emit(f"{prefix}XD{n}", end_of_start, stored=False)
+        # tail_copy=0: an XG or XRT written twice would sit inside an IF (an IF left open by XG, X112)
+        done = structure(self.legal(routine), self.flag, self.dispatch_var, tail_copy=0, stops=STOPS, repeat=True)
+        if done.fallback is not None:
+            self.out.diagnostics.add("X201", routine.span or self.fallback_span(),
+                                     f"{done.fallback} in {routine.name}: X150 sequences have no labels, so only "
+                                     "L..N, IF..ELSE..NIF, WHILE..NWHILE and REPEAT..UNTIL can be written; "
+                                     "restructure this part")
+            if self.in_sequence:
+                self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
+            return
+        self.nodes(done.body)
+        if self.in_sequence:
+            self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
+
+    def legal(self, routine: ir.Routine) -> ir.Routine:
+        """A copy whose jumps to the start of another routine (MCode BR across programs) are XG:
+        X150 has no labels, only whole sequences to go to."""
+        own = {b.label for b in routine.blocks}
+        blocks = []
+        for block in routine.blocks:
+            term = block.terminator
+            if isinstance(term, ir.Jump) and term.target not in own and term.target in self.entries:
+                term = ir.GotoRoutine(self.entries[term.target], term.span)
+            blocks.append(ir.Block(block.label, block.ops, term, block.span, block.named))
+        return ir.Routine(routine.name, routine.kind, blocks, routine.span, routine.number, routine.origin)
+
+    def closing_span(self, routine: ir.Routine, exit_span: Span | None) -> Span | None:
+        """Where XT comes from: the routine's own end (its FallOff, even after an XG), else the last block."""
+        for block in reversed(routine.blocks):
+            if isinstance(block.terminator, ir.FallOff) and block.terminator.span is not None:
+                return block.terminator.span
+        return exit_span or routine.span
+
+    def flag(self, depth: int) -> ir.Var | None:
+        """A loop flag: a free VARn (X150 has no other storage)."""
+        if not self.free_vars:
+            return None
+        n = self.free_vars.pop(0)
+        name = f"%flag{n}"
+        self.variables[name] = n
+        return ir.Var(name)
+
+    def dispatch_var(self) -> ir.Var:
+        return ir.Var("%dispatch")  # never written: a routine that needs it is refused (X201)
+
+    def fallback_span(self) -> Span:
+        return Span(self.module.path or "<module>", 1, 1, 1, 1)
+
+    def emit(self, text: str, *spans: Span | None, stored: bool = True) -> None:
+        """Add a line; `stored` lines of a sequence count against its memory (XEn and XDn do not)."""
+        sequence = self.routine.name if self.in_sequence and stored else None
+        self.out.lines.append(Line(text, tuple(s for s in spans if s is not None), sequence))
+        if sequence is not None:
+            self.out.sequence_bytes[sequence] = self.out.sequence_bytes.get(sequence, 0) + len(text) + 1
+
+    def refuse(self, exc: CannotWrite, span: Span | None) -> None:
+        span = span or (self.routine.span if self.routine else None) or self.fallback_span()
+        key = (span.start, exc.message)
+        if key not in self.reported:
+            self.reported.add(key)
+            self.out.diagnostics.add(exc.code, span, exc.message)
+
+    # -- the structured tree -------------------------------------------------------------------------
+    def nodes(self, nodes: list) -> None:
+        for index, node in enumerate(nodes):
+            if isinstance(node, Simple):
+                if self.is_loop_count(node, nodes, index) or self.dead_count(node):
+                    continue
+                try:
+                    self.write_op(node.op)
+                except CannotWrite as exc:
+                    self.refuse(exc, node.op.span)
+            elif isinstance(node, IfNode):
+                self.if_node(node.arms, node.orelse, node.spans, node.else_span, node.end_span)
+            elif isinstance(node, WhileNode):
+                self.loop(node, "WHILE")
+            elif isinstance(node, RepeatNode):
+                self.loop(node, "REPEAT", nodes[index - 1] if index else None)
+            elif isinstance(node, EndNode):
+                self.write_term(node.term, node.span)
+
+    @staticmethod
+    def is_loop_count(node: Simple, nodes: list, index: int) -> bool:
+        """`%Lk = n` just before an L loop is written as the loop's `Ln`."""
+        op = node.op
+        return (isinstance(op, ir.Assign) and op.target.name.startswith(LOOP_PREFIX) and index + 1 < len(nodes)
+                and isinstance(nodes[index + 1], RepeatNode) and counted(nodes[index + 1]) == op.target.name)
+
+    @staticmethod
+    def dead_count(node: Simple) -> bool:
+        """The count of an X150 L loop that never comes back to its N (its body always leaves by XRT
+        or XG): the loop runs once, and its hidden counter is never read."""
+        op = node.op
+        return isinstance(op, ir.Assign) and op.target.name.startswith(LOOP_PREFIX) \
+            and not isinstance(op.value, ir.BinOp)
+
+    def if_node(self, arms: list, orelse: list, spans: list, else_span, end_span) -> None:
+        cond, body = arms[0]
+        span = spans[0] if spans else None
+        hoisted = None
+        if not arms[1:] and body and orelse and ends_with(orelse) and ends_with(body, ir.GotoRoutine):
+            # IF(c) .. XGn ELSE .. (never falls through) NIF: XG after NIF, so no IF is left open (X112)
+            hoisted, body = body[-1], body[:-1]
+            arms = [(cond, body)]
+        elif not arms[1:] and body and orelse and ends_with(body) and ends_with(orelse, ir.GotoRoutine):
+            hoisted, orelse = orelse[-1], orelse[:-1]
+        if isinstance(cond, ir.Not) and not self.writable(cond):
+            # X150 has no NOT: `if not c: A elif ...: B else: C` is IF(c) <elif ... else C> ELSE A NIF
+            rest_body = [IfNode(arms[1:], orelse, spans[1:], else_span, end_span)] if arms[1:] else orelse
+            arms, orelse = [(cond.cond, rest_body)], body
+            cond, body = arms[0]
+        try:
+            self.emit(f"{self.address()}IF({self.cond(cond)})", span)
+        except CannotWrite as exc:
+            self.refuse(exc, span)
+        entry = dict(self.state)
+        self.nodes(body)
+        after = self.state
+        self.state = dict(entry)
+        rest = arms[1:]
+        if rest or orelse:
+            self.emit(f"{self.address()}ELSE", else_span or (spans[1] if len(spans) > 1 else None) or end_span or span)
+            if rest:  # elif: an IF inside the ELSE
+                self.if_node(rest, orelse, spans[1:], else_span, end_span)
+            else:
+                self.nodes(orelse)
+        self.state = meet(after, self.state)
+        self.emit(f"{self.address()}NIF", end_span or span)
+        if hoisted is not None:
+            self.write_term(hoisted.term, hoisted.span)
+
+    def writable(self, cond) -> bool:
+        try:
+            self.cond(cond)
+        except CannotWrite:
+            return False
+        return True
+
+    def loop(self, node, kind: str, before=None) -> None:
+        """WHILE/REPEAT/L: the body is written with the state known on every iteration (written again
+        with less known when the body changes a mode it started with)."""
+        entry = dict(self.state)
+        for _ in range(3):
+            mark = (len(self.out.lines), dict(self.out.sequence_bytes), len(self.out.diagnostics.items),
+                    set(self.reported))
+            self.state = dict(entry)
+            self.loop_once(node, kind, before)
+            end = meet(entry, self.state)
+            if end == entry:
+                break
+            del self.out.lines[mark[0]:]
+            self.out.sequence_bytes = mark[1]
+            del self.out.diagnostics.items[mark[2]:]
+            self.reported = mark[3]
+            entry = end
+        self.state = meet(entry, self.state)
+
+    def loop_once(self, node, kind: str, before) -> None:
+        if kind == "WHILE" and is_true(node.cond):  # an endless loop: L without a count (L0, L2328)
+            self.emit(self.address() + "L", node.span)
+            self.nodes(node.body)
+            self.emit(self.address() + "N", node.end_span or node.span)
+            return
+        if kind == "WHILE":
+            try:
+                self.emit(f"{self.address()}WHILE({self.cond(node.cond)})", node.span)
+            except CannotWrite as exc:
+                self.refuse(exc, node.span)
+            self.nodes(node.body)
+            self.emit(f"{self.address()}NWHILE", node.end_span or node.span)
+            return
+        counter = counted(node)
+        if counter is not None and isinstance(before, Simple) and isinstance(before.op, ir.Assign) \
+                and before.op.target.name == counter:
+            count = before.op.value
+            try:
+                text = "L" if isinstance(count, ir.Const) and count.value == 0 else "L" + self.value(count)
+            except CannotWrite as exc:
+                self.refuse(exc, before.op.span)
+                text = "L"
+            self.emit(self.address() + text, before.op.span or node.span)
+            self.nodes(node.body[:-1])
+            self.emit(self.address() + "N", node.end_span or node.span)
+            return
+        self.emit(f"{self.address()}REPEAT", node.span)
+        self.nodes(node.body)
+        try:
+            self.emit(f"{self.address()}UNTIL({self.cond(node.until)})", node.end_span or node.span)
+        except CannotWrite as exc:
+            self.refuse(exc, node.end_span or node.span)
+
+    def address(self, axis: str = ir.ALL_AXES) -> str:
+        if self.device is not None:
+            return str(self.device)
+        axis = self.axis(axis)
+        return axis if axis.isdigit() else ""
+
+    def target(self, name: str) -> tuple[str, int]:
+        """The address and number to write for a command naming routine `name`."""
+        device = naming.device_of(name) if self.native else None
+        prefix = self.address() if self.device is not None else (str(device) if device is not None else "")
+        return prefix, self.number_of(name)
+
+    def write_term(self, term, span) -> None:
+        span = getattr(term, "span", None) or span
+        if isinstance(term, ir.GotoRoutine):
+            prefix, n = self.target(term.routine)
+            self.emit(f"{prefix}XG{n}", span)
+        elif isinstance(term, ir.Return):
+            self.emit(self.address() + "XRT", span)
+        else:
+            self.emit(self.address() + "HALT", span)
+
+    # -- operations ------------------------------------------------------------------------------------
+    def write_op(self, op) -> None:
+        span = op.span
+        if isinstance(op, ir.Native):
+            if op.dialect != DIALECT:
+                raise CannotWrite(f"{op.dialect} command {op.mnemonic} has no X150 equivalent; rewrite this part "
+                                  "with X150 commands or compile to its own dialect", "G003")
+            self.emit(self.native_text(op), span)
+            if op.mnemonic in MODE_COMMANDS:
+                self.state = {}
+        elif isinstance(op, ir.SetMotion):
+            self.motion(op)
+        elif isinstance(op, ir.Move):
+            self.move(op)
+        elif isinstance(op, ir.Slew):
+            self.slew(op)
+        elif isinstance(op, ir.Stop):
+            if not self.in_sequence:
+                self.emit(self.address(op.axis) + ("S" if op.ramp else "K"), span)
+            elif op.ramp:  # S is immediate; SB is its buffered form (catalog)
+                self.emit(self.address(op.axis) + "SB", span)
+            else:
+                raise CannotWrite("X150 cannot store a kill in a sequence (K is never saved); stop with a "
+                                  "ramp, or send K from the host", "G003")
+        elif isinstance(op, ir.Delay):
+            self.emit(self.address() + "T" + self.seconds(op.duration), span)
+        elif isinstance(op, ir.WaitInput):
+            self.emit(self.address() + self.wait(op.cond), span)
+        elif isinstance(op, ir.WaitMotion):
+            # in MN the command after G runs when the move has ended (MQ exists to change that, L2631)
+            key = self.address(op.axis) or ir.ALL_AXES
+            if self.state.get(("move", key), self.state.get(("move", ir.ALL_AXES))) != "MN":
+                self.emit(self.address(op.axis) + "TRIP", span)
+        elif isinstance(op, ir.SetOutput):
+            self.emit(self.address() + "O" + self.outputs(op), span)
+        elif isinstance(op, ir.DriveEnable):
+            if not isinstance(op.on, ir.Const):
+                raise CannotWrite("X150 energises (ON) or de-energises (OFF) the drive with a constant only")
+            self.emit(self.address(op.axis) + ("ON" if op.on.value else "OFF"), span)
+        elif isinstance(op, ir.SetPosition):
+            if not (isinstance(op.value, ir.Const) and op.value.value == 0):
+                raise CannotWrite("X150 sets the position counter to zero only (PZ); setting it to another value "
+                                  "has no equivalent", "G003")
+            self.emit(self.address(op.axis) + "PZ", span)
+        elif isinstance(op, ir.Assign) and op.target.name.startswith(DISTANCE):
+            self.register(op)
+        elif isinstance(op, ir.Assign):
+            self.emit(self.address() + self.assign(op), span)
+        elif isinstance(op, ir.Save):
+            self.emit(self.address() + "SV", span)
+        elif isinstance(op, ir.Call):
+            if op.cond is not None:
+                raise CannotWrite("X150 has no conditional call: write IF(...) XRn NIF")
+            prefix, n = self.target(op.routine)
+            self.emit(f"{prefix}XR{n}", span)
+            if op.routine in self.touches:
+                self.state = {}
+        elif isinstance(op, ir.SetHandler):
+            self.handler(op)
+        elif isinstance(op, ir.Print):
+            self.emit(self.address() + self.print_text(op), span)
+        else:
+            raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
+
+    def motion(self, op: ir.SetMotion) -> None:
+        param, span = op.param, op.span
+        prefix = self.address(op.axis)
+        if param is ir.MotionParam.MAX_SPEED:
+            self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
+        elif param is ir.MotionParam.ACCEL:
+            self.emit(prefix + "A" + self.rate(op.value, "acceleration"), span)
+        elif param is ir.MotionParam.ACCEL_TIME:
+            self.emit(prefix + "A" + self.ramp(op), span)
+        elif param in (ir.MotionParam.DECEL, ir.MotionParam.DECEL_TIME):
+            self.same_as_accel(op)
+        elif param is ir.MotionParam.RESOLUTION:
+            if not self.native:
+                return  # the source's microstepping: the output converts positions to the profile's CUR
+            if not (isinstance(op.value, ir.Const) and op.value.value == self.resolution_of(op.axis)):
+                raise CannotWrite(f"the resolution of device {op.axis} changes within the program; X150 output "
+                                  f"keeps one CUR per device ({self.resolution_of(op.axis)} user steps/rev)", "G003")
+            self.emit(prefix + ("B" if self.in_sequence else "") + "CUR" + number(op.value.value), span)
+        elif param is ir.MotionParam.INITIAL_SPEED:
+            self.out.diagnostics.add("X205", span or self.fallback_span(),
+                                     "X150 moves start from standstill: it has no initial (start) speed, so "
+                                     "this one is left out and each move ramps from 0 at A")
+        elif param is ir.MotionParam.PROFILE:
+            if not (isinstance(op.value, ir.Const) and op.value.value == 0):
+                raise CannotWrite("X150 ramps are trapezoidal only; an S-curve profile has no equivalent", "G003")
+        else:
+            raise CannotWrite(f"X150 has no command for the {param.value.replace('_', ' ')}", "G003")
+
+    def ramp(self, op: ir.SetMotion) -> str:
+        """A ramp time as X150's acceleration: (max speed - initial speed) / time, with the speeds in
+        force where it is set (values known only at run time are refused: X150 cannot compute A)."""
+        state = self.forces.get(id(op), {})
+        high = lookup(state, ir.MotionParam.MAX_SPEED, op.axis)
+        low = lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis)
+        if not isinstance(op.value, ir.Const) or high is None:
+            raise CannotWrite("this ramp time becomes an X150 acceleration only with the speeds in force, which "
+                              "are not known here (set the maximum speed with a constant before it)", "X206")
+        accel = units.accel_from_ramp(float(op.value.value), float(low.value) if low else 0.0, float(high.value))
+        if accel is None:
+            raise CannotWrite(f"a ramp time of {number(op.value.value)} s has no finite acceleration", "X206")
+        return self.rate(ir.Const(accel, ir.Unit.STEPS_PER_S2), "acceleration")
+
+    def same_as_accel(self, op: ir.SetMotion) -> None:
+        """X150 decelerates at A: a deceleration equal to the acceleration in force needs nothing."""
+        state = self.forces.get(id(op), {})
+        if op.param is ir.MotionParam.DECEL:
+            accel = lookup(state, ir.MotionParam.ACCEL, op.axis)
+            if isinstance(op.value, ir.Const) and accel is not None and accel.value == op.value.value:
+                return
+        else:
+            accel = lookup(state, ir.MotionParam.ACCEL_TIME, op.axis)
+            if isinstance(op.value, ir.Const) and accel is not None and accel.value == op.value.value:
+                return
+        raise CannotWrite("X150 decelerates at the acceleration A; a deceleration that differs from the "
+                          "acceleration in force has no equivalent", "G003")
+
+    def move(self, op: ir.Move) -> None:
+        if len(op.targets) != 1:
+            raise CannotWrite(f"X150 moves one axis per device; a move of {len(op.targets)} axes together "
+                              "(linear interpolation) has no equivalent", "X204")
+        if op.mode not in (ir.MoveMode.ABSOLUTE, ir.MoveMode.RELATIVE):
+            raise CannotWrite("this move's mode (absolute or relative) is whatever is in force on the source device, "
+                              "which X150 cannot know: the source frontend must resolve it (issue 8)", "G003")
+        axis, target = op.targets[0]
+        prefix = self.address(axis)
+        key = self.address(axis) or ir.ALL_AXES
+        first, last = ends(op.span)
+        register = isinstance(target, ir.Var) and target.name.startswith(DISTANCE)
+        distance = "" if register else self.position(target, axis)
+        self.set_mode("move", key, "MN", prefix, first)
+        self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
+        if not register and self.state.get(("D", key)) != distance:
+            self.emit(prefix + "D" + distance, first)
+            self.state[("D", key)] = distance
+            self.state.pop(("sign", key), None)
+        self.emit(prefix + "G", last)
+
+    def register(self, op: ir.Assign) -> None:
+        """The X150 frontend's distance register: `D<n>`, or `H` / `H+` / `H-` for its sign."""
+        axis = op.target.name[len(DISTANCE):]
+        prefix = self.address(axis)
+        key = prefix or ir.ALL_AXES
+        value = op.value
+        self.state.pop(("D", key), None)
+        sign = self.state.pop(("sign", key), None)
+        if isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Var):
+            self.emit(prefix + "H", op.span)
+            if sign is not None:
+                self.state[("sign", key)] = -sign
+        elif isinstance(value, ir.Func) and value.name == "abs":
+            self.emit(prefix + "H+", op.span)
+            self.state[("sign", key)] = 1
+        elif isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Func):
+            self.emit(prefix + "H-", op.span)
+            self.state[("sign", key)] = -1
+        else:
+            distance = self.position(value, axis)
+            self.emit(prefix + "D" + distance, op.span)
+            self.state[("D", key)] = distance
+            if isinstance(value, ir.Const) and value.value:
+                self.state[("sign", key)] = 1 if value.value > 0 else -1
+
+    def slew(self, op: ir.Slew) -> None:
+        prefix = self.address(op.axis)
+        key = prefix or ir.ALL_AXES
+        direction = op.direction
+        if op.velocity is not None:
+            if not isinstance(op.velocity, ir.Const):
+                raise CannotWrite("X150 runs continuously at a constant speed: a velocity computed at run time "
+                                  "has no equivalent", "X206")
+            value = float(op.velocity.value)
+            direction = 1 if value >= 0 else -1
+            self.emit(prefix + "V" + self.rate(ir.Const(abs(value), ir.Unit.STEPS_PER_S), "speed"), op.span)
+        self.set_mode("move", key, "MC", prefix, op.span)
+        sign = -1 if direction < 0 else 1
+        if self.state.get(("sign", key)) != sign:
+            self.emit(prefix + ("H-" if sign < 0 else "H+"), op.span)
+            self.state.pop(("D", key), None)
+            self.state[("sign", key)] = sign
+        self.emit(prefix + "G", op.span)
+
+    def set_mode(self, kind: str, key: str, mode: str, prefix: str, span) -> None:
+        if self.state.get((kind, key), self.state.get((kind, ir.ALL_AXES))) == mode:
+            return
+        self.emit(prefix + mode, span)
+        self.state[(kind, key)] = mode
+
+    def handler(self, op: ir.SetHandler) -> None:
+        command = HANDLER_COMMANDS.get(op.event)
+        if command is None:
+            raise CannotWrite(f"X150 has no '{op.event}' handler (only power-up XP, fault XFK and WHEN)", "G003")
+        if op.routine is not None:
+            prefix, n = self.target(op.routine)
+            self.emit(f"{prefix}{command}{n}", op.span)
+        elif op.event == "when" and op.args:
+            self.emit(f"{self.address()}WHEN({self.cond(op.args[0])})", op.span)
+        else:
+            self.emit(f"{self.address()}{command}0", op.span)
+
+    # -- operands ------------------------------------------------------------------------------------
+    def position(self, expr, axis: str = ir.ALL_AXES) -> str:
+        """A distance or position in the target's user steps (exact, or refused)."""
+        factor = self.factor_of(axis)
+        if isinstance(expr, ir.Const):
+            scaled = units.scale_steps(expr.value, factor)
+            if not scaled.exact:
+                raise CannotWrite(
+                    f"the position {number(expr.value)} steps falls between two X150 steps: the source has "
+                    f"{self.source_spr} steps/rev, the target {self.resolution_of(axis)} (x{factor}); compile "
+                    "with --profile naming a user profile whose steps_per_rev makes it whole", "X207")
+            return number(scaled.value)
+        if isinstance(expr, ir.Var) and self.var_number(expr.name):
+            if factor != 1:
+                raise CannotWrite(f"a position held in {expr.name} cannot be rescaled from "
+                                  f"{self.source_spr} to {self.resolution_of(axis)} steps/rev", "X207")
+            return f"(VAR{self.var_number(expr.name)})"
+        raise CannotWrite(f"an X150 distance is a number or (VARn); {describe(expr)} cannot be written here")
+
+    def rate(self, expr, what: str) -> str:
+        """A speed (steps/s) in rev/s or an acceleration (steps/s^2) in rev/s^2."""
+        if isinstance(expr, ir.Const):
+            revs = units.steps_to_revs(expr.value, self.source_spr)
+            value = units.round_to(revs, RATE_STEP)
+            if value == 0 and expr.value != 0:
+                raise CannotWrite(f"the {what} {number(expr.value)} {expr.unit.value} is below the X150's "
+                                  f"resolution of {RATE_STEP} rev/s", "X207")
+            return number(value)
+        # X150 V(VARn)/A(VARn): the variable holds rev/s (rev/s^2): the IR says VARn * steps per rev
+        if isinstance(expr, ir.BinOp) and expr.op == "*" and isinstance(expr.left, ir.Var) \
+                and isinstance(expr.right, ir.Const) and self.var_number(expr.left.name) \
+                and expr.right.value == self.source_spr:
+            return f"(VAR{self.var_number(expr.left.name)})"
+        raise CannotWrite(f"an X150 {what} is a number or (VARn) in rev/s; {describe(expr)} cannot be written here",
+                          "X202")
+
+    def value(self, expr) -> str:
+        if isinstance(expr, ir.Const) and isinstance(expr.value, (int, float)):
+            return number(expr.value)
+        if isinstance(expr, ir.Var) and self.var_number(expr.name):
+            return f"(VAR{self.var_number(expr.name)})"
+        raise CannotWrite(f"an X150 value is a number or (VARn); {describe(expr)} cannot be written here")
+
+    def seconds(self, expr) -> str:
+        if isinstance(expr, ir.Const) and expr.unit is ir.Unit.MS:
+            return number(expr.value / 1000)
+        return self.value(expr)
+
+    def outputs(self, op: ir.SetOutput) -> str:
+        """`O` with one position per output (X keeps an output as it is, L3009)."""
+        value = op.value
+        if isinstance(value, ir.Pattern) and op.index is None:
+            return value.bits
+        if op.index is not None and isinstance(value, ir.Const) and value.value in (0, 1) and 1 <= op.index <= 6:
+            return "X" * (op.index - 1) + str(int(value.value))
+        raise CannotWrite("X150 sets outputs 1-6 to 0 or 1 with a constant pattern (O); this output change has "
+                          "no equivalent", "G003")
+
+    def wait(self, cond) -> str:
+        if isinstance(cond, ir.InputMatch):
+            return "TRE" + cond.pattern.bits
+        if isinstance(cond, ir.Not) and isinstance(cond.cond, ir.InputMatch):
+            return "TRN" + cond.cond.pattern.bits
+        bits = input_bit(cond)
+        if bits is not None:
+            return "TRE" + bits
+        raise CannotWrite("X150 waits only for an input pattern (TRE/TRN)", "G003")
+
+    def print_text(self, op: ir.Print) -> str:
+        """The quote command sends ASCII 33-126 as written, '_' as a space (L5589), no line end."""
+        item = op.items[0] if len(op.items) == 1 else None
+        text = item.value if isinstance(item, ir.Text) else ""
+        if text and not op.newline and len(text) <= 50 and all(c == " " or 33 <= ord(c) <= 126 for c in text) \
+                and '"' not in text and "_" not in text:
+            return '"' + text.replace(" ", "_") + '"'
+        raise CannotWrite("X150 transmits up to 50 characters of quoted text without quotes, underscores or a "
+                          "line end (\"...\", L5589); this print has no equivalent", "G003")
+
+    def assign(self, op: ir.Assign) -> str:
+        n = self.var_number(op.target.name)
+        if not n:
+            raise CannotWrite(f"X150 has only VAR1-VAR50; {op.target.name} has no equivalent", "G003")
+        return f"VAR{n}={self.chain(op.value)}"
+
+    def chain(self, expr) -> str:
+        """A left-to-right chain (X150 has no precedence and no parentheses, L4638)."""
+        rights = []
+        while isinstance(expr, ir.BinOp) and expr.op in ARITHMETIC:
+            if isinstance(expr.right, ir.BinOp):
+                raise CannotWrite("X150 evaluates strictly left to right without parentheses; split this "
+                                  "expression over several VARn= assignments")
+            rights.append((expr.op, expr.right))
+            expr = expr.left
+        text = self.operand(expr)
+        for op, right in reversed(rights):
+            text += op + self.operand(right)
+        return text
+
+    def operand(self, expr) -> str:
+        if isinstance(expr, ir.Const):
+            if expr.unit not in (ir.Unit.NONE, ir.Unit.STEPS) or (expr.unit is ir.Unit.STEPS and not self.uniform()):
+                raise CannotWrite(f"the {expr.unit.value or 'plain'} constant {number(expr.value)} in a calculation "
+                                  "cannot be converted to X150 units")
+            return number(expr.value)
+        if isinstance(expr, ir.Var) and self.var_number(expr.name):
+            return f"VAR{self.var_number(expr.name)}"
+        if isinstance(expr, ir.Status) and expr.meaning in READINGS and expr.index is None:
+            if self.factor_of(expr.axis or ir.ALL_AXES) != 1:
+                raise CannotWrite(f"the {expr.meaning} cannot be rescaled from {self.source_spr} to "
+                                  f"{self.resolution} steps/rev inside a calculation", "X207")
+            return READINGS[expr.meaning]
+        if isinstance(expr, ir.DeviceRef) and expr.dialect == DIALECT and expr.name in self.cat.sources:
+            return expr.name
+        if isinstance(expr, ir.UnOp) and expr.op == "-" and isinstance(expr.operand, ir.Const):
+            return number(-expr.operand.value)
+        raise CannotWrite(f"{describe(expr)} cannot be an X150 operand (VARn, a number, POS, ABS, ...)")
+
+    def cond(self, cond) -> str:
+        """A condition with the relations X150 has (> < =), at most two terms (L2009)."""
+        if sum(1 for _ in ir.walk_expr(cond)) > MAX_CONDITION_NODES:
+            raise CannotWrite(f"this condition has far more than the {self.cat.max_terms} terms an X150 condition "
+                              "takes: split it over nested IFs")
+        terms: list[str] = []
+        joins: list[str] = []
+        self.terms(expand(cond), terms, joins)
+        if len(terms) > self.cat.max_terms or len(set(joins)) > 1:
+            raise CannotWrite(f"this condition needs {len(terms)} X150 terms ({' '.join(joins)}); a condition has "
+                              f"at most {self.cat.max_terms} joined by AND or OR: split it over nested IFs")
+        out = terms[0]
+        for join, term in zip(joins, terms[1:]):
+            out += f" {join} {term}"
+        return out
+
+    def terms(self, cond, terms: list[str], joins: list[str]) -> None:
+        if isinstance(cond, ir.Logic):
+            self.terms(cond.left, terms, joins)
+            joins.append(cond.op.upper())
+            self.terms(cond.right, terms, joins)
+        elif isinstance(cond, ir.InputMatch):
+            terms.append("IN" + cond.pattern.bits)
+        elif (bits := input_bit(cond)) is not None:
+            terms.append("IN" + bits)
+        elif isinstance(cond, ir.Compare) and cond.op in self.cat.relational:
+            terms.append(self.operand(cond.left) + cond.op + self.operand(cond.right))
+        else:
+            raise CannotWrite(f"{describe(cond)} is not an X150 condition (VARn>x, VARn<x, VARn=x, IN<pattern>, "
+                              "joined by AND or OR)")
+
+    # -- native commands -----------------------------------------------------------------------------
+    def native_text(self, op: ir.Native) -> str:
+        mnemonic = op.mnemonic
+        prefix = self.address(op.axis)
+        if mnemonic == "!":
+            return "!" + self.value(op.args[0]) if op.args else "!"
+        info = self.cat.lookup(mnemonic)
+        if info is None:
+            raise CannotWrite(f"'{mnemonic}' is not an X150 command")
+        buffered = "B" if op.form == "B" or (self.in_sequence and info.b_prefixable) else ""
+        return prefix + buffered + mnemonic + self.argument(info, op.args)
+
+    def argument(self, info: cat.Command, args: tuple) -> str:
+        if not args:
+            return ""
+        kind = info.arg
+        first = args[0]
+        if kind in ("number", "int", "sequence"):
+            return self.value(first)
+        if isinstance(first, ir.Pattern):
+            return first.bits
+        if kind in ("in_func", "out_func"):
+            return number(first.value) + args[1].value
+        if kind == "string":
+            return ("" if info.name == '"' else '"') + first.value + '"'
+        if kind == "variable":
+            n = self.var_number(first.name)
+            return f"{n}" + (f"={self.chain(args[1])}" if len(args) > 1 else "")
+        if kind == "condition":
+            return f"({self.cond(first)})"
+        if kind in ("composite", "raw"):
+            return self.fields(info, args)
+        raise CannotWrite(f"cannot write the argument of {info.name}")
+
+    def fields(self, info: cat.Command, args: tuple) -> str:
+        parts = []
+        for spec, arg in zip(info.fields, args):
+            parts.append(number(arg.value).rjust(spec.digits, "0") if spec.digits else number(arg.value))
+        text = info.separator.join(parts)
+        if info.tail and len(args) > len(info.fields):
+            text += info.separator + args[len(info.fields)].value
+        return text
+
+
+def ends_with(nodes: list, kind=STOPS) -> bool:
+    """The list never falls through: it ends in a stop (of `kind`)."""
+    return bool(nodes) and isinstance(nodes[-1], EndNode) and isinstance(nodes[-1].term, kind)
+
+
+def is_true(cond) -> bool:
+    return isinstance(cond, ir.Compare) and cond.op == "=" and isinstance(cond.left, ir.Const) \
+        and isinstance(cond.right, ir.Const) and cond.left.value == cond.right.value
+
+
+def counted(node: RepeatNode) -> str | None:
+    """The counter of an X150 L loop: `until %Lk = 0` after a body ending in `%Lk = %Lk - 1`."""
+    until = node.until
+    if not (isinstance(until, ir.Compare) and until.op == "=" and isinstance(until.left, ir.Var)
+            and until.left.name.startswith(LOOP_PREFIX) and isinstance(until.right, ir.Const)
+            and until.right.value == 0 and node.body):
+        return None
+    last = node.body[-1]
+    name = until.left.name
+    if isinstance(last, Simple) and isinstance(last.op, ir.Assign) and last.op.target.name == name \
+            and isinstance(last.op.value, ir.BinOp) and last.op.value.op == "-" \
+            and isinstance(last.op.value.left, ir.Var) and last.op.value.left.name == name:
+        return name
+    return None
+
+
+def input_bit(cond) -> str | None:
+    """`input n = 1` (or `!= 0`, `= 0`) as an X150 user-input pattern `_XX1`."""
+    if not (isinstance(cond, ir.Compare) and isinstance(cond.left, ir.Status) and cond.left.meaning == "input"
+            and cond.left.index and isinstance(cond.right, ir.Const) and cond.op in ("=", "!=")
+            and cond.right.value in (0, 1) and 1 <= cond.left.index <= 10):
+        return None
+    on = (cond.right.value == 1) == (cond.op == "=")
+    return "_" + "X" * (cond.left.index - 1) + ("1" if on else "0")
+
+
+def op_axes(op) -> tuple[str, ...]:
+    if isinstance(op, ir.Move):
+        return tuple(axis for axis, _ in op.targets)
+    if isinstance(op, ir.Arc):
+        return op.axes
+    axis = getattr(op, "axis", "")
+    return (axis,) if isinstance(axis, str) and not isinstance(op, ir.Native) else ()
+
+
+def ends(span: Span | None) -> tuple[Span | None, Span | None]:
+    """The first and the last character of a span: a Move made of `D..` and `G` (or a sequence's `XE`
+    and `XD`) maps each written line back to its own source line."""
+    if span is None or span.line == span.end_line:
+        return span, span
+    first = Span(span.file, span.line, span.column, span.line, span.column + 1, span.start, span.start + 1)
+    last = Span(span.file, span.end_line, max(1, span.end_column - 1), span.end_line, span.end_column,
+                max(span.start, span.end - 1), span.end)
+    return first, last
+
+
+SPLIT = {"!=": ("<", ">"), "<=": ("<", "="), ">=": (">", "=")}  # as two terms joined by OR
+NEGATED = {"<": ">=", ">": "<=", "=": "!=", "!=": "=", "<=": ">", ">=": "<"}
+
+
+def expand(cond):
+    """The condition with NOT pushed into comparisons and != <= >= split into X150's > < = terms."""
+    if isinstance(cond, ir.Not):
+        inner = cond.cond
+        if isinstance(inner, ir.Not):
+            return expand(inner.cond)
+        if isinstance(inner, ir.Compare) and inner.op in NEGATED:
+            if input_bit(inner) is not None:
+                return ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span)
+            return expand(ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span))
+        if isinstance(inner, ir.Logic):  # De Morgan
+            flipped = "or" if inner.op == "and" else "and"
+            return ir.Logic(flipped, expand(ir.Not(inner.left)), expand(ir.Not(inner.right)), inner.span)
+        return cond
+    if isinstance(cond, ir.Compare) and cond.op in SPLIT and input_bit(cond) is None:
+        first, second = SPLIT[cond.op]
+        return ir.Logic("or", ir.Compare(first, cond.left, cond.right, cond.span),
+                        ir.Compare(second, cond.left, cond.right, cond.span), cond.span)
+    if isinstance(cond, ir.Logic):
+        return ir.Logic(cond.op, expand(cond.left), expand(cond.right), cond.span)
+    return cond
+
+
+def variable_number(name: str) -> int:
+    if name.upper().startswith("VAR") and name[3:].isdigit():
+        return int(name[3:])
+    return 0
+
+
+def describe(expr) -> str:
+    if isinstance(expr, ir.Var):
+        return f"the variable {expr.name}"
+    if isinstance(expr, ir.DeviceRef):
+        return f"the {expr.dialect} reading {expr.name}"
+    if isinstance(expr, ir.Status):
+        return f"the reading '{expr.meaning}'"
+    if isinstance(expr, ir.Not):
+        return "this negated condition"
+    return f"this {type(expr).__name__.lower()}"
+
+
+def describe_op(op) -> str:
+    names = {ir.Arc: "an arc or circle (interpolation of two axes)", ir.Home: "a homing move",
+             ir.Setting: "the setting", ir.Slew: "a slew"}
+    text = names.get(type(op), type(op).__name__)
+    if isinstance(op, ir.Setting):
+        text += f" '{op.name}'"
+    return text
+
+
+def write(module: ir.Module, profile: Profile) -> Written:
+    return Writer(module, profile).write_module()
