@@ -166,6 +166,9 @@ class Machine:
             self.event("handler", op.event, op.routine, tuple(v(a) for a in op.args))
         elif isinstance(op, ir.Save):
             self.event("save")
+        elif isinstance(op, ir.Native) and op.dialect == "arcus" and op.mnemonic.upper() in ("ABS", "INC") \
+                and not op.args:
+            pass  # every move carries its resolved mode; the backend writes the fewest switches
         elif isinstance(op, ir.Native):
             self.event("native", op.mnemonic, op.axis, tuple(v(a) for a in op.args))
             self.vars.clear()  # its effect is not modelled: as if it could change any variable
