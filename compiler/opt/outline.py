@@ -16,7 +16,8 @@ operation, so each place runs the same operations in the same order. Runs never 
 (so the new subroutine calls nothing and adds one level of nesting at most, checked against the
 target's limit), a native command, or anything of an immediate stream or event handler (MCode
 runs CL only in programs; handlers are left as written). The pass stops when the target's
-subroutine numbers (Arcus SUB 0-31, X150 sequences 1-64) or its call nesting are used up.
+subroutine numbers (Arcus SUB 1-30: SUB 31 is the error handler; X150 sequences 1-64) or its
+call nesting are used up.
 
 Needs: the call graph (computed here) and the target profile's limits.
 """
@@ -34,6 +35,7 @@ MIN_RUN, MAX_RUN = 3, 24
 ROUNDS = 3
 ELIGIBLE = (ir.RoutineKind.MAIN, ir.RoutineKind.SUBROUTINE, ir.RoutineKind.POWERUP)
 NOT_OUTLINED = (ir.Call, ir.Native, ir.SetHandler, ir.Save)
+ERROR_SUB = 31  # Arcus: SUB 31 runs when an error occurs
 
 
 def run(module: ir.Module, context) -> int:
@@ -52,15 +54,35 @@ def run(module: ir.Module, context) -> int:
 
 
 def free_subroutines(module: ir.Module, profile) -> int:
-    used = sum(1 for r in module.routines if r.kind is ir.RoutineKind.SUBROUTINE)
+    """How many new subroutines the target can number.
+
+    Arcus: the backend numbers routines without a number of their own in ascending order from
+    `allocate_subroutines_from` up to the top of the range, so the new ones (appended last) get the
+    highest free numbers; SUB 31 runs on an error and must never be one of them. X150: every
+    routine but the immediate stream is a sequence (the main program too); a module that calls
+    sequences stored on the controller outlines nothing, since the writer does not know their
+    numbers and could give one of them to a new sequence."""
     target = profile.dialect if profile is not None else module.dialect
+    subs = [r for r in module.routines if r.kind is ir.RoutineKind.SUBROUTINE]
     if target == "arcus":
         low, high = profile.get("arcus.subroutines", [0, 31]) if profile else (0, 31)
-        return (high - low + 1) - 1 - used  # SUB 31 is kept for the error handler
+        start = max(int(low), int(profile.get("arcus.allocate_subroutines_from", 1)) if profile else 1)
+        taken: set[int] = set()
+        pending = 0
+        for routine in subs:
+            if routine.number is not None and low <= routine.number <= high and routine.number not in taken:
+                taken.add(routine.number)
+            else:
+                pending += 1
+        free = [n for n in range(start, int(high) + 1) if n not in taken and n != ERROR_SUB]
+        return len(free) - pending
     if target == "x150":
+        if module.externals:
+            return 0
         low, high = profile.get("limits.sequences", [1, 64]) if profile else (1, 64)
-        return (high - low + 1) - used
-    return 32 - used  # MCode: labels share the 192-name table; keep the outlining modest
+        sequences = sum(1 for r in module.routines if r.kind is not ir.RoutineKind.IMMEDIATE)
+        return (int(high) - int(low) + 1) - sequences
+    return 32 - len(subs)  # MCode: labels share the 192-name table; keep the outlining modest
 
 
 def nesting_allows(module: ir.Module, profile) -> bool:

@@ -321,3 +321,26 @@ def test_unknown_pass_is_refused():
 def test_ir_text_of_an_optimized_module_prints():
     m = module(block("a", [assign("V1", ir.BinOp("*", C(4), C(250)))], ir.End()))
     assert "V1 = 1000" in to_text(run(m, "fold"))
+
+
+def test_outline_never_takes_arcus_sub_31_or_a_number_the_target_lacks():
+    from mcc.backends.arcus import emit
+
+    subs = tuple(ir.Routine(f"S{n}", ir.RoutineKind.SUBROUTINE, [block(f"s{n}", [], ir.Return())], number=n)
+                 for n in range(1, 30))  # SUB 1-29 in use: only SUB 30 is free for outlining
+    runs = [[ir.SetOutput(k, C(1)), ir.Delay(C(0.1, ir.Unit.S)), ir.SetOutput(k, C(0)), ir.WaitMotion("X")]
+            for k in (1, 2, 3)]
+    body = [ir.Call(f"S{n}") for n in range(1, 30)] + [op for r in runs for op in r * 3]
+    m = module(block("a", body, ir.End()), routines=subs)
+    work = run(m, "outline", "Os")
+    new = [r for r in work.routines if r.name.startswith("%sub")]
+    assert len(new) == 1
+    listing = emit(work, ARCUS)
+    assert "SUB 31" not in listing.text and "SUB 30" in listing.text
+
+
+def test_outline_does_nothing_on_x150_with_sequences_stored_on_the_controller():
+    body = GRIP * 4
+    m = module(block("a", body + [ir.Call("5")], ir.End()), dialect="x150")
+    m.externals.append("5")
+    assert len(run(m, "outline", "Os", X150).routines) == 1
