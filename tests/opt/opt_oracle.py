@@ -12,6 +12,8 @@ reading and of how many events came before, so two programs that do the same thi
 order read the same values. Assignments are not events (a host reading variables is the
 documented assumption of -O2's dead stores), nor are calls (outlining adds them).
 
+Event handlers run before every motion (see `Machine.interrupt`).
+
 A `*` axis setting is taken as a broadcast: it sets every axis (the stricter reading: a per-axis
 setting after it is not redundant).
 """
@@ -43,6 +45,7 @@ class Machine:
         self.max_events, self.max_steps = max_events, max_steps
         self.steps = 0
         self.depth = 0
+        self.in_handler = False
         self.outcome = ""
 
     # -- values --------------------------------------------------------------------------------
@@ -115,7 +118,24 @@ class Machine:
                 del self.settings[known]
         self.settings[(slot, axis)] = value
 
+    def interrupt(self) -> None:
+        """Event handlers run before every motion: a point every pass keeps (moves are never
+        removed or reordered), so a pass that trusted a value a handler changes is caught."""
+        if self.in_handler:
+            return
+        self.in_handler = True
+        try:
+            for routine in self.module.routines:
+                if routine.kind is ir.RoutineKind.HANDLER:
+                    self.routine(routine)
+        finally:
+            self.in_handler = False
+
     def motion(self, *item) -> None:
+        self.interrupt()
+        self.record_motion(*item)
+
+    def record_motion(self, *item) -> None:
         """A motion event with the settings in force: per slot, an axis's own value only where it
         differs from the `*` value (so `*`=5 then X=5 is the same state as `*`=5 alone)."""
         state = {k: v for k, v in self.settings.items()

@@ -1,6 +1,7 @@
 """A hypothesis strategy that builds random valid IR modules (not text): straight-line operations
 from a small vocabulary (so runs repeat and the passes have something to do), IF- and WHILE-shaped
-control flow, calls to subroutines, settings on single axes and on `*`, handler-free."""
+control flow, calls to subroutines, settings on single axes and on `*`, and (MCode, X150) an event
+handler that assigns a variable and may change a speed."""
 
 from __future__ import annotations
 
@@ -131,6 +132,12 @@ def modules(draw, dialect: str = "arcus"):
     end = draw(statements(builder, builder.new(), subs, 0))
     end.terminator = ir.End()
     main = ir.Routine("main", ir.RoutineKind.MAIN, builder.blocks)
+    if dialect != "arcus":  # a trip or XWHEN handler: assigns a variable, maybe a speed
+        target = ir.Var(draw(st.sampled_from(VARS[:2])))
+        handler_ops = [ir.Assign(target, ir.BinOp("+", target, ir.Const(1)))]
+        if draw(st.booleans()):
+            handler_ops.append(ir.SetMotion(ir.MotionParam.MAX_SPEED, "X", ir.Const(1000, ir.Unit.STEPS_PER_S)))
+        routines.append(ir.Routine("H1", ir.RoutineKind.HANDLER, [ir.Block("h1", handler_ops, ir.Return())]))
     variables = {FLOAT_VAR: ir.Variable(FLOAT_VAR, ir.VarType.FLOAT64)}
-    profile = {"arcus": "pmx-4ex-sa", "mcode": "lmd-c"}[dialect]
+    profile = {"arcus": "pmx-4ex-sa", "mcode": "lmd-c", "x150": "x150-x150ds"}[dialect]
     return ir.Module(dialect, profile, variables, [main, *routines], steps_per_rev=4000)

@@ -15,8 +15,8 @@ from mcc.compiler.opt import LEVELS, PASSES, optimize
 CHOICES = [(level, None) for level in LEVELS] + [("Os", name) for name in PASSES]
 
 
-@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(dialect=st.sampled_from(["arcus", "mcode"]), data=st.data())
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(dialect=st.sampled_from(["arcus", "mcode", "x150"]), data=st.data())
 def test_random_programs_keep_contract_and_behaviour(dialect, data):
     module = data.draw(modules(dialect))
     assert verify(module) == []
