@@ -147,7 +147,8 @@ def main(argv: list[str] | None = None) -> int:
                  (f"drawing.prg ({statements(drawing)} statements)", drawing, True)]
 
     header = f"{'program':<40}" + "".join(f"{'-' + lv + ' lines':>12}" for lv in LEVELS) + \
-        "".join(f"{'-' + lv + ' /O0':>9}" for lv in LEVELS[1:]) + "".join(f"{'t ' + lv + ' /O0':>11}" for lv in LEVELS[1:])
+        "".join(f"{'-' + lv + ' /O0':>9}" for lv in LEVELS[1:]) + \
+        "".join(f"{'t ' + lv + ' /O0':>11}" for lv in LEVELS[1:])
     print(header)
     missed = []
     for name, text, machine_made in programs:

@@ -181,7 +181,8 @@ def test_settings_forgets_at_calls_and_stops_when_a_handler_changes_motion():
 
 
 def test_settings_across_blocks_at_O2():
-    m = module(block("a", [hspd("X", 5000)], ir.Jump("b")), block("b", [hspd("X", 5000), move("X", steps(1))], ir.End()))
+    m = module(block("a", [hspd("X", 5000)], ir.Jump("b")),
+               block("b", [hspd("X", 5000), move("X", steps(1))], ir.End()))
     assert len(ops(run(m, "settings", "O2"))) == 2
 
 
