@@ -248,14 +248,16 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         target_profile = profile_for(target_dialect, profile)
         listing, stats = generate(analysis.module, target_dialect, target_profile, opt_level, passes)
         result.optimization = stats
-        if opt_level != "O0" or passes:
+        if any(p.changed for p in stats.passes):
             baseline, _ = generate(analysis.module, target_dialect, target_profile, "O0", None)
             if new_errors(listing, baseline):
                 # The optimized graph is one the target's structurer cannot write although the
                 # program as written can be: keep the program as written rather than fail.
                 listing, stats.fallback = baseline, True
-            stats.lines_before = len(baseline.lines)
-            stats.lines_after = len(listing.lines)
+            stats.lines_before = target_lines(baseline)
+        elif stats.passes:  # nothing changed: the listing is the program as written
+            stats.lines_before = target_lines(listing)
+        stats.lines_after = target_lines(listing)
         budget = [d for d in listing.diagnostics if d.code in BUDGET_CODES and d.severity.value == "error"]
         if budget and not passes:
             listing.diagnostics.items[:] = [d for d in listing.diagnostics
@@ -280,6 +282,11 @@ def generate(module: ir.Module, target: dialects.Dialect, profile: Profile, leve
     with fewer_collections():
         stats = opt.optimize(work, level, profile, passes)
         return target.load_backend().emit(work, profile), stats
+
+
+def target_lines(listing) -> int:
+    """The size the target's memory sees: Arcus assembly lines under the cost model, else lines."""
+    return int(listing.stats.get("asm_lines", len(listing.lines)))
 
 
 def new_errors(listing, baseline) -> bool:

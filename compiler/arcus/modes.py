@@ -78,6 +78,7 @@ class _Flow:
         self.uncalled = {name for name, state in self.entry.items() if state}
         self.exit: dict[str, State] = {r.name: NONE for r in module.routines}
         self.blocks: dict[str, State] = {}
+        self.final = False  # set once the exits are known: see `after`
 
     def after(self, op: ir.Op, state: State, calls: dict[str, State] | None) -> State:
         if not state:
@@ -93,7 +94,7 @@ class _Flow:
                 # A subroutine that never returns (it ENDs the program) leaves what follows the
                 # call unreachable; its moves keep the modes in force at the call, so that
                 # compiling the program again writes them the same way.
-                return returned or state
+                return returned or (state if self.final else NONE)
         return state
 
     def routine(self, routine: ir.Routine, calls: dict[str, State]) -> State:
@@ -141,7 +142,13 @@ class _Flow:
                     self.entry[routine.name] = new
                     changed = True
             if not changed:
-                return
+                break
+        # Once every exit is known, a call of a subroutine that never returns (it ENDs the program)
+        # leaves the unreachable code after it in the modes in force at the call, so compiling the
+        # program again writes its moves the same way.
+        self.final = True
+        for routine in self.module.routines:
+            self.routine(routine, {})
 
 
 def resolve(module: ir.Module, profile: Profile | None, diags: Diagnostics) -> dict[tuple[int, int], State]:

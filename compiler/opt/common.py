@@ -15,18 +15,33 @@ PRIVATE_ROUTINES = frozenset({"arcus"})
 MAX_KEY_DEPTH = 200
 
 
+_FIELDS: dict[type, tuple[str, ...]] = {}
+
+
 def key(node, depth: int = 0):
-    """A hashable structural key of an IR node that ignores spans (equal keys: same meaning)."""
+    """A hashable structural key of an IR node that ignores spans (equal keys: same meaning).
+
+    Numbers keep their type (`1` and `1.0` print differently and may mean different things on a
+    device), so they never share a key."""
     if depth > MAX_KEY_DEPTH:
         return ("deep", id(node))  # never equal to another node: a pass simply does not match it
+    kind = type(node)
+    if kind is ir.Var:
+        return ("Var", node.name)
+    if kind is ir.Const:
+        return ("Const", type(node.value).__name__, node.value, node.unit.value)
     if isinstance(node, Enum):
         return node.value
-    if isinstance(node, (tuple, list)):
+    if kind is tuple or kind is list:
         return tuple(key(n, depth + 1) for n in node)
-    if dataclasses.is_dataclass(node) and not isinstance(node, type):
-        return (type(node).__name__,) + tuple(key(getattr(node, f.name), depth + 1)
-                                              for f in dataclasses.fields(node) if f.name != "span")
-    return node
+    if isinstance(node, (int, float)):
+        return (kind.__name__, node)
+    names = _FIELDS.get(kind)
+    if names is None:
+        if not (dataclasses.is_dataclass(node) and not isinstance(node, type)):
+            return node
+        names = _FIELDS[kind] = tuple(f.name for f in dataclasses.fields(node) if f.name != "span")
+    return (kind.__name__,) + tuple(key(getattr(node, name), depth + 1) for name in names)
 
 
 def predecessors(module: ir.Module) -> dict[str, list[str]]:

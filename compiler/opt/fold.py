@@ -1,8 +1,11 @@
 """Constant folding and propagation (within each block).
 
 What it does: an operator applied to constants becomes the constant (`V1 = 4 * 250` becomes
-`V1 = 1000`), and a variable assigned a constant is read as that constant by the operations that
-follow it in the same block (`V1 = 1000` then `X = V1` becomes `X = 1000`).
+`V1 = 1000`), and a variable assigned a constant is read as that constant by the assignments,
+outputs and branch conditions that follow it in the same block (`V1 = 1000` then `V2 = V1 + 1`
+becomes `V2 = 1001`). Where the value carries a unit (a move target, a speed, a delay) a variable
+is never replaced by a constant: the variable's plain number would have to become a constant in
+steps, which a backend converting to another dialect scales where it would not scale the variable.
 
 Why it is safe: folding only happens where every dialect computes the same result: integers whose
 result fits in 32 bits without wrapping, an exact integer division, bitwise operators on integers,
@@ -61,16 +64,17 @@ def rewrite_op(op, known: dict[str, ir.Const]):
         value = fold(op.value, known)
         return op if value is op.value else ir.Assign(op.target, value, op.span)
     if isinstance(op, (ir.SetMotion, ir.SetPosition, ir.Setting)):
-        value = fold(op.value, known)
+        value = fold(op.value, unitless(known))
         if value is op.value:
             return op
         copy = _copy(op)
         copy.value = value
         return copy
     if isinstance(op, ir.Delay):
-        value = fold(op.duration, known)
+        value = fold(op.duration, unitless(known))
         return op if value is op.duration else ir.Delay(value, op.span)
     if isinstance(op, ir.Move):
+        known = unitless(known)
         targets = tuple((axis, fold(v, known)) for axis, v in op.targets)
         if all(new is old for (_, new), (_, old) in zip(targets, op.targets)):
             return op
@@ -79,6 +83,16 @@ def rewrite_op(op, known: dict[str, ir.Const]):
         value = fold(op.value, known)
         return op if value is op.value else ir.SetOutput(op.index, value, op.span)
     return op
+
+
+def unitless(known: dict) -> dict:
+    """What may be substituted where the value carries a unit (a move target, a speed, a delay):
+    a variable holds a plain number read in the IR's unit at that place, but a constant there must
+    carry the unit (a backend scales it to the target's steps), so only copies of variables are
+    substituted, never constants."""
+    if not known or not any(isinstance(v, ir.Const) for v in known.values()):
+        return known
+    return {k: v for k, v in known.items() if isinstance(v, ir.Var)}
 
 
 def _copy(op):

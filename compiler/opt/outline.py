@@ -3,20 +3,28 @@ subroutine called from each place.
 
 What it does: machine-made programs (a drawing converted to moves, a teach-in recording) repeat
 the same runs of moves, outputs and delays. Each run of at least three operations that occurs at
-least twice, and whose call sites and one copy cost fewer operations than the copies, is moved
-into a new subroutine; each occurrence becomes a call.
+least twice, and whose call sites and one copy cost fewer target lines than the copies, is moved
+into a new subroutine; each occurrence becomes a call. The cost is counted in the target's own
+measure where it is cheap to get: Arcus assembly lines from the profile's `[arcus.cost]` table (a
+two-axis move costs two lines, a GOSUB one, SUB and ENDSUB one each); one line per operation for
+the other targets. Runs are found by growing repeated windows one operation at a time (a window
+seen once is never grown), best benefit first, over at most three rounds (a later round can
+outline runs that contain the earlier rounds' calls' neighbours, never the calls).
 
 Why it is safe: a call runs the subroutine's operations in order and returns to the next
 operation, so each place runs the same operations in the same order. Runs never contain a call
 (so the new subroutine calls nothing and adds one level of nesting at most, checked against the
 target's limit), a native command, or anything of an immediate stream or event handler (MCode
 runs CL only in programs; handlers are left as written). The pass stops when the target's
-subroutine numbers (Arcus SUB 0-31, X150 sequences 1-64) or its call nesting are used up.
+subroutine numbers (Arcus SUB 1-30: SUB 31 is the error handler; X150 sequences 1-64) or its
+call nesting are used up.
 
 Needs: the call graph (computed here) and the target profile's limits.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 from mcc.compiler import ir
 from mcc.compiler.opt.common import key
@@ -27,15 +35,17 @@ MIN_RUN, MAX_RUN = 3, 24
 ROUNDS = 3
 ELIGIBLE = (ir.RoutineKind.MAIN, ir.RoutineKind.SUBROUTINE, ir.RoutineKind.POWERUP)
 NOT_OUTLINED = (ir.Call, ir.Native, ir.SetHandler, ir.Save)
+ERROR_SUB = 31  # Arcus: SUB 31 runs when an error occurs
 
 
 def run(module: ir.Module, context) -> int:
     capacity = free_subroutines(module, context.profile)
     if capacity <= 0 or not nesting_allows(module, context.profile):
         return 0
+    cost = target_cost(context.profile, module.dialect)
     saved = 0
     for _ in range(ROUNDS):
-        made, gained = one_round(module, capacity)
+        made, gained = one_round(module, capacity, cost)
         capacity -= made
         saved += gained
         if not made or capacity <= 0:
@@ -44,15 +54,35 @@ def run(module: ir.Module, context) -> int:
 
 
 def free_subroutines(module: ir.Module, profile) -> int:
-    used = sum(1 for r in module.routines if r.kind is ir.RoutineKind.SUBROUTINE)
+    """How many new subroutines the target can number.
+
+    Arcus: the backend numbers routines without a number of their own in ascending order from
+    `allocate_subroutines_from` up to the top of the range, so the new ones (appended last) get the
+    highest free numbers; SUB 31 runs on an error and must never be one of them. X150: every
+    routine but the immediate stream is a sequence (the main program too); a module that calls
+    sequences stored on the controller outlines nothing, since the writer does not know their
+    numbers and could give one of them to a new sequence."""
     target = profile.dialect if profile is not None else module.dialect
+    subs = [r for r in module.routines if r.kind is ir.RoutineKind.SUBROUTINE]
     if target == "arcus":
         low, high = profile.get("arcus.subroutines", [0, 31]) if profile else (0, 31)
-        return (high - low + 1) - 1 - used  # SUB 31 is kept for the error handler
+        start = max(int(low), int(profile.get("arcus.allocate_subroutines_from", 1)) if profile else 1)
+        taken: set[int] = set()
+        pending = 0
+        for routine in subs:
+            if routine.number is not None and low <= routine.number <= high and routine.number not in taken:
+                taken.add(routine.number)
+            else:
+                pending += 1
+        free = [n for n in range(start, int(high) + 1) if n not in taken and n != ERROR_SUB]
+        return len(free) - pending
     if target == "x150":
+        if module.externals:
+            return 0
         low, high = profile.get("limits.sequences", [1, 64]) if profile else (1, 64)
-        return (high - low + 1) - used
-    return 32 - used  # MCode: labels share the 192-name table; keep the outlining modest
+        sequences = sum(1 for r in module.routines if r.kind is not ir.RoutineKind.IMMEDIATE)
+        return (int(high) - int(low) + 1) - sequences
+    return 32 - len(subs)  # MCode: labels share the 192-name table; keep the outlining modest
 
 
 def nesting_allows(module: ir.Module, profile) -> bool:
@@ -81,20 +111,78 @@ def call_depth(module: ir.Module) -> int:
     return max(depth.values(), default=0)
 
 
-def one_round(module: ir.Module, capacity: int) -> tuple[int, int]:
+@dataclass(frozen=True)
+class Cost:
+    """What operations, calls and a subroutine's frame cost on the target, in its own lines."""
+
+    statements: dict[str, int]
+    default: int = 1
+    per_axis: bool = False  # Arcus: a move costs one line per axis it names
+
+    def of(self, op) -> int:
+        if not self.per_axis:
+            return 1
+        if isinstance(op, ir.Move):
+            return sum(self.get(axis) for axis, _ in op.targets)
+        if isinstance(op, ir.Arc):
+            return self.get("ARC" if op.angle is not None else "CIR")
+        if isinstance(op, ir.Assign):
+            operators = sum(1 for n in ir.walk_expr(op.value) if isinstance(n, (ir.BinOp, ir.UnOp)))
+            return self.get("V") if operators == 0 else operators * self.get("V_OP")
+        return self.get(ARCUS_KEYS.get(type(op), ""))
+
+    def get(self, name: str) -> int:
+        return max(1, int(self.statements.get(name, self.default)))
+
+    @property
+    def call(self) -> int:
+        return self.get("GOSUB") if self.per_axis else 1
+
+    @property
+    def frame(self) -> int:
+        """A new subroutine's own lines: SUB and ENDSUB on Arcus; a label and a return elsewhere."""
+        return self.get("SUB") + self.get("ENDSUB") if self.per_axis else 2
+
+
+ARCUS_KEYS = {ir.Delay: "DELAY", ir.SetOutput: "DO", ir.WaitMotion: "WAIT", ir.Home: "HOME", ir.Stop: "STOP",
+              ir.SetPosition: "P"}
+
+
+def target_cost(profile, dialect: str) -> Cost:
+    target = profile.dialect if profile is not None else dialect
+    if target == "arcus" and profile is not None:
+        table = profile.get("arcus.cost", {}) or {}
+        statements = {str(k).upper(): int(v) for k, v in (table.get("statements") or {}).items()}
+        return Cost(statements, int(table.get("default", 1)), per_axis=True)
+    if target == "arcus":
+        return Cost({}, 1, per_axis=True)
+    return Cost({})
+
+
+def benefit(count: int, run_cost: int, cost: Cost, has_move: bool) -> int:
+    """Lines saved by outlining `count` copies of a run costing `run_cost`: the copies, less the
+    calls, one copy and the subroutine's frame (and a move-mode line a backend may write at the
+    subroutine's start, where the mode in force is not known)."""
+    return count * run_cost - (count * cost.call + run_cost + cost.frame + (1 if has_move else 0))
+
+
+def one_round(module: ir.Module, capacity: int, cost: Cost) -> tuple[int, int]:
     blocks = [b for r in module.routines if r.kind in ELIGIBLE for b in r.blocks]
     ids: dict = {}
-    coded = [[_code(op, ids) for op in b.ops] for b in blocks]
-    candidates = find(coded)
+    prices: list[int] = []
+    moves: set[int] = set()
+    coded = [[_code(op, ids, prices, moves, cost) for op in b.ops] for b in blocks]
+    candidates = find(coded, prices, moves, cost)
     taken: list[set[int]] = [set() for _ in blocks]
     chosen: list[tuple[int, int, int, str]] = []  # (block, start, length, routine), applied at the end
     made = saved = 0
-    for benefit, length, places in candidates:
+    for _, length, places, run_cost, has_move in candidates:
         if made >= capacity:
             break
-        free = [(bi, start) for bi, start in places if not taken[bi] & set(range(start, start + length))]
+        free = [(bi, start) for bi, start in places if not taken[bi].intersection(range(start, start + length))]
         free = non_overlapping(free, length)
-        if len(free) < 2 or len(free) * length - (len(free) + length + 2) <= 0:
+        gain = benefit(len(free), run_cost, cost, has_move)
+        if len(free) < 2 or gain <= 0:
             continue
         name = new_name(module)
         first_bi, first_start = free[0]
@@ -103,42 +191,59 @@ def one_round(module: ir.Module, capacity: int) -> tuple[int, int]:
                              [ir.Block(name, body, ir.Return(body[-1].span))], span=body[0].span)
         module.routines.append(routine)
         for bi, start in free:
-            taken[bi] |= set(range(start, start + length))
+            taken[bi].update(range(start, start + length))
             chosen.append((bi, start, length, name))
         made += 1
-        saved += len(free) * length - (len(free) + length)
+        saved += gain
     replace(blocks, chosen)
     return made, saved
 
 
-def _code(op, ids: dict) -> int:
+def _code(op, ids: dict, prices: list[int], moves: set[int], cost: Cost) -> int:
+    """A number per distinct operation (equal numbers: equal operations); -1 and below: never
+    part of a run."""
     if isinstance(op, NOT_OUTLINED):
-        return -1 - len(ids)  # unique: never part of a repeated run
-    return ids.setdefault(key(op), len(ids))
+        return -1
+    code = ids.get(k := key(op))
+    if code is None:
+        code = ids[k] = len(prices)
+        prices.append(cost.of(op))
+        if isinstance(op, (ir.Move, ir.Arc)):
+            moves.add(code)
+    return code
 
 
-def find(coded: list[list[int]]) -> list[tuple[int, int, list[tuple[int, int]]]]:
-    """Repeated runs, best first: (benefit, length, [(block index, start), ...])."""
+def find(coded: list[list[int]], prices: list[int], moves: set[int], cost: Cost) -> list[tuple]:
+    """Repeated runs, best first: (benefit, length, [(block index, start), ...], run cost, has a move).
+
+    Windows of MIN_RUN operations are grouped by content; only a group seen at two places or more
+    is grown by one operation, so the work stays near the program's length when little repeats."""
+    groups: dict[tuple, list[tuple[int, int]]] = {}
+    for bi, codes in enumerate(coded):
+        for start in range(0, len(codes) - MIN_RUN + 1):
+            window = tuple(codes[start:start + MIN_RUN])
+            if min(window) >= 0:
+                groups.setdefault(window, []).append((bi, start))
     found = []
-    for length in range(MIN_RUN, MAX_RUN + 1):
-        places: dict[tuple, list[tuple[int, int]]] = {}
-        any_window = False
-        for bi, codes in enumerate(coded):
-            for start in range(0, len(codes) - length + 1):
-                window = tuple(codes[start:start + length])
-                if min(window) < 0:
-                    continue
-                any_window = True
-                places.setdefault(window, []).append((bi, start))
-        if not any_window:
-            break
-        for where in places.values():
-            where = non_overlapping(where, length)
-            if len(where) >= 2:
-                benefit = len(where) * length - (len(where) + length + 2)
-                if benefit > 0:
-                    found.append((benefit, length, where))
-    found.sort(key=lambda c: (-c[0], -c[1]))
+    length = MIN_RUN
+    while groups and length <= MAX_RUN:
+        grown: dict[tuple, list[tuple[int, int]]] = {}
+        for window, where in groups.items():
+            if len(where) < 2:
+                continue
+            run_cost = sum(prices[c] for c in window)
+            has_move = any(c in moves for c in window)
+            places = non_overlapping(where, length)
+            gain = benefit(len(places), run_cost, cost, has_move)
+            if len(places) >= 2 and gain > 0:
+                found.append((gain, length, places, run_cost, has_move))
+            for bi, start in where:
+                end = start + length
+                if end < len(coded[bi]) and coded[bi][end] >= 0:
+                    grown.setdefault(window + (coded[bi][end],), []).append((bi, start))
+        groups = grown
+        length += 1
+    found.sort(key=lambda c: (-c[0], -c[1], c[2]))
     return found
 
 
@@ -153,7 +258,8 @@ def non_overlapping(places: list[tuple[int, int]], length: int) -> list[tuple[in
 
 
 def replace(blocks: list[ir.Block], chosen: list[tuple[int, int, int, str]]) -> None:
-    """Each chosen run becomes a call; later runs first, so earlier indices stay valid."""
+    """Each chosen run becomes a call; later runs first, so earlier indices stay valid (the runs
+    chosen in one round never overlap)."""
     for bi, start, length, name in sorted(chosen, key=lambda c: (c[0], c[1]), reverse=True):
         ops = blocks[bi].ops
         ops[start:start + length] = [ir.Call(name, None, ops[start].span)]

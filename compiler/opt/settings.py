@@ -1,7 +1,8 @@
 """Redundant motion settings.
 
 What it does: a speed, acceleration, ramp time or device setting that sets the value already in
-force is removed (`HSPD=5000` twice around a move keeps the first). -O1 looks within each block;
+force is removed (`HSPD=5000` twice around a move keeps the first). A setting on `*` (every
+axis) is redundant only when no single axis was set since the same `*` setting. -O1 looks within each block;
 -O2 uses the values in force on every path (compiler/in_force.py), across blocks and calls.
 
 Why it is safe: setting a value already in force changes nothing on the device. The values in
@@ -45,8 +46,10 @@ def local(module: ir.Module) -> int:
                 if last.get(slot) == value:
                     removed += 1
                     continue
-                if getattr(op, "axis", "") == ir.ALL_AXES:
+                if op.axis == ir.ALL_AXES:  # every axis now has this value
                     last = {k: v for k, v in last.items() if k[0] != slot[0]}
+                else:  # the axes no longer all agree: a later `*` setting is not redundant
+                    last.pop(all_axes(slot), None)
                 last[slot] = value
             elif isinstance(op, (ir.SetMotion, ir.Setting)):
                 last = {k: v for k, v in last.items() if k[0] != slot_of(op)[0]}
@@ -55,6 +58,10 @@ def local(module: ir.Module) -> int:
             kept.append(op)
         block.ops[:] = kept
     return removed
+
+
+def all_axes(slot: tuple) -> tuple:
+    return (slot[0], ir.ALL_AXES) + slot[2:]
 
 
 def slot_of(op) -> tuple:
