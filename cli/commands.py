@@ -118,8 +118,12 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="How to report diagnostics and statistics.")
 @click.option("--profile", help="Target profile: a built-in name or a path to a TOML file.")
+@click.option("--verify", is_flag=True,
+              help="Simulate the source and the compiled program and write nothing if they behave differently.")
+@click.option("--inputs", "inputs", multiple=True, type=click.Path(exists=True, dir_okay=False),
+              metavar="SCENARIO.toml", help="Scenarios for --verify (repeatable; default: every input read both ways).")
 def compile_cmd(file: str, target: str | None, dialect: str | None, output: str | None, listing: str | None,
-                fmt: str, profile: str | None) -> None:
+                fmt: str, profile: str | None, verify: bool, inputs: tuple[str, ...]) -> None:
     """Compile FILE into a device-ready program.
 
     The program is checked first; nothing is written when it has errors. The output passes
@@ -130,6 +134,7 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
       mcc compile samples/mcode/pick_and_place.mxt
       mcc compile program.prg -o build/program.prg --listing build/program.lst
       mcc compile program.mxt --format json -o out.mxt
+      mcc compile program.prg --target mcode --verify -o program.mxt
     """
     from mcc.compiler import driver
 
@@ -137,6 +142,10 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     result = driver.compile_file(file, dialect, target, prof)
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
+    if produced and verify:
+        from mcc.cli.sim import verify_result
+
+        produced = verify_result(result, result.analysis.module, result.listing.text, result.target, prof, inputs)
     if produced:
         from mcc.compiler.lint.files import write_atomic
 
@@ -201,6 +210,7 @@ def profiles() -> None:
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
 
-# `mcc lint`, `mcc fmt` and `mcc ir` register themselves on `cli` (cli/lint.py, cli/ir.py).
+# `mcc lint`, `mcc fmt`, `mcc ir` and `mcc sim` register themselves on `cli` (cli/lint.py, cli/ir.py, cli/sim.py).
 from mcc.cli import lint as _lint  # noqa: E402,F401  (imported last: it uses `cli`)
 from mcc.cli import ir as _ir  # noqa: E402,F401
+from mcc.cli import sim as _sim  # noqa: E402,F401

@@ -35,6 +35,7 @@ class Options:
     diff: bool = False
     unsafe_fixes: bool = False
     dialect: str | None = None
+    verify: bool = False  # simulate before and after the fixes; write nothing if they differ
 
 
 @dataclass
@@ -120,10 +121,25 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
     if text != original.text:
         if options.diff:
             outcome.diff = fixes.unified_diff(path, original.text, text)
+        elif options.fix and options.verify and _diverges(outcome, original.text):
+            pass  # S010 is reported; the file is left as it was
         elif options.fix:
             files.write_atomic(path, text, original)
             outcome.written = True
     return outcome
+
+
+def _diverges(outcome: Outcome, before: str) -> bool:
+    """--verify: add S010 and answer True when the fixed text does not behave like the original."""
+    from mcc.sim.verify import check_translation
+
+    problem = check_translation(outcome.path, outcome.dialect, before, outcome.text or "")
+    if problem:
+        diags = Diagnostics(outcome.diagnostics)
+        diags.add("S010", driver.file_span(outcome.path),
+                  f"--verify: the fixed program would not behave like the original: {problem}; nothing was written")
+        outcome.diagnostics = diags.items
+    return bool(problem)
 
 
 # many files ----------------------------------------------------------------------------------------
