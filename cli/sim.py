@@ -91,7 +91,12 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
             plot(trace, plot_out)
 
     if fmt == "json":
-        entry = trace.to_json() if trace is not None else {**result.to_json(), "stopped": None}
+        if trace is not None:
+            entry = trace.to_json()
+        else:  # the program could not run: the same shape, stopped with "error" before it started
+            entry = {"path": result.path, "dialect": result.dialect, "stopped": "error",
+                     "reason": "the program was not simulated (see diagnostics)", "time": 0, "steps": 0,
+                     "axes": {}, "outputs": {}, "variables": {}, "events": []}
         entry["diagnostics"] = [d.to_json() for d in sorted(result.diagnostics, key=lambda d: d.sort_key())]
         click.echo(render.dump_json({"files": [entry]}))
     elif fmt == "csv" and trace is not None:
@@ -189,7 +194,7 @@ def verify_result(result, before, after_text: str, after_dialect: str, profile, 
     on a divergence add S010 to `result` and answer False (the caller then writes nothing)."""
     from mcc.compiler.diagnostics import Diagnostics
     from mcc.compiler.span import Span
-    from mcc.sim.verify import check_translation
+    from mcc.sim.verify import check_translation, explain
 
     problem = check_translation(result.path, result.dialect, before, after_text, after_dialect, profile,
                                 load_scenarios(inputs))
@@ -199,8 +204,7 @@ def verify_result(result, before, after_text: str, after_dialect: str, profile, 
     text = result.source.line_text(line) if result.source is not None and line else ""
     span = Span(result.path, line or 1, 1, line or 1, max(2, len(text) + 1))
     diags = Diagnostics(result.diagnostics)
-    diags.add("S010", span, f"--verify: the written program would not behave like the source: {problem}; "
-                            "nothing was written")
+    diags.add("S010", span, f"--verify: {explain(problem)}; nothing was written")
     result.diagnostics = diags.items
     return False
 

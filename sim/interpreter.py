@@ -34,7 +34,6 @@ DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": i
 DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
 # Events that make a handler fire once and disarm (MCode trips are one-shot until re-armed).
 ONE_SHOT_DIALECTS = {"mcode"}
-SAMPLES_PER_SEGMENT = 6
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 
 
@@ -100,12 +99,14 @@ class Stop(Exception):
         self.reason = reason
 
 
-@dataclass(order=True)
-class Scheduled:
-    t: float
-    seq: int
-    kind: str = field(compare=False)
-    payload: tuple = field(compare=False, default=())
+class Scheduled(tuple):
+    """(t, seq, kind, payload): a plain tuple, so the heap compares it in C."""
+
+    __slots__ = ()
+
+    t = property(lambda self: self[0])
+    kind = property(lambda self: self[2])
+    payload = property(lambda self: self[3])
 
 
 class Simulator:
@@ -143,6 +144,7 @@ class Simulator:
         self.motion_op: dict[int, ir.Op] = {}
         self.changes = 0  # bumped by anything a polling loop could be waiting for
         self.natives: set[str] = set()
+        self.fixed_watches: dict[str, list] = {}
         self.polling = False
         self.poll_changes = 0
         self.poll_steps = 0
@@ -172,6 +174,10 @@ class Simulator:
             raise Stop("end", "the module has no routine to run")
         self.stack.append(Frame(entry, entry.entry))
         self._event(None, "start", routine=entry.name)
+        # commands sent outside any program (MCode settings before PG, X150 set-up) run first
+        for routine in reversed(self.module.routines):
+            if routine.kind is ir.RoutineKind.IMMEDIATE and routine is not entry and routine.entry is not None:
+                self.stack.append(Frame(routine, routine.entry))
 
     def _entry(self) -> ir.Routine | None:
         for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP):
@@ -226,7 +232,7 @@ class Simulator:
         if t == INF:
             return
         self.seq += 1
-        heapq.heappush(self.queue, Scheduled(t, self.seq, kind, payload))
+        heapq.heappush(self.queue, Scheduled((t, self.seq, kind, payload)))
 
     def _next_event_time(self) -> float:
         while self.queue and self._stale(self.queue[0]):
@@ -377,80 +383,115 @@ class Simulator:
     # -- operations ------------------------------------------------------------------------------
 
     def _op(self, op: ir.Op, frame: Frame) -> Wait | None:
-        if isinstance(op, ir.Assign):
-            name = op.target.name
-            value = values.store(self._eval(op.value), self._type(name))
-            if self.vars.get(name) != value:
-                self.changes += 1
-            self.vars[name] = value
-        elif isinstance(op, ir.SetMotion):
-            value = float(self._eval(op.value))
-            self.machine.set_motion(op.param, op.axis, value)
-        elif isinstance(op, ir.Move):
-            axes = tuple(a for a, _ in op.targets)
-            if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
-                return Wait("busy", axes=axes, retry=True)
-            self._move(op)
-        elif isinstance(op, ir.Arc):
-            if any(self._axis(a).moving(self.now) for a in op.axes):
-                return Wait("busy", axes=op.axes, retry=True)
-            self._arc(op)
-        elif isinstance(op, ir.Slew):
-            self._slew(op)
-        elif isinstance(op, ir.Home):
-            if self._axis(op.axis).moving(self.now):
-                return Wait("busy", axes=(op.axis,), retry=True)
-            self._home(op)
-        elif isinstance(op, ir.Stop):
-            for name in self._expand((op.axis,)):
-                self._stop_axis(self._axis(name), op.ramp, op)
-        elif isinstance(op, ir.SetPosition):
-            value = float(self._eval(op.value))
-            for name in self._expand((op.axis,)):
-                axis = self._axis(name)
-                machine_pos = axis.at(self.now) + axis.offset
-                self._cut(axis)
-                axis.position, axis.offset = value, machine_pos - value
-                self._sample_point(axis)
-                self._event(op, "set_position", axis=name, position=value)
-        elif isinstance(op, ir.WaitMotion):
-            axes = (op.axis,)
-            if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
-                return Wait("motion", axes=axes)
-        elif isinstance(op, ir.Delay):
-            seconds = float(self._eval(op.duration))
-            if seconds > 0:
-                self._schedule(self.now + seconds, "wake")
-                return Wait("delay", until=self.now + seconds)
-        elif isinstance(op, ir.SetOutput):
-            self._set_outputs(op)
-        elif isinstance(op, ir.WaitInput):
-            if not self._cond(op.cond):
-                return Wait("input", cond=op.cond)
-        elif isinstance(op, ir.Print):
-            text = "".join(self._text(item) for item in op.items) + ("\n" if op.newline else "")
-            self.trace.prints.append((self.now, text))
+        run = OP_METHODS.get(type(op))
+        return run(self, op) if run is not None else None  # Setting, Save: nothing to model
+
+    def _do_assign(self, op) -> Wait | None:
+        name = op.target.name
+        value = values.store(self._eval(op.value), self._type(name))
+        if self.vars.get(name) != value:
             self.changes += 1
-            self._event(op, "print", text=text)
-        elif isinstance(op, ir.DriveEnable):
-            on = 1 if self._eval(op.on) else 0
-            for name in self._expand((op.axis,)):
-                self._axis(name).enabled = on
-            self._event(op, "drive", axis=op.axis, on=on)
-        elif isinstance(op, ir.Call):
-            if op.cond is None or self._cond(op.cond):
-                routine = self._routine(op.routine)
-                self._event(op, "call", routine=routine.name)
-                self._push(routine)
-        elif isinstance(op, ir.SetHandler):
-            self._set_handler(op)
-        elif isinstance(op, ir.Native):
-            if op.mnemonic not in self.natives:
-                self.natives.add(op.mnemonic)
-                self.diags.add("S006", op.span or _file_span(self.module.path),
-                               f"{op.dialect} '{op.mnemonic}' has no neutral meaning; the simulator skips it")
-        # Setting and Save change nothing the simulator models
+        self.vars[name] = value
         return None
+
+    def _do_setmotion(self, op) -> Wait | None:
+        value = float(self._eval(op.value))
+        self.machine.set_motion(op.param, op.axis, value)
+        return None
+
+    def _do_move(self, op) -> Wait | None:
+        axes = tuple(a for a, _ in op.targets)
+        if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
+            return Wait("busy", axes=axes, retry=True)
+        self._move(op)
+        return None
+
+    def _do_arc(self, op) -> Wait | None:
+        if any(self._axis(a).moving(self.now) for a in op.axes):
+            return Wait("busy", axes=op.axes, retry=True)
+        self._arc(op)
+        return None
+
+    def _do_slew(self, op) -> Wait | None:
+        self._slew(op)
+        return None
+
+    def _do_home(self, op) -> Wait | None:
+        if self._axis(op.axis).moving(self.now):
+            return Wait("busy", axes=(op.axis,), retry=True)
+        self._home(op)
+        return None
+
+    def _do_stop(self, op) -> Wait | None:
+        for name in self._expand((op.axis,)):
+            self._stop_axis(self._axis(name), op.ramp, op)
+        return None
+
+    def _do_setposition(self, op) -> Wait | None:
+        value = float(self._eval(op.value))
+        for name in self._expand((op.axis,)):
+            axis = self._axis(name)
+            machine_pos = axis.at(self.now) + axis.offset
+            self._cut(axis)
+            axis.position, axis.offset = value, machine_pos - value
+            self._sample_point(axis)
+            self._event(op, "set_position", axis=name, position=value)
+        return None
+
+    def _do_waitmotion(self, op) -> Wait | None:
+        axes = (op.axis,)
+        if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
+            return Wait("motion", axes=axes)
+        return None
+
+    def _do_delay(self, op) -> Wait | None:
+        seconds = float(self._eval(op.duration))
+        if seconds > 0:
+            self._schedule(self.now + seconds, "wake")
+            return Wait("delay", until=self.now + seconds)
+        return None
+
+    def _do_setoutput(self, op) -> Wait | None:
+        self._set_outputs(op)
+        return None
+
+    def _do_waitinput(self, op) -> Wait | None:
+        if not self._cond(op.cond):
+            return Wait("input", cond=op.cond)
+        return None
+
+    def _do_print(self, op) -> Wait | None:
+        text = "".join(self._text(item) for item in op.items) + ("\n" if op.newline else "")
+        self.trace.prints.append((self.now, text))
+        self.changes += 1
+        self._event(op, "print", text=text)
+        return None
+
+    def _do_driveenable(self, op) -> Wait | None:
+        on = 1 if self._eval(op.on) else 0
+        for name in self._expand((op.axis,)):
+            self._axis(name).enabled = on
+        self._event(op, "drive", axis=op.axis, on=on)
+        return None
+
+    def _do_call(self, op) -> Wait | None:
+        if op.cond is None or self._cond(op.cond):
+            routine = self._routine(op.routine)
+            self._event(op, "call", routine=routine.name)
+            self._push(routine)
+        return None
+
+    def _do_sethandler(self, op) -> Wait | None:
+        self._set_handler(op)
+        return None
+
+    def _do_native(self, op) -> Wait | None:
+        if op.mnemonic not in self.natives:
+            self.natives.add(op.mnemonic)
+            self.diags.add("S006", op.span or _file_span(self.module.path),
+                           f"{op.dialect} '{op.mnemonic}' has no neutral meaning; the simulator skips it")
+        return None
+
 
     def _type(self, name: str) -> ir.VarType:
         variable = self.module.variables.get(name)
@@ -583,6 +624,20 @@ class Simulator:
                     self._schedule(max(t, self.now), "cross", (axis.name, motion.ident, key, where))
 
     def _watched(self, name: str) -> list[tuple[tuple, float]]:
+        fixed = self.fixed_watches.get(name)
+        if fixed is None:
+            fixed = self.fixed_watches[name] = self._fixed_watches(name)
+        out = list(fixed)
+        handler = self.handlers.get("position")
+        if handler is not None and handler.armed and handler.args and name == self._handler_axis():
+            try:
+                out.append((("handler", "position"), float(self._eval(handler.args[0]))))
+            except RuntimeFault:
+                pass
+        return out
+
+    def _fixed_watches(self, name: str) -> list[tuple[tuple, float]]:
+        """The scenario's positions on axis `name`: inputs set when it passes, limit switches."""
         out: list[tuple[tuple, float]] = []
         for n, event in enumerate(self.scenario.events):
             if event.at is None and event.axis == name:
@@ -592,12 +647,6 @@ class Simulator:
             out.append((("limit", "plus"), switches.limit_plus))
         if switches.limit_minus is not None:
             out.append((("limit", "minus"), switches.limit_minus))
-        handler = self.handlers.get("position")
-        if handler is not None and handler.armed and handler.args and name == self._handler_axis():
-            try:
-                out.append((("handler", "position"), float(self._eval(handler.args[0]))))
-            except RuntimeFault:
-                pass
         return out
 
     def _handler_axis(self) -> str:
@@ -677,23 +726,11 @@ class Simulator:
 
     def _sample_point(self, axis: Axis) -> None:
         if self.options.samples:
-            self.trace.samples.setdefault(axis.name, []).append((self.now, axis.at(self.now), 0.0))
+            self.trace.points.append((axis.name, self.now, axis.at(self.now)))
 
     def _sample_motion(self, axis: Axis, motion: Motion, until: float) -> None:
-        if not self.options.samples:
-            return
-        points = self.trace.samples.setdefault(axis.name, [])
-        name = axis.name
-        for seg in motion.segments:
-            if seg.t0 >= until:
-                break
-            end = min(seg.t1, until)
-            n = SAMPLES_PER_SEGMENT if seg.v0 != seg.v1 else 1
-            for k in range(n + 1):
-                t = seg.t0 + (end - seg.t0) * k / n
-                s = motion.distance(t)
-                pos = motion.path.at(s)[name]
-                points.append((t, pos, motion.speed(t) * motion.path.axis_rate(name, s)))
+        if self.options.samples:
+            self.trace.motion_log.append((axis.name, motion, until))
 
     # -- inputs, outputs, handlers ---------------------------------------------------------------
 
@@ -904,6 +941,27 @@ class Simulator:
         self.trace.variables = {name: values.plain(v) for name, v in self.vars.items()}
         self.trace.events.append(Event(self.now, "stopped", None, {"stopped": self.trace.stopped,
                                                                      "reason": self.trace.reason}))
+
+
+OP_METHODS = {
+    ir.Assign: Simulator._do_assign,
+    ir.SetMotion: Simulator._do_setmotion,
+    ir.Move: Simulator._do_move,
+    ir.Arc: Simulator._do_arc,
+    ir.Slew: Simulator._do_slew,
+    ir.Home: Simulator._do_home,
+    ir.Stop: Simulator._do_stop,
+    ir.SetPosition: Simulator._do_setposition,
+    ir.WaitMotion: Simulator._do_waitmotion,
+    ir.Delay: Simulator._do_delay,
+    ir.SetOutput: Simulator._do_setoutput,
+    ir.WaitInput: Simulator._do_waitinput,
+    ir.Print: Simulator._do_print,
+    ir.DriveEnable: Simulator._do_driveenable,
+    ir.Call: Simulator._do_call,
+    ir.SetHandler: Simulator._do_sethandler,
+    ir.Native: Simulator._do_native,
+}
 
 
 def _round(value: float) -> float:

@@ -43,6 +43,7 @@ class Axis:
     fault: int = 0
     enabled: int = 1
     on_end: str = ""  # "home": the position becomes 0 when the motion ends
+    cached: Limits | None = None  # the limits in force, until a setting changes
 
     def at(self, t: float) -> float:
         if self.motion is None:
@@ -67,6 +68,11 @@ class Axis:
         return fallback["defaults"].get(param, 0.0)
 
     def limits(self, fallback: dict[str, dict[MotionParam, float]]) -> Limits:
+        if self.cached is None:
+            self.cached = self._limits(fallback)
+        return self.cached
+
+    def _limits(self, fallback: dict[str, dict[MotionParam, float]]) -> Limits:
         get = lambda p: self.setting(p, fallback)  # noqa: E731
         initial, maximum = get(MotionParam.INITIAL_SPEED), get(MotionParam.MAX_SPEED)
         accel, decel = get(MotionParam.ACCEL), get(MotionParam.DECEL)
@@ -96,6 +102,8 @@ class Machine:
         return found
 
     def set_motion(self, param: MotionParam, axis: str, value: float) -> None:
+        for each in self.axes.values():
+            each.cached = None
         targets = [self.axis(axis)] if axis != "*" else list(self.axes.values())
         if axis == "*":
             self.shared["*"][param] = value

@@ -39,7 +39,7 @@ def plot(trace: Trace, out: str) -> None:
             _mark_events(cell, trace)
     for cell in rows[-1]:
         cell.set_xlabel("time (s)")
-    title = f"{trace.path or 'program'} ({trace.dialect}): stopped: {trace.stopped} at {trace.time:g} s"
+    title = f"{trace.path or 'program'} ({trace.dialect}): stopped: {trace.stopped} at {trace.time:.3f} s"
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     fig.savefig(out, format="svg" if out.lower().endswith(".svg") else "png", dpi=100,

@@ -56,9 +56,28 @@ class Trace:
     variables: dict[str, int | float] = field(default_factory=dict)
     events: list[Event] = field(default_factory=list)
     prints: list[tuple[float, str]] = field(default_factory=list)
-    # sampled motion per axis: (t, position in steps, signed speed in steps/s)
-    samples: dict[str, list[tuple[float, float, float]]] = field(default_factory=dict)
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    # what the axes did, recorded cheaply while running: (axis, motion, until) and (axis, t, position)
+    motion_log: list[tuple[str, Any, float]] = field(default_factory=list)
+    points: list[tuple[str, float, float]] = field(default_factory=list)
+    _samples: dict | None = None
+
+    @property
+    def samples(self) -> dict[str, list[tuple[float, float, float]]]:
+        """Sampled motion per axis: (t, position in steps, signed speed in steps/s), by time.
+
+        Computed on first use from the motions the run recorded, so a run that nobody plots or
+        writes out does not pay for it."""
+        if self._samples is None:
+            out: dict[str, list[tuple[float, float, float]]] = {}
+            for axis, motion, until in self.motion_log:
+                out.setdefault(axis, []).extend(sample_motion(axis, motion, until))
+            for axis, t, pos in self.points:
+                out.setdefault(axis, []).append((t, pos, 0.0))
+            for points in out.values():
+                points.sort(key=lambda p: p[0])
+            self._samples = out
+        return self._samples
 
     def to_json(self, motion: bool = False) -> dict[str, Any]:
         """The file entry of `mcc sim --format json` (and, with motion, of `--trace x.json`)."""
@@ -79,6 +98,30 @@ class Trace:
             out["motion"] = {axis: [[round(t, 6), _num(p), round(v, 6)] for t, p, v in points]
                              for axis, points in sorted(self.samples.items())}
         return out
+
+
+SAMPLES_PER_RAMP = 6
+
+
+def sample_motion(axis: str, motion, until: float) -> list[tuple[float, float, float]]:
+    """Points of one axis along a motion up to `until`: the ends of each segment, and
+    SAMPLES_PER_RAMP steps inside each ramp (a cruise is a straight line)."""
+    path = motion.path
+    if not motion.segments:
+        return []
+    out = [(motion.segments[0].t0, path.at(motion.segments[0].s0)[axis], 0.0)]  # at rest before it starts
+    for seg in motion.segments:
+        if seg.t0 >= until:
+            break
+        end = min(seg.t1, until)
+        n = SAMPLES_PER_RAMP if seg.v0 != seg.v1 else 1
+        for k in range(n + 1):
+            t = seg.t0 + (end - seg.t0) * k / n
+            s = seg.distance(t)
+            out.append((t, path.at(s)[axis], seg.speed(t) * path.axis_rate(axis, s)))
+    last_t, last_pos, _ = out[-1]
+    out.append((last_t, last_pos, 0.0))  # at rest once it ends (a step from the initial speed), or is cut
+    return out
 
 
 def _num(value: float) -> int | float:

@@ -254,3 +254,12 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
     except ContractError as exc:
         return f"cannot verify: {exc} (the frontend does not keep the IR contract yet)"
     return str(found) if found is not None else ""
+
+
+def explain(problem: str) -> str:
+    """A `check_translation` answer as a sentence for the user: a divergence, or why none could be
+    looked for (either way nothing is written)."""
+    if problem.startswith(("cannot verify", "the source has errors", "the written program has errors")):
+        return f"cannot check the new program: {problem}"
+    return f"the new program does not behave like the original: {problem}"
+

@@ -131,13 +131,12 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
 
 def _diverges(outcome: Outcome, before: str) -> bool:
     """--verify: add S010 and answer True when the fixed text does not behave like the original."""
-    from mcc.sim.verify import check_translation
+    from mcc.sim.verify import check_translation, explain
 
     problem = check_translation(outcome.path, outcome.dialect, before, outcome.text or "")
     if problem:
         diags = Diagnostics(outcome.diagnostics)
-        diags.add("S010", driver.file_span(outcome.path),
-                  f"--verify: the fixed program would not behave like the original: {problem}; nothing was written")
+        diags.add("S010", driver.file_span(outcome.path), f"--verify: {explain(problem)}; nothing was written")
         outcome.diagnostics = diags.items
     return bool(problem)
 

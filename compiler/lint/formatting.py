@@ -93,8 +93,7 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
         if options.diff:
             outcome.diff = unified_diff(path, original.text, text)
         elif options.verify and (problem := _simulated_difference(path, found.name, original.text, text)):
-            outcome.error = f"--verify: the formatted program would not behave like the original ({problem}); " \
-                            "the file was left unchanged"
+            outcome.error = f"--verify: {problem}; the file was left unchanged"
         elif not options.check:
             files.write_atomic(path, text, original)
             outcome.written = True
@@ -102,6 +101,7 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
 
 
 def _simulated_difference(path: str, dialect: str, before: str, after: str) -> str:
-    from mcc.sim.verify import check_translation
+    from mcc.sim.verify import check_translation, explain
 
-    return check_translation(path, dialect, before, after)
+    problem = check_translation(path, dialect, before, after)
+    return explain(problem) if problem else ""

@@ -257,3 +257,13 @@ def test_a_call_to_an_external_routine_stops_with_s005():
     m.externals.append("SEQ5")
     trace = simulate(m)
     assert trace.stopped == "error" and trace.diagnostics[0].code == "S005"
+
+
+def test_the_documentation_demo_runs_three_cycles():
+    from mcc.sim import demo
+
+    trace = simulate(demo.program(), demo.scenario(), Options(until=30))
+    assert trace.stopped == "end" and trace.variables["V1"] == 3
+    assert trace.time == pytest.approx(8.5, abs=0.01)
+    assert [e.data["value"] for e in kinds(trace, "output")] == [1, 0] * 3
+    assert trace.prints[-1][1] == "cycles: 3\n"
