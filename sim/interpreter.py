@@ -34,6 +34,8 @@ DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": i
 DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
 # Events that make a handler fire once and disarm (MCode trips are one-shot until re-armed).
 ONE_SHOT_DIALECTS = {"mcode"}
+CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
+QUIET_KINDS = frozenset({"call", "return", "goto"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 
 
@@ -145,6 +147,8 @@ class Simulator:
         self.changes = 0  # bumped by anything a polling loop could be waiting for
         self.natives: set[str] = set()
         self.fixed_watches: dict[str, list] = {}
+        self.read_continuous = False  # the running stretch read something that changes with time
+        self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
         self.polling = False
         self.poll_changes = 0
         self.poll_steps = 0
@@ -180,7 +184,7 @@ class Simulator:
                 self.stack.append(Frame(routine, routine.entry))
 
     def _entry(self) -> ir.Routine | None:
-        for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP):
+        for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP, ir.RoutineKind.IMMEDIATE):
             for routine in self.module.routines:
                 if routine.kind is kind and routine.blocks:
                     return routine
@@ -196,8 +200,10 @@ class Simulator:
             nxt = self._next_event_time()
             if wait is not None and wait.kind == "poll":
                 moving = any(a.moving(self.now) for a in self.machine.axes.values())
-                if moving:
+                if moving and self.read_continuous:  # it reads a position, a speed or a timer
                     nxt = min(nxt, self.now + self.options.poll)
+                elif nxt == INF and moving:  # an axis slews on while the loop sees nothing new
+                    nxt = self.options.until + 1
                 elif nxt == INF:
                     raise Stop("waiting", "the program polls in a loop for a change the scenario never "
                                           f"makes (at line {self._line_now()})")
@@ -270,6 +276,7 @@ class Simulator:
     def _execute(self) -> None:
         """Run the top frame until it waits or the program ends."""
         quiet, last_changes = 0, self.changes
+        self.read_continuous = False
         # back from a poll with nothing changed: the loop is still polling, so recognise it sooner
         # and do not count its steps against the step limit (it is waiting, not running away)
         polling = self.polling and self.changes == self.poll_changes
@@ -315,6 +322,7 @@ class Simulator:
                 self._fire_pending()
             if self.changes != last_changes:
                 quiet, last_changes = 0, self.changes
+                self.read_continuous = False
                 polling, threshold = False, self.options.spin
             else:
                 quiet += 1
@@ -346,7 +354,6 @@ class Simulator:
         elif isinstance(term, ir.GotoRoutine):
             routine = self._routine(term.routine)
             frame.routine, frame.block, frame.index = routine, routine.entry, 0
-            self.changes += 1
             self._event(term, "goto", routine=routine.name)
         else:  # End, FallOff of the main program, or no terminator
             self.stack.clear()
@@ -364,7 +371,6 @@ class Simulator:
             raise RuntimeFault("S003", f"stack overflow: calling '{routine.name}' would nest more than "
                                        f"{self.nesting} calls deep", kind="fatal")
         self.stack.append(Frame(routine, routine.entry, handler=handler))
-        self.changes += 1
 
     def _fault(self, fault: RuntimeFault, item) -> None:
         span = getattr(item, "span", None)
@@ -554,6 +560,10 @@ class Simulator:
         lim = axis.limits(self.machine.shared)
         velocity = float(self._eval(op.velocity)) if op.velocity is not None else op.direction * lim.maximum
         current = axis.speed(self.now)
+        # the same slew again (a loop that keeps commanding it) changes nothing: no event, so a
+        # loop doing only that is recognised as polling and time can pass
+        if velocity == self.slewing.get(op.axis, 0.0 if not axis.moving(self.now) else None):
+            return
         self._event(op, "slew", axis=op.axis, velocity=velocity)
         start = axis.at(self.now)
         self._cut(axis)
@@ -570,6 +580,7 @@ class Simulator:
             return
         path = Path({op.axis: start}, length, {op.axis: direction})
         self._install(op, path, segments, None)
+        self.slewing[op.axis] = velocity
 
     def _home(self, op: ir.Home) -> None:
         axis = self._axis(op.axis)
@@ -600,6 +611,7 @@ class Simulator:
         self.changes += 1
         names = list(path.start)
         for name in names:
+            self.slewing.pop(name, None)
             axis = self._axis(name)
             axis.motion = motion
             axis.on_end = ""
@@ -702,6 +714,7 @@ class Simulator:
                 other.position = motion.positions(self.now)[name]
                 other.motion = None
                 other.on_end = ""
+                self.slewing.pop(name, None)
 
     def _stop_axis(self, axis: Axis, ramp: bool, op, record: bool = True) -> None:
         if record:
@@ -875,8 +888,11 @@ class Simulator:
         if meaning == "analog":
             return m.analog.get(index or 0, 0)
         if meaning == "timer":
+            self.read_continuous = True
             return self.now
         axis = self._axis(status.axis or self._handler_axis())
+        if meaning in CONTINUOUS:
+            self.read_continuous = True
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
         if meaning == "velocity":
@@ -928,6 +944,8 @@ class Simulator:
     # -- the trace -------------------------------------------------------------------------------
 
     def _event(self, item, kind: str, **data) -> None:
+        if self.polling and kind in QUIET_KINDS:
+            return  # a polling loop's calls and returns would fill the trace with nothing new
         self.trace.events.append(Event(self.now, kind, _line(getattr(item, "span", None)), data))
 
     def _finish(self) -> None:

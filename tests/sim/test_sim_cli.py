@@ -173,3 +173,16 @@ def test_time_and_position_tolerances():
     late = compare_traces(trace(10.0, 4000), trace(10.5, 4000))
     assert late is not None and "10.500 s in the output" in late.message
     assert compare_traces(trace(10.0, 4000), trace(10.0, 4002)) is not None
+
+
+def test_the_readme_plot_command_places_two_parts(mcc, tmp_path):
+    from conftest import ROOT
+
+    sample = ROOT / "samples" / "mcode" / "pick_and_place.mxt"
+    contract_kept(sample)
+    out = mcc("sim", str(sample), "--inputs", str(ROOT / "docs" / "examples" / "pick_and_place.toml"),
+              "--format", "json")
+    entry = json.loads(out.stdout)["files"][0]
+    assert [e["text"] for e in entry["events"] if e["kind"] == "print"] == ["Parts placed: 1\n",
+                                                                            "Parts placed: 2\n"]
+    assert entry["stopped"] == "waiting" and entry["axes"]["1"]["position"] == 0
