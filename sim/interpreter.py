@@ -350,7 +350,8 @@ class Simulator:
             frame.block, frame.index = self.block_of[target], 0
         elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):
             self.stack.pop()
-            self._event(term, "return", routine=frame.routine.name)
+            if frame.routine.kind is not ir.RoutineKind.IMMEDIATE:
+                self._event(term, "return", routine=frame.routine.name)
         elif isinstance(term, ir.GotoRoutine):
             routine = self._routine(term.routine)
             frame.routine, frame.block, frame.index = routine, routine.entry, 0

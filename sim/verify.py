@@ -260,6 +260,6 @@ def explain(problem: str) -> str:
     """A `check_translation` answer as a sentence for the user: a divergence, or why none could be
     looked for (either way nothing is written)."""
     if problem.startswith(("cannot verify", "the source has errors", "the written program has errors")):
-        return f"cannot check the new program: {problem}"
+        return f"cannot check the new program: {problem.removeprefix('cannot verify: ')}"
     return f"the new program does not behave like the original: {problem}"
 
