@@ -7,8 +7,8 @@ two-axis interpolated move, wait, output on, a 0.2 s delay, a relative move back
 that counts parts, output off, a check of an input (set by the scenario every 30 s) and a
 polling-free wait. The run stops at the time limit. Reported: virtual time / wall time (the
 target is at least 10,000x), operations per second, trace size, and the peak memory the run
-allocated (tracemalloc, measured in a separate run so it does not slow the timed one). The figure
-is the best of R runs.
+allocated (tracemalloc, measured in a separate run so it does not slow the timed one). The figures
+are the best of R runs; the CPU time is shown too, since a loaded machine stretches wall time.
 """
 
 from __future__ import annotations
@@ -70,12 +70,13 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     virtual = args.hours * 3600
-    best = float("inf")
+    best = best_cpu = float("inf")
     trace = None
     for _ in range(args.repeat):
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.process_time()
         trace = run(args.hours, samples=True)
         best = min(best, time.perf_counter() - start)
+        best_cpu = min(best_cpu, time.process_time() - start_cpu)
     assert trace is not None and trace.stopped == "time-limit", trace.reason
     tracemalloc.start()
     run(args.hours, samples=True)
@@ -85,6 +86,8 @@ def main() -> None:
     print(f"virtual time      {virtual:,.0f} s ({args.hours:g} h), stopped: {trace.stopped}")
     print(f"wall time         {best:.3f} s (best of {args.repeat})")
     print(f"speed             {virtual / best:,.0f}x virtual/wall (target >= 10,000x)")
+    print(f"cpu time          {best_cpu:.3f} s: {virtual / best_cpu:,.0f}x virtual/cpu (what a quiet machine's "
+          "wall time approaches)")
     print(f"operations        {trace.steps:,} ({trace.steps / best:,.0f} per second)")
     print(f"cycles            {trace.variables.get('V1', 0):,}")
     print(f"trace             {len(trace.events):,} events, {points:,} motion samples")

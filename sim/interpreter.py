@@ -509,7 +509,8 @@ class Simulator:
         return self.default_type
 
     def _axis(self, name: str) -> Axis:
-        return self.machine.axis(name)
+        found = self.machine.axes.get(name)
+        return found if found is not None else self.machine.axis(name)
 
     def _expand(self, axes) -> list[str]:
         out: list[str] = []

@@ -120,14 +120,12 @@ class Motion:
     path: Path
     segments: list[Segment]
     target: dict[str, float] | None = None  # exact end positions (no rounding drift)
+    t0: float = field(init=False, default=0.0)
+    t_end: float = field(init=False, default=0.0)  # asked often (is the axis moving?): computed once
 
-    @property
-    def t0(self) -> float:
-        return self.segments[0].t0 if self.segments else 0.0
-
-    @property
-    def t_end(self) -> float:
-        return self.segments[-1].t1 if self.segments else 0.0
+    def __post_init__(self) -> None:
+        if self.segments:
+            self.t0, self.t_end = self.segments[0].t0, self.segments[-1].t1
 
     def segment_at(self, t: float) -> Segment:
         for seg in self.segments:
