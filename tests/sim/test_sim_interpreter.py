@@ -267,3 +267,27 @@ def test_the_documentation_demo_runs_three_cycles():
     assert trace.time == pytest.approx(8.5, abs=0.01)
     assert [e.data["value"] for e in kinds(trace, "output")] == [1, 0] * 3
     assert trace.prints[-1][1] == "cycles: 3\n"
+
+
+def test_the_nesting_limit_comes_from_the_profile():
+    from mcc.compiler.profiles import Profile
+
+    profile = Profile("tiny", "arcus", "test", data={"limits": {"nesting": 3}})
+    recurse = sub("S1", [ir.Call("S1")])
+    trace = simulate(module([ir.Call("S1")], routines=(recurse,)), profile=profile)
+    assert trace.stopped == "error" and "3 calls deep" in trace.reason
+
+
+def test_a_loop_that_keeps_commanding_the_same_slew_lets_time_pass():
+    # like MCode's analog speed sample: the loop re-commands the slew and reads an input
+    loop = ("l", [ir.Slew("X", ir.Const(500, U.STEPS_PER_S)), ir.Call("S1")],
+            ir.Branch(eq(inp(3), 1), "done", "l"))
+    done = ("done", [ir.Stop("X", True), ir.WaitMotion("X")], ir.End())
+    s1 = sub("S1", [ir.Assign(ir.Var("V1"), c(7))])
+    trace = simulate(module(loop, done, routines=(s1,)), Scenario(events=[InputEvent(3, 1, at=4.0)]))
+    assert trace.stopped == "end"
+    # the default deceleration is 10 rev/s² = 40,000 steps/s² at 4000 steps/rev: 500 steps/s stop in 0.0125 s
+    assert trace.time == pytest.approx(4.0125)
+    assert len(kinds(trace, "slew")) == 1
+    without_input = simulate(module(loop, done, routines=(s1,)), options=Options(until=20))
+    assert without_input.stopped == "time-limit" and without_input.axes["X"] > 9000
