@@ -17,8 +17,7 @@ from __future__ import annotations
 
 import heapq
 import math
-from dataclasses import dataclass, field
-from decimal import Decimal
+from dataclasses import dataclass
 
 from mcc.compiler import ir, ir_verify
 from mcc.compiler.diagnostics import Diagnostics
@@ -195,6 +194,7 @@ class Simulator:
             self._fire_pending()
             self._execute()
             if not self.stack:
+                self._settle()
                 raise Stop("end", "the program ended")
             wait = self.stack[-1].wait
             nxt = self._next_event_time()
@@ -215,6 +215,18 @@ class Simulator:
                 raise Stop("time-limit", f"the time limit of {self.options.until:g} s was reached")
             self.now = nxt
             self._process_events()
+
+    def _settle(self) -> None:
+        """After the program ends, moves still running finish (the machine does not stop with the
+        program); a slew, which never ends, is left where it is."""
+        ends = [a.motion.t_end for a in self.machine.axes.values()
+                if a.motion is not None and a.motion.t_end != INF and a.motion.t_end > self.now]
+        last = min(max(ends, default=self.now), self.options.until)
+        self.pending.clear()
+        while self._next_event_time() <= last:
+            self.now = max(self.now, self.queue[0].t)
+            self._process_events()
+            self.pending.clear()  # no program is left to run a handler
 
     def _waiting_reason(self, wait: Wait | None) -> str:
         line = wait.line if wait is not None and wait.line is not None else self._line_now()
@@ -1010,4 +1022,4 @@ def simulate(module: ir.Module, scenario: Scenario | None = None, options: Optio
     return Simulator(module, scenario, options, profile).run()
 
 
-__all__ = ["ContractError", "Options", "Simulator", "simulate", "Decimal"]
+__all__ = ["ContractError", "Options", "Simulator", "simulate"]

@@ -291,3 +291,8 @@ def test_a_loop_that_keeps_commanding_the_same_slew_lets_time_pass():
     assert len(kinds(trace, "slew")) == 1
     without_input = simulate(module(loop, done, routines=(s1,)), options=Options(until=20))
     assert without_input.stopped == "time-limit" and without_input.axes["X"] > 9000
+
+
+def test_moves_still_running_when_the_program_ends_finish():
+    trace = simulate(module([speed("X", 1000), *accel("X", 1e9), move("X", 3000), ir.SetOutput(1, c(1))]))
+    assert trace.stopped == "end" and trace.time == pytest.approx(3.0) and trace.axes["X"] == 3000
