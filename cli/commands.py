@@ -142,8 +142,13 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("--overwrite-input", is_flag=True,
               help="Allow -o or --listing to replace a file this run reads (FILE itself or the --profile file); "
                    "refused by default, so that a slip never replaces the source with the compiled text.")
+@click.option("--verify", is_flag=True,
+              help="Simulate the source and the compiled program and write nothing if they behave differently.")
+@click.option("--inputs", "inputs", multiple=True, type=click.Path(exists=True, dir_okay=False),
+              metavar="SCENARIO.toml", help="Scenarios for --verify (repeatable; default: every input read both ways).")
 def compile_cmd(file: str, target: str | None, dialect: str | None, output: str | None, listing: str | None,
-                fmt: str, profile: str | None, opt_level: str, passes: str | None, overwrite_input: bool) -> None:
+                fmt: str, profile: str | None, opt_level: str, passes: str | None, overwrite_input: bool,
+                verify: bool, inputs: tuple[str, ...]) -> None:
     """Compile FILE into a device-ready program.
 
     The program is checked first; nothing is written when it has errors. The output passes
@@ -154,6 +159,7 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
       mcc compile samples/mcode/pick_and_place.mxt
       mcc compile program.prg -o build/program.prg --listing build/program.lst
       mcc compile program.mxt --format json -o out.mxt
+      mcc compile program.prg --target mcode --verify -o program.mxt
     """
     from mcc.compiler import driver
 
@@ -169,6 +175,10 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes)
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
+    if produced and verify:
+        from mcc.cli.sim import verify_result
+
+        produced = verify_result(result, result.analysis.module, result.listing.text, result.target, prof, inputs)
     write_failed = False
     if produced and (output or listing):
         write_failed = not write_outputs(result, output, listing)
@@ -278,8 +288,9 @@ def profiles() -> None:
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
 
-# `mcc lint`, `mcc fmt`, `mcc ir` and `mcc lsp` register themselves on `cli` (cli/lint.py, cli/ir.py,
-# cli/lsp.py), imported last because they use `cli`.
+# `mcc lint`, `mcc fmt`, `mcc ir`, `mcc lsp` and `mcc sim` register themselves on `cli` (cli/lint.py,
+# cli/ir.py, cli/lsp.py, cli/sim.py), imported last because they use `cli`.
 from mcc.cli import lint as _lint  # noqa: E402,F401
 from mcc.cli import ir as _ir  # noqa: E402,F401
 from mcc.cli import lsp as _lsp  # noqa: E402,F401
+from mcc.cli import sim as _sim  # noqa: E402,F401

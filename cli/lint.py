@@ -103,12 +103,14 @@ def common_options(func):
 @click.option("--fix", is_flag=True, help="Apply the safe fixes and report what remains.")
 @click.option("--unsafe-fixes", is_flag=True, help="Also apply (or show) fixes that may change behaviour.")
 @click.option("--diff", is_flag=True, help="Show the fixes as a unified diff; write nothing.")
+@click.option("--verify", is_flag=True, help="With --fix: simulate each file before and after its fixes and "
+                                             "leave it unchanged (S010) if they behave differently.")
 @click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
 @click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
               help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
 @common_options
-def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, statistics, fail_on, exit_zero,
+def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, verify, statistics, fail_on, exit_zero,
          dialect, config, isolated, profile, jobs) -> None:
     """Check PATHS (files or directories; default: the current directory) with every check and lint rule.
 
@@ -128,7 +130,7 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, sta
     resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
     targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
-    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect)
+    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
     outcomes = config_outcomes(resolver) + sorted(outcomes, key=lambda o: o.path)
     if diff:
@@ -210,8 +212,10 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
 @click.argument("paths", nargs=-1, type=click.Path(exists=True), callback=regular_files)
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 and list the files that would change.")
 @click.option("--diff", is_flag=True, help="Write nothing; print the changes as a unified diff (exit 1 if any).")
+@click.option("--verify", is_flag=True, help="Also simulate each file before and after formatting and leave it "
+                                             "unchanged if they behave differently.")
 @common_options
-def fmt(paths, check, diff, dialect, config, isolated, profile, jobs) -> None:
+def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs) -> None:
     """Rewrite PATHS (files or directories; default: the current directory) in the canonical style
     of their dialect.
 
@@ -230,7 +234,7 @@ def fmt(paths, check, diff, dialect, config, isolated, profile, jobs) -> None:
     resolver = make_resolver(config, isolated, (), (), (), profile, None)
     targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
-    options = formatting.Options(check=check, diff=diff, dialect=dialect)
+    options = formatting.Options(check=check, diff=diff, dialect=dialect, verify=verify)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "formatting"),
                           func=formatting.format_file)
     outcomes.sort(key=lambda o: o.path)

@@ -268,10 +268,32 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)
         result.listing = listing
+        if result.target != result.dialect and not diags.has_errors:
+            verify_translation(result, target_profile, diags)
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, path, exc, f"generating {result.target} code")
     result.diagnostics = diags.items
     return result
+
+
+def verify_translation(result: FileResult, target_profile: Profile, diags: Diagnostics) -> None:
+    """Cross-dialect output is always simulated against its source (docs/SIMULATOR.md): a
+    conversion that the simulator finds behaving differently is an error (S010) naming the first
+    divergence, so nothing is written; conversion never exits 0 with a program that does something
+    else."""
+    import re
+
+    from mcc.sim.verify import check_translation, explain
+
+    problem = check_translation(result.path, result.dialect, result.analysis.module, result.listing.text,
+                                result.target, target_profile, None)
+    if not problem:
+        return
+    found = re.match(r"line (\d+), ", problem)
+    line = int(found.group(1)) if found else 1
+    diags.add("S010", Span(result.path, line, 1, line, 2),
+              f"the {result.target} program does not behave like the source: {explain(problem)}; nothing was "
+              "written (compile to the source dialect, or set what the output needs explicitly in the source)")
 
 
 def generate(module: ir.Module, target: dialects.Dialect, profile: Profile, level: str, passes: str | None):

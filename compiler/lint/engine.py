@@ -34,6 +34,7 @@ class Options:
     diff: bool = False
     unsafe_fixes: bool = False
     dialect: str | None = None
+    verify: bool = False  # simulate before and after the fixes; write nothing if they differ
 
 
 @dataclass
@@ -154,6 +155,8 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
     if text != original.text:
         if options.diff:
             outcome.diff = fixes.unified_diff(path, original.text, text)
+        elif options.fix and options.verify and _diverges(outcome, original.text):
+            pass  # S010 is reported; the file is left as it was
         elif options.fix:
             try:
                 files.write_atomic(path, text, original)
@@ -182,6 +185,18 @@ def fix_text(path: str, text: str, diags: list[Diagnostic], settings: Settings, 
         return fixes.Version(path, new_text, options.dialect, profile)
 
     return fixes.fix_until_stable(text, diags, relint, make, options.unsafe_fixes)
+
+
+def _diverges(outcome: Outcome, before: str) -> bool:
+    """--verify: add S010 and answer True when the fixed text does not behave like the original."""
+    from mcc.sim.verify import check_translation, explain
+
+    problem = check_translation(outcome.path, outcome.dialect, before, outcome.text or "")
+    if problem:
+        diags = Diagnostics(outcome.diagnostics)
+        diags.add("S010", driver.file_span(outcome.path), f"--verify: {explain(problem)}; nothing was written")
+        outcome.diagnostics = diags.items
+    return bool(problem)
 
 
 # many files ----------------------------------------------------------------------------------------

@@ -24,6 +24,7 @@ class Options:
     check: bool = False  # report files that would change, write nothing
     diff: bool = False  # print the change, write nothing
     dialect: str | None = None
+    verify: bool = False  # also simulate before and after; write nothing if they behave differently
 
 
 @dataclass
@@ -128,6 +129,8 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
     if outcome.changed:
         if options.diff:
             outcome.diff = unified_diff(path, original.text, text)
+        elif options.verify and (problem := _simulated_difference(path, found.name, original.text, text)):
+            outcome.error = f"--verify: {problem}; the file was left unchanged"
         elif not options.check:
             try:
                 files.write_atomic(path, text, original)
@@ -136,3 +139,10 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
                 outcome.error = f"cannot write {path}: {exc.strerror or exc}; the file was left unchanged"
                 outcome.write_error = True
     return outcome
+
+
+def _simulated_difference(path: str, dialect: str, before: str, after: str) -> str:
+    from mcc.sim.verify import check_translation, explain
+
+    problem = check_translation(path, dialect, before, after)
+    return explain(problem) if problem else ""

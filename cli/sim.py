@@ -1,0 +1,216 @@
+"""`mcc sim`: run a program on a virtual machine and show what it does (docs/SIMULATOR.md)."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from mcc.cli.commands import DIALECT_NAMES, check_profile_dialect, cli, load_profile, use_color
+from mcc.cli.main import EXIT_ERRORS, EXIT_OK
+
+SIM_FORMATS = ["text", "json", "csv"]
+TIMELINE_MAX = 200  # events shown in the text timeline (the JSON has them all)
+
+
+def load_scenario(path: str | None):
+    """The --inputs option: a scenario TOML file (usage error when it is malformed)."""
+    if not path:
+        return None
+    from mcc.sim import scenario
+
+    try:
+        return scenario.load(path)
+    except scenario.ScenarioError as exc:
+        raise click.BadParameter(str(exc), param_hint="--inputs") from None
+
+
+@cli.command(name="sim")
+@click.argument("file", type=click.Path(exists=True, dir_okay=False))
+@click.option("--inputs", "inputs", type=click.Path(exists=True, dir_okay=False), metavar="SCENARIO.toml",
+              help="What the world does while the program runs: input levels over time, inputs set when an "
+                   "axis passes a position, home and limit switches (format: docs/SIMULATOR.md).")
+@click.option("--until", type=click.FloatRange(min=0), metavar="SECONDS",
+              help="Stop after this much virtual time (default: the scenario's `until`, else 60).")
+@click.option("--max-steps", type=click.IntRange(min=1), default=1_000_000, show_default=True,
+              help="Stop after this many executed operations (catches loops that never wait).")
+@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension).")
+@click.option("--profile", help="Target profile: a built-in name or a path to a TOML file.")
+@click.option("--format", "fmt", type=click.Choice(SIM_FORMATS), default="text", show_default=True,
+              help="text: a summary and a timeline; json: the run as one JSON object; csv: the trace as CSV.")
+@click.option("--trace", "trace_out", type=click.Path(dir_okay=False), metavar="OUT",
+              help="Also write the full trace (events and sampled motion): CSV if OUT ends in .csv, else JSON.")
+@click.option("--plot", "plot_out", type=click.Path(dir_okay=False), metavar="OUT.png|OUT.svg",
+              help="Draw position and speed against time per axis (needs `pip install 'mcc[plot]'`).")
+def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, dialect: str | None,
+            profile: str | None, fmt: str, trace_out: str | None, plot_out: str | None) -> None:
+    """Run FILE on a virtual machine and report what it does.
+
+    The simulator interprets the program's IR in virtual time: moves follow trapezoidal or S-curve
+    profiles, inputs change as the scenario says, and nothing waits in real time. A run stops at
+    the program's end, at the time or step limit, when the program waits for something the
+    scenario never does ("waiting"), or on a runtime error (division by zero, stack overflow, a
+    limit switch hit), which is reported with its source line.
+
+    \b
+    Examples:
+      mcc sim program.prg
+      mcc sim program.mxt --inputs start_button.toml --until 30
+      mcc sim program.x150 --format json --trace run.csv --plot run.png
+
+    Exit codes: 0 the program ran (to its end, a limit, or a wait), 1 errors (in the program or at
+    run time), 2 usage error.
+    """
+    from mcc.cli import render
+    from mcc.sim import Options
+    from mcc.sim.files import simulate_file
+
+    prof = load_profile(profile)
+    scen = load_scenario(inputs)
+    if plot_out and not _has_matplotlib():
+        from mcc.sim.plot import INSTALL_HINT
+
+        raise click.UsageError(INSTALL_HINT)
+    limit = until if until is not None else (scen.until if scen is not None and scen.until is not None else 60.0)
+    options = Options(until=limit, max_steps=max_steps)
+    done = simulate_file(file, dialect, prof, scen, options)
+    check_profile_dialect(prof, {done.result.dialect})
+    result, trace = done.result, done.trace
+    failed = result.has_errors
+
+    if trace is not None:
+        from mcc.sim import trace as trace_mod
+
+        if trace_out:
+            text = trace_mod.to_csv_text([trace]) if trace_out.lower().endswith(".csv") \
+                else trace_mod.to_json_text([trace])
+            _write(trace_out, text)
+        if plot_out:
+            from mcc.sim.plot import plot
+
+            plot(trace, plot_out)
+
+    if fmt == "json":
+        if trace is not None:
+            entry = trace.to_json()
+        else:  # the program could not run: the same shape, stopped with "error" before it started
+            entry = {"path": result.path, "dialect": result.dialect, "stopped": "error",
+                     "reason": "the program was not simulated (see diagnostics)", "time": 0, "steps": 0,
+                     "axes": {}, "outputs": {}, "variables": {}, "events": []}
+        entry["diagnostics"] = [d.to_json() for d in sorted(result.diagnostics, key=lambda d: d.sort_key())]
+        click.echo(render.dump_json({"files": [entry]}))
+    elif fmt == "csv" and trace is not None:
+        from mcc.sim import trace as trace_mod
+
+        sys.stdout.write(trace_mod.to_csv_text([trace]))
+        _diagnostics(result, sys.stderr)
+    else:
+        _diagnostics(result, sys.stderr if fmt == "csv" else sys.stdout)
+        if trace is not None and fmt == "text":
+            writer = render.TextWriter(sys.stdout, use_color(fmt))
+            for line, style in summary_lines(trace):
+                writer.line(line, style)
+    sys.exit(EXIT_ERRORS if failed else EXIT_OK)
+
+
+def _has_matplotlib() -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec("matplotlib") is not None
+
+
+def _write(path: str, text: str) -> None:
+    from mcc.compiler.lint.files import write_atomic
+
+    try:
+        write_atomic(path, text)
+    except OSError as exc:
+        raise click.FileError(path, hint=str(exc.strerror or exc)) from None
+
+
+def _diagnostics(result, stream) -> None:
+    from mcc.cli import render
+
+    writer = render.TextWriter(stream, stream.isatty() and use_color("text"))
+    diags = sorted(result.diagnostics, key=lambda d: d.sort_key())
+    render.write_text(writer, diags, {result.path: result.source} if result.source else {})
+
+
+def summary_lines(trace) -> list[tuple[str, str]]:
+    """The text report: why the run stopped, when, where the axes are, outputs, prints, timeline."""
+    out = [(f"{trace.path} ({trace.dialect}): stopped: {trace.stopped} at {trace.time:.3f} s after "
+            f"{trace.steps} steps: {trace.reason}", "bold")]
+    axes = ", ".join(f"{name}={_n(pos)}" for name, pos in sorted(trace.axes.items())) or "none"
+    out.append((f"  positions (steps): {axes}", ""))
+    on = ", ".join(f"{n}={v}" for n, v in sorted(trace.outputs.items())) or "none written"
+    out.append((f"  outputs: {on}", ""))
+    if trace.prints:
+        out.append(("  prints:", ""))
+        for t, text in trace.prints:
+            out.append((f"    {t:9.3f} s  {text.rstrip(chr(10))}", ""))
+    out.append(("timeline:", "bold"))
+    shown = [e for e in trace.events if e.kind != "stopped"]
+    for event in shown[:TIMELINE_MAX]:
+        where = f"L{event.line}" if event.line is not None else ""
+        out.append((f"  {event.t:9.3f} s  {where:6} {describe(event)}", ""))
+    if len(shown) > TIMELINE_MAX:
+        out.append((f"  ... {len(shown) - TIMELINE_MAX} more events (see --format json or --trace)", "dim"))
+    return out
+
+
+def describe(event) -> str:
+    d = event.data
+    kind = event.kind
+    if kind == "move":
+        moves = ", ".join(f"{a} {_n(d['from'].get(a, 0))} -> {_n(t)}" for a, t in d["to"].items())
+        return f"move {d['mode']}: {moves}"
+    if kind in ("move_end", "set_position"):
+        return f"{kind.replace('_', ' ')} {d['axis']} at {_n(d['position'])}"
+    if kind == "output":
+        return f"output {d['output']} = {d['value']}"
+    if kind == "input":
+        cause = f" (axis {d['axis']} passed {_n(d['passes'])})" if "passes" in d else ""
+        return f"input {d['input']} = {d['value']}{cause}"
+    if kind == "print":
+        return f"print {d['text'].rstrip(chr(10))!r}"
+    if kind == "error":
+        return f"error [{d['code']}] {d['message']}"
+    parts = " ".join(f"{k}={_n(v) if isinstance(v, float) else v}" for k, v in d.items())
+    return f"{kind.replace('_', ' ')} {parts}".rstrip()
+
+
+def _n(value) -> str:
+    value = float(value)
+    return str(int(value)) if value.is_integer() else f"{value:.3f}"
+
+
+def load_scenarios(paths) -> list | None:
+    """--inputs given to --verify (several allowed): None means the default scenarios."""
+    return [load_scenario(p) for p in paths] if paths else None
+
+
+def verify_result(result, before, after_text: str, after_dialect: str, profile, inputs) -> bool:
+    """`--verify` for compile, fmt and lint --fix: simulate the source and what would be written;
+    on a divergence add S010 to `result` and answer False (the caller then writes nothing)."""
+    from mcc.compiler.diagnostics import Diagnostics
+    from mcc.compiler.span import Span
+    from mcc.sim.verify import check_translation, explain
+
+    problem = check_translation(result.path, result.dialect, before, after_text, after_dialect, profile,
+                                load_scenarios(inputs))
+    if not problem:
+        return True
+    line = _divergence_line(problem)
+    text = result.source.line_text(line) if result.source is not None and line else ""
+    span = Span(result.path, line or 1, 1, line or 1, max(2, len(text) + 1))
+    diags = Diagnostics(result.diagnostics)
+    diags.add("S010", span, f"--verify: {explain(problem)}; nothing was written")
+    result.diagnostics = diags.items
+    return False
+
+
+def _divergence_line(problem: str) -> int | None:
+    import re
+
+    found = re.match(r"line (\d+), ", problem)
+    return int(found.group(1)) if found else None

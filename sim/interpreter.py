@@ -1,0 +1,1025 @@
+"""The interpreter: runs an IR module against the machine model in virtual time.
+
+It interprets the IR *contract* (docs/IR.md): a module the verifier rejects is refused with the
+first violation, never guessed at. Time is event-driven: the program runs (operations take no
+virtual time) until it waits (a delay, motion, an input, a move on a busy axis); then time jumps
+to the next scheduled event (a move ends, an axis passes a watched position, the scenario changes
+an input, a delay or a timer expires). Nothing ticks through idle time.
+
+A program that spins without changing anything (a loop polling an input or a position) is
+recognised after `Options.spin` steps with no change: time then advances to the next event, or by
+`Options.poll` seconds while an axis moves, as a real controller's scan would.
+
+Semantics the dialects leave open are decided in docs/SIMULATOR.md and noted where they are coded.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from dataclasses import dataclass
+
+from mcc.compiler import ir, ir_verify
+from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler.span import Span
+from mcc.sim import values
+from mcc.sim.machine import Axis, Machine, defaults
+from mcc.sim.motion import INF, Limits, Motion, Path, plan, plan_slew, plan_stop
+from mcc.sim.scenario import Scenario
+from mcc.sim.trace import Event, Trace
+
+# The type of a variable the module does not declare (registers used without a declaration).
+DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": ir.VarType.DECIMAL}
+DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
+# Events that make a handler fire once and disarm (MCode trips are one-shot until re-armed).
+ONE_SHOT_DIALECTS = {"mcode"}
+CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
+QUIET_KINDS = frozenset({"call", "return", "goto"})
+POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
+
+
+class ContractError(Exception):
+    """The module does not keep the IR contract: the simulator will not guess what it means."""
+
+    def __init__(self, violation: ir_verify.Violation):
+        super().__init__(f"the IR does not keep the contract ({violation.group}) at {violation.where}: "
+                         f"{violation.message}")
+        self.violation = violation
+
+
+class RuntimeFault(Exception):
+    def __init__(self, code: str, message: str, kind: str = "error"):
+        super().__init__(message)
+        self.code = code
+        self.kind = kind  # "error" | "fault": which handler may catch it
+
+
+@dataclass
+class Options:
+    until: float = 60.0  # virtual seconds
+    max_steps: int = 1_000_000  # operations and terminators executed
+    nesting: int | None = None  # call depth; None: the profile's limits.nesting, else 16
+    spin: int = 2000  # steps without any change before a loop counts as polling
+    poll: float = 0.001  # seconds a polling loop advances while an axis moves
+    samples: bool = True  # record sampled motion for the trace and plots
+
+
+@dataclass
+class Wait:
+    kind: str  # delay | motion | input | busy | poll
+    until: float = 0.0
+    axes: tuple[str, ...] = ()
+    cond: ir.Cond | None = None
+    retry: bool = False  # run the same operation again when the wait ends (a move on a busy axis)
+    line: int | None = None  # the source line of the operation that waits
+
+
+@dataclass
+class Frame:
+    routine: ir.Routine
+    block: ir.Block
+    index: int = 0
+    handler: str = ""  # the event when this frame runs a handler
+    wait: Wait | None = None
+
+
+@dataclass
+class Handler:
+    event: str
+    routine: str | None
+    args: tuple = ()
+    armed: bool = True
+    last: bool = False  # "when": the condition's value at the last check (fires on a rising edge)
+    fired_at: float = -1.0
+
+
+class Stop(Exception):
+    def __init__(self, stopped: str, reason: str):
+        super().__init__(reason)
+        self.stopped = stopped
+        self.reason = reason
+
+
+class Scheduled(tuple):
+    """(t, seq, kind, payload): a plain tuple, so the heap compares it in C."""
+
+    __slots__ = ()
+
+    t = property(lambda self: self[0])
+    kind = property(lambda self: self[2])
+    payload = property(lambda self: self[3])
+
+
+class Simulator:
+    def __init__(self, module: ir.Module, scenario: Scenario | None = None, options: Options | None = None,
+                 profile=None):
+        problems = ir_verify.verify(module)
+        if problems:
+            raise ContractError(problems[0])
+        self.module = module
+        self.scenario = scenario or Scenario()
+        self.options = options or Options()
+        if self.scenario.until is not None and options is None:
+            self.options.until = self.scenario.until
+        nesting = self.options.nesting
+        if nesting is None and profile is not None:
+            nesting = profile.get("sim.nesting", profile.get("limits.nesting"))
+        self.nesting = int(nesting or DEFAULT_NESTING)
+        self.routines = {r.name: r for r in module.routines}
+        self.block_of = {b.label: b for _, b in module.blocks()}
+        self.machine = Machine(inputs=dict(self.scenario.inputs), analog=dict(self.scenario.analog))
+        self.machine.shared["defaults"] = defaults(module.steps_per_rev)
+        for axis in (profile.axes if profile is not None else ()):
+            self.machine.axis(axis)
+        self.default_type = DEFAULT_TYPES.get(module.dialect, ir.VarType.FLOAT64)
+        self.vars: dict[str, values.Number] = {}
+        self.trace = Trace(module.path, module.dialect, module.steps_per_rev)
+        self.diags = Diagnostics(self.trace.diagnostics)
+        self.now = 0.0
+        self.queue: list[Scheduled] = []
+        self.seq = 0
+        self.stack: list[Frame] = []
+        self.handlers: dict[str, Handler] = {}
+        self.pending: list[tuple[str, Handler]] = []
+        self.motion_ids = 0
+        self.motion_op: dict[int, ir.Op] = {}
+        self.changes = 0  # bumped by anything a polling loop could be waiting for
+        self.natives: set[str] = set()
+        self.fixed_watches: dict[str, list] = {}
+        self.read_continuous = False  # the running stretch read something that changes with time
+        self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
+        self.polling = False
+        self.poll_changes = 0
+        self.poll_steps = 0
+
+    # -- public ----------------------------------------------------------------------------------
+
+    def run(self) -> Trace:
+        try:
+            self._start()
+            self._loop()
+        except Stop as stop:
+            self.trace.stopped, self.trace.reason = stop.stopped, stop.reason
+        self._finish()
+        return self.trace
+
+    # -- the main loop ---------------------------------------------------------------------------
+
+    def _start(self) -> None:
+        for name, variable in self.module.variables.items():
+            value = self._eval(variable.init) if variable.init is not None else 0
+            self.vars[name] = values.store(value, variable.type)
+        for n, event in enumerate(self.scenario.events):
+            if event.at is not None:
+                self._schedule(event.at, "input", (event.input, event.value))
+        entry = self._entry()
+        if entry is None or entry.entry is None:
+            raise Stop("end", "the module has no routine to run")
+        self.stack.append(Frame(entry, entry.entry))
+        self._event(None, "start", routine=entry.name)
+        # commands sent outside any program (MCode settings before PG, X150 set-up) run first
+        for routine in reversed(self.module.routines):
+            if routine.kind is ir.RoutineKind.IMMEDIATE and routine is not entry and routine.entry is not None:
+                self.stack.append(Frame(routine, routine.entry))
+
+    def _entry(self) -> ir.Routine | None:
+        for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP, ir.RoutineKind.IMMEDIATE):
+            for routine in self.module.routines:
+                if routine.kind is kind and routine.blocks:
+                    return routine
+        return self.module.routines[0] if self.module.routines else None
+
+    def _loop(self) -> None:
+        while True:
+            self._fire_pending()
+            self._execute()
+            if not self.stack:
+                self._settle()
+                raise Stop("end", "the program ended")
+            wait = self.stack[-1].wait
+            nxt = self._next_event_time()
+            if wait is not None and wait.kind == "poll":
+                moving = any(a.moving(self.now) for a in self.machine.axes.values())
+                if moving and self.read_continuous:  # it reads a position, a speed or a timer
+                    nxt = min(nxt, self.now + self.options.poll)
+                elif nxt == INF and moving:  # an axis slews on while the loop sees nothing new
+                    nxt = self.options.until + 1
+                elif nxt == INF:
+                    raise Stop("waiting", "the program polls in a loop for a change the scenario never "
+                                          f"makes (at line {self._line_now()})")
+                self.stack[-1].wait = None
+            elif nxt == INF:
+                raise Stop("waiting", self._waiting_reason(wait))
+            if nxt > self.options.until:
+                self.now = max(self.now, self.options.until)
+                raise Stop("time-limit", f"the time limit of {self.options.until:g} s was reached")
+            self.now = nxt
+            self._process_events()
+
+    def _settle(self) -> None:
+        """After the program ends, moves still running finish (the machine does not stop with the
+        program); a slew, which never ends, is left where it is."""
+        ends = [a.motion.t_end for a in self.machine.axes.values()
+                if a.motion is not None and a.motion.t_end != INF and a.motion.t_end > self.now]
+        last = min(max(ends, default=self.now), self.options.until)
+        self.pending.clear()
+        while self._next_event_time() <= last:
+            self.now = max(self.now, self.queue[0].t)
+            self._process_events()
+            self.pending.clear()  # no program is left to run a handler
+
+    def _waiting_reason(self, wait: Wait | None) -> str:
+        line = wait.line if wait is not None and wait.line is not None else self._line_now()
+        if wait is None:
+            return f"the program waits at line {line}"
+        if wait.kind == "input":
+            return f"waiting at line {line} for an input the scenario never sets"
+        if wait.kind in ("motion", "busy"):
+            return f"waiting at line {line} for axis {', '.join(wait.axes)}, which never stops"
+        return f"waiting at line {line}"
+
+    def _line_now(self) -> int | None:
+        if not self.stack:
+            return None
+        frame = self.stack[-1]
+        ops = frame.block.ops
+        item = ops[frame.index] if frame.index < len(ops) else frame.block.terminator
+        return _line(getattr(item, "span", None)) or _line(frame.block.span)
+
+    def _schedule(self, t: float, kind: str, payload: tuple = ()) -> None:
+        if t == INF:
+            return
+        self.seq += 1
+        heapq.heappush(self.queue, Scheduled((t, self.seq, kind, payload)))
+
+    def _next_event_time(self) -> float:
+        while self.queue and self._stale(self.queue[0]):
+            heapq.heappop(self.queue)
+        return self.queue[0].t if self.queue else INF
+
+    def _stale(self, item: Scheduled) -> bool:
+        if item.kind in ("motion_end", "cross"):
+            axis = self.machine.axes.get(item.payload[0])
+            return axis is None or axis.motion is None or axis.motion.ident != item.payload[1]
+        if item.kind == "timer":
+            handler = self.handlers.get("time")
+            return handler is None or not handler.armed or handler.fired_at != item.payload[0]
+        return False
+
+    def _process_events(self) -> None:
+        while self.queue and self.queue[0].t <= self.now:
+            item = heapq.heappop(self.queue)
+            if self._stale(item):
+                continue
+            self.changes += 1
+            if item.kind == "input":
+                self._set_input(item.payload[0], item.payload[1])
+            elif item.kind == "motion_end":
+                self._motion_end(self.machine.axes[item.payload[0]])
+            elif item.kind == "cross":
+                self._crossing(item.payload)
+            elif item.kind == "timer":
+                handler = self.handlers["time"]
+                self._trigger("time", handler)
+        self._check_when()
+
+    # -- executing the program -------------------------------------------------------------------
+
+    def _execute(self) -> None:
+        """Run the top frame until it waits or the program ends."""
+        quiet, last_changes = 0, self.changes
+        self.read_continuous = False
+        # back from a poll with nothing changed: the loop is still polling, so recognise it sooner
+        # and do not count its steps against the step limit (it is waiting, not running away)
+        polling = self.polling and self.changes == self.poll_changes
+        threshold = POLL_RECHECK if polling else self.options.spin
+        while self.stack:
+            frame = self.stack[-1]
+            if frame.wait is not None:
+                if not self._wait_over(frame.wait):
+                    return
+                retry = frame.wait.retry
+                frame.wait = None
+                if not retry:
+                    continue
+            self.trace.steps += 1
+            if polling:
+                self.poll_steps += 1
+            if self.trace.steps - self.poll_steps > self.options.max_steps:
+                self.trace.steps -= 1
+                raise Stop("step-limit", f"the step limit of {self.options.max_steps} operations was reached "
+                                         f"(at line {self._line_now()})")
+            ops = frame.block.ops
+            if frame.index < len(ops):
+                op = ops[frame.index]
+                frame.index += 1
+                try:
+                    wait = self._op(op, frame)
+                except RuntimeFault as fault:
+                    self._fault(fault, op)
+                    wait = None
+                if wait is not None:
+                    wait.line = _line(op.span)
+                    if wait.retry:
+                        frame.index -= 1
+                    frame.wait = wait
+                    continue
+            else:
+                try:
+                    self._terminator(frame)
+                except RuntimeFault as fault:
+                    self._fault(fault, frame.block.terminator)
+            if self.handlers:
+                self._check_when()
+                self._fire_pending()
+            if self.changes != last_changes:
+                quiet, last_changes = 0, self.changes
+                self.read_continuous = False
+                polling, threshold = False, self.options.spin
+            else:
+                quiet += 1
+                if quiet >= threshold and self.stack:
+                    self.stack[-1].wait = Wait("poll", line=self._line_now())
+                    self.polling, self.poll_changes = True, self.changes
+                    return
+        self.polling = False
+
+    def _wait_over(self, wait: Wait) -> bool:
+        if wait.kind == "delay":
+            return self.now >= wait.until
+        if wait.kind in ("motion", "busy"):
+            return not any(self._axis(a).moving(self.now) for a in self._expand(wait.axes))
+        if wait.kind == "input":
+            return self._cond(wait.cond)
+        return False  # "poll": the main loop clears it after advancing time
+
+    def _terminator(self, frame: Frame) -> None:
+        term = frame.block.terminator
+        if isinstance(term, ir.Jump):
+            frame.block, frame.index = self.block_of[term.target], 0
+        elif isinstance(term, ir.Branch):
+            target = term.then if self._cond(term.cond) else term.otherwise
+            frame.block, frame.index = self.block_of[target], 0
+        elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):
+            self.stack.pop()
+            if frame.routine.kind is not ir.RoutineKind.IMMEDIATE:
+                self._event(term, "return", routine=frame.routine.name)
+        elif isinstance(term, ir.GotoRoutine):
+            routine = self._routine(term.routine)
+            frame.routine, frame.block, frame.index = routine, routine.entry, 0
+            self._event(term, "goto", routine=routine.name)
+        else:  # End, FallOff of the main program, or no terminator
+            self.stack.clear()
+            self._event(term, "end")
+
+    def _routine(self, name: str) -> ir.Routine:
+        routine = self.routines.get(name)
+        if routine is None or routine.entry is None:
+            raise RuntimeFault("S005", f"routine '{name}' is stored on the controller; its body is not in this "
+                                       "file, so it cannot be simulated")
+        return routine
+
+    def _push(self, routine: ir.Routine, handler: str = "") -> None:
+        if len(self.stack) >= self.nesting + 1:
+            raise RuntimeFault("S003", f"stack overflow: calling '{routine.name}' would nest more than "
+                                       f"{self.nesting} calls deep", kind="fatal")
+        self.stack.append(Frame(routine, routine.entry, handler=handler))
+
+    def _fault(self, fault: RuntimeFault, item) -> None:
+        span = getattr(item, "span", None)
+        self._event(item, "error", code=fault.code, message=str(fault))
+        handler = self.handlers.get("fault" if fault.kind == "fault" else "error")
+        if fault.kind == "fault" and handler is None:
+            handler = self.handlers.get("error")
+        if fault.kind != "fatal" and handler is not None and handler.armed and handler.routine:
+            self.diags.add(fault.code, span or _file_span(self.module.path),
+                           f"{fault} (handled by '{handler.routine}')", severity=_severity("warning"))
+            self._trigger(handler.event, handler)
+            return
+        self.diags.add(fault.code, span or _file_span(self.module.path), str(fault))
+        raise Stop("error", f"{fault} (line {_line(span)})")
+
+    # -- operations ------------------------------------------------------------------------------
+
+    def _op(self, op: ir.Op, frame: Frame) -> Wait | None:
+        run = OP_METHODS.get(type(op))
+        return run(self, op) if run is not None else None  # Setting, Save: nothing to model
+
+    def _do_assign(self, op) -> Wait | None:
+        name = op.target.name
+        value = values.store(self._eval(op.value), self._type(name))
+        if self.vars.get(name) != value:
+            self.changes += 1
+        self.vars[name] = value
+        return None
+
+    def _do_setmotion(self, op) -> Wait | None:
+        value = float(self._eval(op.value))
+        self.machine.set_motion(op.param, op.axis, value)
+        return None
+
+    def _do_move(self, op) -> Wait | None:
+        axes = tuple(a for a, _ in op.targets)
+        if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
+            return Wait("busy", axes=axes, retry=True)
+        self._move(op)
+        return None
+
+    def _do_arc(self, op) -> Wait | None:
+        if any(self._axis(a).moving(self.now) for a in op.axes):
+            return Wait("busy", axes=op.axes, retry=True)
+        self._arc(op)
+        return None
+
+    def _do_slew(self, op) -> Wait | None:
+        self._slew(op)
+        return None
+
+    def _do_home(self, op) -> Wait | None:
+        if self._axis(op.axis).moving(self.now):
+            return Wait("busy", axes=(op.axis,), retry=True)
+        self._home(op)
+        return None
+
+    def _do_stop(self, op) -> Wait | None:
+        for name in self._expand((op.axis,)):
+            self._stop_axis(self._axis(name), op.ramp, op)
+        return None
+
+    def _do_setposition(self, op) -> Wait | None:
+        value = float(self._eval(op.value))
+        for name in self._expand((op.axis,)):
+            axis = self._axis(name)
+            machine_pos = axis.at(self.now) + axis.offset
+            self._cut(axis)
+            axis.position, axis.offset = value, machine_pos - value
+            self._sample_point(axis)
+            self._event(op, "set_position", axis=name, position=value)
+        return None
+
+    def _do_waitmotion(self, op) -> Wait | None:
+        axes = (op.axis,)
+        if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
+            return Wait("motion", axes=axes)
+        return None
+
+    def _do_delay(self, op) -> Wait | None:
+        seconds = float(self._eval(op.duration))
+        if seconds > 0:
+            self._schedule(self.now + seconds, "wake")
+            return Wait("delay", until=self.now + seconds)
+        return None
+
+    def _do_setoutput(self, op) -> Wait | None:
+        self._set_outputs(op)
+        return None
+
+    def _do_waitinput(self, op) -> Wait | None:
+        if not self._cond(op.cond):
+            return Wait("input", cond=op.cond)
+        return None
+
+    def _do_print(self, op) -> Wait | None:
+        text = "".join(self._text(item) for item in op.items) + ("\n" if op.newline else "")
+        self.trace.prints.append((self.now, text))
+        self.changes += 1
+        self._event(op, "print", text=text)
+        return None
+
+    def _do_driveenable(self, op) -> Wait | None:
+        on = 1 if self._eval(op.on) else 0
+        for name in self._expand((op.axis,)):
+            self._axis(name).enabled = on
+        self._event(op, "drive", axis=op.axis, on=on)
+        return None
+
+    def _do_call(self, op) -> Wait | None:
+        if op.cond is None or self._cond(op.cond):
+            routine = self._routine(op.routine)
+            self._event(op, "call", routine=routine.name)
+            self._push(routine)
+        return None
+
+    def _do_sethandler(self, op) -> Wait | None:
+        self._set_handler(op)
+        return None
+
+    def _do_native(self, op) -> Wait | None:
+        if op.mnemonic not in self.natives:
+            self.natives.add(op.mnemonic)
+            self.diags.add("S006", op.span or _file_span(self.module.path),
+                           f"{op.dialect} '{op.mnemonic}' has no neutral meaning; the simulator skips it")
+        return None
+
+
+    def _type(self, name: str) -> ir.VarType:
+        variable = self.module.variables.get(name)
+        if variable is not None:
+            return variable.type
+        if self.module.dialect == "mcode" and name[:1] == "F" and name[1:].isdigit():
+            return ir.VarType.FLOAT64  # MCode's float registers F1.. (firmware 6)
+        return self.default_type
+
+    def _axis(self, name: str) -> Axis:
+        found = self.machine.axes.get(name)
+        return found if found is not None else self.machine.axis(name)
+
+    def _expand(self, axes) -> list[str]:
+        out: list[str] = []
+        for name in axes:
+            if name == ir.ALL_AXES:
+                out += [a for a in self.machine.axes if a not in out]
+            elif name not in out:
+                out.append(name)
+        return out
+
+    # -- motion ----------------------------------------------------------------------------------
+
+    def _move(self, op: ir.Move) -> None:
+        targets: dict[str, float] = {}
+        for name, expr in op.targets:
+            value = float(self._eval(expr))
+            for axis_name in self._expand((name,)):
+                axis = self._axis(axis_name)
+                targets[axis_name] = value if op.mode is ir.MoveMode.ABSOLUTE else axis.position + value
+        start = {name: self._axis(name).position for name in targets}
+        deltas = {name: targets[name] - start[name] for name in targets}
+        length = math.sqrt(sum(d * d for d in deltas.values()))
+        self._event(op, "move", mode=op.mode.value, **{"from": dict(start)}, to=dict(targets))
+        if length == 0:
+            return
+        lead = self._axis(next(iter(targets)))
+        path = Path(start, length, {name: d / length for name, d in deltas.items()})
+        self._begin(op, path, lead.limits(self.machine.shared), targets=targets, plan_length=length)
+
+    def _arc(self, op: ir.Arc) -> None:
+        ax, ay = op.axes
+        cx, cy = float(self._eval(op.center[0])), float(self._eval(op.center[1]))
+        x0, y0 = self._axis(ax).position, self._axis(ay).position
+        radius = math.hypot(x0 - cx, y0 - cy)
+        degrees = float(self._eval(op.angle)) if op.angle is not None else 360.0
+        sweep = math.radians(abs(degrees)) * (-1 if op.clockwise else 1)
+        angle0 = math.atan2(y0 - cy, x0 - cx)
+        length = radius * abs(sweep)
+        end = (cx + radius * math.cos(angle0 + sweep), cy + radius * math.sin(angle0 + sweep))
+        self._event(op, "arc", axes=[ax, ay], center=[cx, cy], degrees=degrees, clockwise=op.clockwise)
+        if length == 0:
+            return
+        path = Path({ax: x0, ay: y0}, length, arc=(ax, ay, cx, cy, radius, angle0, sweep))
+        self._begin(op, path, self._axis(ax).limits(self.machine.shared), targets={ax: end[0], ay: end[1]},
+                    plan_length=length)
+
+    def _slew(self, op: ir.Slew) -> None:
+        axis = self._axis(op.axis)
+        lim = axis.limits(self.machine.shared)
+        velocity = float(self._eval(op.velocity)) if op.velocity is not None else op.direction * lim.maximum
+        current = axis.speed(self.now)
+        # the same slew again (a loop that keeps commanding it) changes nothing: no event, so a
+        # loop doing only that is recognised as polling and time can pass
+        if velocity == self.slewing.get(op.axis, 0.0 if not axis.moving(self.now) else None):
+            return
+        self._event(op, "slew", axis=op.axis, velocity=velocity)
+        start = axis.at(self.now)
+        self._cut(axis)
+        if velocity == 0:
+            segments = plan_stop(self.now, abs(current), lim.decel, lim.smooth)
+            direction = 1.0 if current >= 0 else -1.0
+            length = sum(s.length for s in segments)
+        else:
+            direction = 1.0 if velocity > 0 else -1.0
+            v_from = abs(current) if (current >= 0) == (velocity > 0) else 0.0
+            segments = plan_slew(self.now, v_from, abs(velocity), lim.accel, lim.smooth)
+            length = INF
+        if not segments:
+            return
+        path = Path({op.axis: start}, length, {op.axis: direction})
+        self._install(op, path, segments, None)
+        self.slewing[op.axis] = velocity
+
+    def _home(self, op: ir.Home) -> None:
+        axis = self._axis(op.axis)
+        switch = self.scenario.switches(op.axis).home
+        target = switch - axis.offset
+        self._event(op, "home", axis=op.axis, method=op.method)
+        start = axis.position
+        if target == start:
+            axis.position, axis.offset = 0.0, switch
+            self._event(op, "home_end", axis=op.axis)
+            return
+        delta = target - start
+        path = Path({op.axis: start}, abs(delta), {op.axis: 1.0 if delta > 0 else -1.0})
+        self._begin(op, path, axis.limits(self.machine.shared), targets={op.axis: target}, plan_length=abs(delta))
+        axis.on_end = "home"
+
+    def _begin(self, op, path: Path, lim: Limits, targets: dict[str, float], plan_length: float) -> None:
+        try:
+            segments = plan(self.now, plan_length, lim)
+        except ValueError as exc:
+            raise RuntimeFault("S007", f"{exc} (set a maximum speed first)") from None
+        self._install(op, path, segments, targets)
+
+    def _install(self, op, path: Path, segments, targets) -> None:
+        self.motion_ids += 1
+        motion = Motion(self.motion_ids, path, segments, targets)
+        self.motion_op[motion.ident] = op
+        self.changes += 1
+        names = list(path.start)
+        for name in names:
+            self.slewing.pop(name, None)
+            axis = self._axis(name)
+            axis.motion = motion
+            axis.on_end = ""
+            self._schedule(motion.t_end, "motion_end", (name, motion.ident))
+            self._watch(axis)
+
+    def _watch(self, axis: Axis) -> None:
+        """Schedule the crossings of watched machine positions by the axis's current motion."""
+        motion = axis.motion
+        if motion is None or motion.path.arc is not None:
+            return
+        rate = motion.path.direction.get(axis.name, 0.0)
+        if rate == 0:
+            return
+        base = motion.path.start[axis.name] + axis.offset
+        s_now = motion.distance(self.now)
+        for key, where in self._watched(axis.name):
+            s = (where - base) / rate
+            if s > s_now + 1e-9 and s <= motion.path.length + 1e-9:
+                t = motion.time_at(s)
+                if t != INF:
+                    self._schedule(max(t, self.now), "cross", (axis.name, motion.ident, key, where))
+
+    def _watched(self, name: str) -> list[tuple[tuple, float]]:
+        fixed = self.fixed_watches.get(name)
+        if fixed is None:
+            fixed = self.fixed_watches[name] = self._fixed_watches(name)
+        out = list(fixed)
+        handler = self.handlers.get("position")
+        if handler is not None and handler.armed and handler.args and name == self._handler_axis():
+            try:
+                out.append((("handler", "position"), float(self._eval(handler.args[0]))))
+            except RuntimeFault:
+                pass
+        return out
+
+    def _fixed_watches(self, name: str) -> list[tuple[tuple, float]]:
+        """The scenario's positions on axis `name`: inputs set when it passes, limit switches."""
+        out: list[tuple[tuple, float]] = []
+        for n, event in enumerate(self.scenario.events):
+            if event.at is None and event.axis == name:
+                out.append((("scenario", n), event.passes))
+        switches = self.scenario.switches(name)
+        if switches.limit_plus is not None:
+            out.append((("limit", "plus"), switches.limit_plus))
+        if switches.limit_minus is not None:
+            out.append((("limit", "minus"), switches.limit_minus))
+        return out
+
+    def _handler_axis(self) -> str:
+        """The axis position handlers watch: the module's first axis (MCode has one)."""
+        return next(iter(self.machine.axes), "1")
+
+    def _crossing(self, payload: tuple) -> None:
+        name, _, key, where = payload
+        axis = self.machine.axes[name]
+        if key[0] == "scenario":
+            event = self.scenario.events[key[1]]
+            self._set_input(event.input, event.value, passes=where, axis=name)
+        elif key[0] == "limit":
+            op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            self._stop_axis(axis, False, None, record=False)
+            axis.fault = 1
+            self._event(op, "limit", axis=name, switch=key[1], position=axis.position)
+            self._fault(RuntimeFault("S004", f"axis {name} hit its {key[1]} limit switch at {where:g} steps",
+                                     kind="fault"), op)
+        elif key[0] == "handler":
+            handler = self.handlers.get("position")
+            if handler is not None and handler.armed:
+                self._trigger("position", handler)
+
+    def _motion_end(self, axis: Axis) -> None:
+        motion = axis.motion
+        if motion is None:
+            return
+        self._sample_motion(axis, motion, motion.t_end)
+        end = motion.positions(motion.t_end)
+        axis.position = end[axis.name]
+        axis.motion = None
+        if axis.on_end == "home":
+            axis.offset += axis.position
+            axis.position = 0.0
+            axis.on_end = ""
+            self._event(self.motion_op.get(motion.ident), "home_end", axis=axis.name)
+        else:
+            self._event(self.motion_op.get(motion.ident), "move_end", axis=axis.name,
+                        position=_round(axis.position))
+        if not any(a.motion is motion for a in self.machine.axes.values()):
+            self.motion_op.pop(motion.ident, None)
+
+    def _cut(self, axis: Axis) -> None:
+        """End the axis's motion now where it is (before a new motion or a position change)."""
+        motion = axis.motion
+        if motion is None:
+            return
+        for name in list(motion.path.start):
+            other = self._axis(name)
+            if other.motion is motion:
+                self._sample_motion(other, motion, self.now)
+                other.position = motion.positions(self.now)[name]
+                other.motion = None
+                other.on_end = ""
+                self.slewing.pop(name, None)
+
+    def _stop_axis(self, axis: Axis, ramp: bool, op, record: bool = True) -> None:
+        if record:
+            self._event(op, "stop", axis=axis.name, ramp=ramp)
+        if not axis.moving(self.now):
+            return
+        speed = axis.motion.speed(self.now)
+        names = list(axis.motion.path.start)
+        motion = axis.motion
+        lim = axis.limits(self.machine.shared)
+        s_now = motion.distance(self.now)
+        self._cut(axis)
+        if not ramp or motion.path.arc is not None:
+            return
+        segments = plan_stop(self.now, speed, lim.decel, lim.smooth)
+        if not segments:
+            return
+        length = segments[0].length
+        start = {n: self._axis(n).position for n in names}
+        path = Path(start, length, {n: motion.path.axis_rate(n, s_now) for n in names})
+        self._install(op, path, segments, None)
+
+    def _sample_point(self, axis: Axis) -> None:
+        if self.options.samples:
+            self.trace.points.append((axis.name, self.now, axis.at(self.now)))
+
+    def _sample_motion(self, axis: Axis, motion: Motion, until: float) -> None:
+        if self.options.samples:
+            self.trace.motion_log.append((axis.name, motion, until))
+
+    # -- inputs, outputs, handlers ---------------------------------------------------------------
+
+    def _set_input(self, index: int, value: int, **where) -> None:
+        old = self.machine.inputs.get(index, 0)
+        self.machine.inputs[index] = value
+        self._event(None, "input", input=index, value=value, **where)
+        if old != value:
+            self.changes += 1
+            handler = self.handlers.get("input")
+            if handler is not None and handler.armed:
+                wanted = handler.args
+                index_ok = not wanted or self._eval_quiet(wanted[0]) == index
+                level = self._eval_quiet(wanted[1]) if len(wanted) > 1 else 1
+                if index_ok and value == level:
+                    self._trigger("input", handler)
+
+    def _set_outputs(self, op: ir.SetOutput) -> None:
+        changed: dict[int, int] = {}
+        if op.index is not None:
+            changed[op.index] = 1 if self._eval(op.value) else 0
+        elif isinstance(op.value, ir.Pattern):
+            for n, bit in enumerate(op.value.bits, 1):
+                if bit in "01":
+                    changed[n] = int(bit)
+        else:
+            mask = int(self._eval(op.value))
+            top = max([8, mask.bit_length(), *self.machine.outputs])
+            for n in range(1, top + 1):
+                changed[n] = (mask >> (n - 1)) & 1
+        for n, v in changed.items():
+            if self.machine.outputs.get(n) != v:
+                self.changes += 1
+                self.machine.outputs[n] = v
+                self._event(op, "output", output=n, value=v)
+
+    def _set_handler(self, op: ir.SetHandler) -> None:
+        handler = self.handlers.get(op.event)
+        if op.routine is None and not op.args:
+            if handler is not None:
+                handler.armed = False
+            self._event(op, "handler_off", event=op.event)
+            return
+        if handler is None:
+            handler = self.handlers[op.event] = Handler(op.event, op.routine, op.args)
+        if op.routine is not None:
+            handler.routine = op.routine
+        if op.args:
+            handler.args = op.args
+        handler.armed = True
+        handler.last = False
+        self._event(op, "handler_on", event=op.event, routine=handler.routine)
+        if op.event == "time" and handler.args:
+            handler.fired_at = self.now
+            self._schedule(self.now + float(self._eval(handler.args[0])), "timer", (self.now,))
+        elif op.event == "position":
+            axis = self.machine.axes.get(self._handler_axis())
+            if axis is not None:
+                self._watch(axis)
+        elif op.event == "when":
+            self._check_when()
+
+    def _trigger(self, event: str, handler: Handler) -> None:
+        if not handler.routine:
+            return
+        if self.module.dialect in ONE_SHOT_DIALECTS or event in ("time", "position"):
+            handler.armed = False
+        self.pending.append((event, handler))
+
+    def _fire_pending(self) -> None:
+        while self.pending and not any(f.handler for f in self.stack):
+            event, handler = self.pending.pop(0)
+            try:
+                routine = self._routine(handler.routine)
+                self._event(None, "handler", event=event, routine=routine.name)
+                self._push(routine, handler=event)
+            except RuntimeFault as fault:
+                self._fault(fault, None)
+
+    def _check_when(self) -> None:
+        handler = self.handlers.get("when")
+        if handler is None or not handler.armed or not handler.args:
+            return
+        cond = handler.args[0]
+        try:
+            now = self._cond(cond) if not isinstance(cond, (ir.Const, ir.Var, ir.Status, ir.BinOp)) \
+                else bool(self._eval(cond))
+        except RuntimeFault:
+            return
+        if now and not handler.last:
+            handler.last = True
+            self._trigger("when", handler)
+        elif not now:
+            handler.last = False
+
+    # -- expressions -----------------------------------------------------------------------------
+
+    def _eval(self, expr) -> values.Number:
+        if isinstance(expr, ir.Const):
+            return expr.value
+        if isinstance(expr, ir.Var):
+            if expr.name not in self.vars:
+                self.vars[expr.name] = values.store(0, self._type(expr.name))
+            return self.vars[expr.name]
+        if isinstance(expr, ir.BinOp):
+            left = self._eval(expr.left)
+            right = self._eval(expr.right)
+            try:
+                return values.binary(expr.op, left, right)
+            except values.ArithmeticFault as exc:
+                raise RuntimeFault("S002", str(exc)) from None
+        if isinstance(expr, ir.UnOp):
+            return values.unary(expr.op, self._eval(expr.operand))
+        if isinstance(expr, ir.Func):
+            try:
+                return values.function(expr.name, [self._eval(a) for a in expr.args])
+            except values.ArithmeticFault as exc:
+                raise RuntimeFault("S002", str(exc)) from None
+        if isinstance(expr, ir.Status):
+            return self._reading(expr)
+        if isinstance(expr, ir.Pattern):
+            return sum(1 << n for n, bit in enumerate(expr.bits) if bit == "1")
+        raise RuntimeFault("S008", f"{type(expr).__name__} has no numeric value")
+
+    def _eval_quiet(self, expr):
+        try:
+            return self._eval(expr)
+        except RuntimeFault:
+            return None
+
+    def _reading(self, status: ir.Status) -> values.Number:
+        meaning, index = status.meaning, status.index
+        m = self.machine
+        if meaning == "input":
+            return m.inputs.get(index or 0, 0)
+        if meaning == "inputs":
+            return m.input_mask()
+        if meaning == "output":
+            return m.outputs.get(index or 0, 0)
+        if meaning == "outputs":
+            return m.output_mask()
+        if meaning == "analog":
+            return m.analog.get(index or 0, 0)
+        if meaning == "timer":
+            self.read_continuous = True
+            return self.now
+        axis = self._axis(status.axis or self._handler_axis())
+        if meaning in CONTINUOUS:
+            self.read_continuous = True
+        if meaning in ("position", "encoder"):
+            return _round(axis.at(self.now))
+        if meaning == "velocity":
+            return axis.speed(self.now)
+        if meaning == "moving":
+            return 1 if axis.moving(self.now) else 0
+        if meaning == "fault":
+            return axis.fault
+        if meaning == "enabled":
+            return axis.enabled
+        if meaning == "error":
+            return 1 if axis.fault else 0
+        if meaning == "home_switch":
+            return 1 if abs(axis.at(self.now) + axis.offset - self.scenario.switches(axis.name).home) < 0.5 else 0
+        if meaning in ("limit_plus", "limit_minus"):
+            return 0 if not axis.fault else 1
+        if meaning in ("max_speed", "initial_speed", "accel", "decel"):
+            lim = axis.limits(m.shared)
+            return {"max_speed": lim.maximum, "initial_speed": lim.initial, "accel": lim.accel,
+                    "decel": lim.decel}[meaning]
+        return 0  # stalled: the model never stalls
+
+    def _cond(self, cond) -> bool:
+        if isinstance(cond, ir.Compare):
+            left, right = self._eval(cond.left), self._eval(cond.right)
+            return values.compare(cond.op, left, right)
+        if isinstance(cond, ir.Logic):
+            left, right = self._cond(cond.left), self._cond(cond.right)  # both are evaluated
+            return (left and right) if cond.op == "and" else (left or right)
+        if isinstance(cond, ir.Truth):
+            return self._eval(cond.expr) != 0
+        if isinstance(cond, ir.InputMatch):
+            for n, bit in enumerate(cond.pattern.bits, 1):
+                if bit in "01" and self.machine.inputs.get(n, 0) != int(bit):
+                    return False
+            return True
+        if isinstance(cond, ir.Not):
+            return not self._cond(cond.cond)
+        return self._eval(cond) != 0
+
+    def _text(self, item) -> str:
+        if isinstance(item, ir.Text):
+            return item.value
+        value = values.plain(self._eval(item))
+        if isinstance(value, float) and value.is_integer():
+            return str(int(value))
+        return str(value)
+
+    # -- the trace -------------------------------------------------------------------------------
+
+    def _event(self, item, kind: str, **data) -> None:
+        if self.polling and kind in QUIET_KINDS:
+            return  # a polling loop's calls and returns would fill the trace with nothing new
+        self.trace.events.append(Event(self.now, kind, _line(getattr(item, "span", None)), data))
+
+    def _finish(self) -> None:
+        for axis in self.machine.axes.values():
+            if axis.motion is not None:
+                self._sample_motion(axis, axis.motion, min(self.now, axis.motion.t_end))
+            self._sample_point(axis)
+        self.trace.time = self.now
+        self.trace.axes = {name: _round(axis.at(self.now)) for name, axis in self.machine.axes.items()}
+        self.trace.outputs = dict(self.machine.outputs)
+        self.trace.variables = {name: values.plain(v) for name, v in self.vars.items()}
+        self.trace.events.append(Event(self.now, "stopped", None, {"stopped": self.trace.stopped,
+                                                                     "reason": self.trace.reason}))
+
+
+OP_METHODS = {
+    ir.Assign: Simulator._do_assign,
+    ir.SetMotion: Simulator._do_setmotion,
+    ir.Move: Simulator._do_move,
+    ir.Arc: Simulator._do_arc,
+    ir.Slew: Simulator._do_slew,
+    ir.Home: Simulator._do_home,
+    ir.Stop: Simulator._do_stop,
+    ir.SetPosition: Simulator._do_setposition,
+    ir.WaitMotion: Simulator._do_waitmotion,
+    ir.Delay: Simulator._do_delay,
+    ir.SetOutput: Simulator._do_setoutput,
+    ir.WaitInput: Simulator._do_waitinput,
+    ir.Print: Simulator._do_print,
+    ir.DriveEnable: Simulator._do_driveenable,
+    ir.Call: Simulator._do_call,
+    ir.SetHandler: Simulator._do_sethandler,
+    ir.Native: Simulator._do_native,
+}
+
+
+def _round(value: float) -> float:
+    """Positions as the trace reports them: exact steps when the float is within 1e-6 of one."""
+    nearest = round(value)
+    return float(nearest) if abs(value - nearest) < 1e-6 else value
+
+
+def _line(span: Span | None) -> int | None:
+    return span.line if span is not None else None
+
+
+def _file_span(path: str) -> Span:
+    return Span(path or "<ir>", 1, 1, 1, 1, 0, 0)
+
+
+def _severity(name: str):
+    from mcc.compiler.diagnostics import Severity
+
+    return Severity(name)
+
+
+def simulate(module: ir.Module, scenario: Scenario | None = None, options: Options | None = None,
+             profile=None) -> Trace:
+    """Run `module` (which must keep the IR contract) and return its trace."""
+    return Simulator(module, scenario, options, profile).run()
+
+
+__all__ = ["ContractError", "Options", "Simulator", "simulate"]

@@ -1,0 +1,149 @@
+"""Each dialect's arithmetic on the IR's values.
+
+A value is an `int` (an int32 variable, an integer constant), a `float` (a float64 variable, a
+reading or a constant with a fraction) or a `Decimal` (an X150 decimal variable). The operators
+mean what `ir_names.BINARY_OPS` says:
+
+- `/` truncates toward zero when both operands are integers, `%` keeps the dividend's sign;
+- an int32 variable wraps to 32 bits when it is assigned (two's complement);
+- decimal values compute exactly (Python's `decimal`, 28 digits) and are rounded to
+  `DECIMAL_PLACES` when stored, so `10 / 3` is `3.333333` in an X150 variable;
+- X150's strict left-to-right evaluation is already the shape of the expression tree its frontend
+  builds: the interpreter evaluates a tree as written, left operand first.
+"""
+
+from __future__ import annotations
+
+import math
+from decimal import Decimal, InvalidOperation
+
+from mcc.compiler.ir import VarType
+
+Number = int | float | Decimal
+DECIMAL_PLACES = Decimal("0.000001")
+INT32_MIN, INT32_MAX = -(2 ** 31), 2 ** 31 - 1
+
+
+class ArithmeticFault(Exception):
+    """A runtime arithmetic error (division by zero, an undefined function value)."""
+
+
+def wrap32(value: int) -> int:
+    return (value + 2 ** 31) % 2 ** 32 - 2 ** 31
+
+
+def store(value: Number, vtype: VarType) -> Number:
+    """The value as a variable of `vtype` holds it."""
+    if vtype is VarType.INT32:
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ArithmeticFault(f"{value} does not fit an int32 variable")
+        return wrap32(int(value))
+    if vtype is VarType.DECIMAL:
+        try:
+            return Decimal(str(value) if isinstance(value, float) else value).quantize(DECIMAL_PLACES)
+        except InvalidOperation:
+            raise ArithmeticFault(f"{value} does not fit a decimal variable") from None
+    return float(value)
+
+
+def _pair(a: Number, b: Number) -> tuple[Number, Number]:
+    """Bring two operands to a common kind: float wins, then Decimal, then int."""
+    if isinstance(a, float) or isinstance(b, float):
+        return float(a), float(b)
+    if isinstance(a, Decimal) or isinstance(b, Decimal):
+        return Decimal(a), Decimal(b)
+    return a, b
+
+
+def binary(op: str, a: Number, b: Number) -> Number:
+    if op in ("&", "|", "^", "<<", ">>"):
+        x, y = int(a), int(b)
+        if op == "&":
+            return wrap32(x & y)
+        if op == "|":
+            return wrap32(x | y)
+        if op == "^":
+            return wrap32(x ^ y)
+        if y < 0 or y > 63:
+            raise ArithmeticFault(f"shift by {y}")
+        return wrap32(x << y) if op == "<<" else wrap32(x) >> y
+    x, y = _pair(a, b)
+    if op == "+":
+        return x + y
+    if op == "-":
+        return x - y
+    if op == "*":
+        return x * y
+    if op in ("/", "%"):
+        if y == 0:
+            raise ArithmeticFault("division by zero")
+        if isinstance(x, int):
+            quotient = abs(x) // abs(y) * (1 if (x >= 0) == (y >= 0) else -1)
+            return quotient if op == "/" else x - quotient * y
+        if op == "/":
+            return x / y
+        return math.fmod(x, y) if isinstance(x, float) else x % y  # Decimal % keeps the sign too
+    raise ArithmeticFault(f"unknown operator '{op}'")
+
+
+def unary(op: str, a: Number) -> Number:
+    if op == "-":
+        return -a
+    if op == "~":
+        return wrap32(~int(a))
+    if op == "!":
+        return 1 if a == 0 else 0
+    raise ArithmeticFault(f"unknown operator '{op}'")
+
+
+def function(name: str, args: list[Number]) -> Number:
+    if name == "pi":
+        return math.pi
+    if not args:
+        raise ArithmeticFault(f"{name}() needs an argument")
+    x = args[0]
+    if name == "abs":
+        return abs(x)
+    if name == "int":
+        return int(x)
+    v = float(x)
+    try:
+        if name == "sqrt":
+            return math.sqrt(v)
+        if name in ("sin", "cos", "tan"):
+            return getattr(math, name)(math.radians(v))
+        if name in ("asin", "acos", "atan"):
+            return math.degrees(getattr(math, name)(v))
+        if name == "log":
+            return math.log(v)
+        if name == "log10":
+            return math.log10(v)
+        if name == "exp":
+            return math.exp(v)
+    except (ValueError, OverflowError):
+        raise ArithmeticFault(f"{name}({x}) is undefined") from None
+    raise ArithmeticFault(f"unknown function '{name}'")
+
+
+def compare(op: str, a: Number, b: Number) -> bool:
+    x, y = _pair(a, b)
+    if op == "=":
+        return x == y
+    if op == "!=":
+        return x != y
+    if op == "<":
+        return x < y
+    if op == "<=":
+        return x <= y
+    if op == ">":
+        return x > y
+    if op == ">=":
+        return x >= y
+    raise ArithmeticFault(f"unknown comparison '{op}'")
+
+
+def plain(value: Number) -> int | float:
+    """A JSON-friendly number: Decimal becomes float (or int when whole)."""
+    if isinstance(value, Decimal):
+        return int(value) if value == value.to_integral_value() else float(value)
+    return value

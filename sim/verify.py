@@ -1,0 +1,265 @@
+"""`--verify`: run a source and its translation on the same scenarios and compare what they do.
+
+A translation (compile to the same or another dialect, fmt, lint --fix, an optimizer pass) must
+not change what the machine does. `compare(source, output, scenarios)` simulates both modules on
+each scenario and compares their traces in the IR's units (docs/SIMULATOR.md, "Verification"):
+
+- the **observable events** in order: moves (their end positions), arcs, slews, stops, homing,
+  position changes, outputs, prints, limit hits and runtime errors; not calls, returns or jumps,
+  which a translation may restructure;
+- **positions** after scaling the source's steps by `output steps_per_rev / source steps_per_rev`,
+  within `POSITION_TOLERANCE` output steps (a converted position rounds to a whole step);
+- **times** within `TIME_ABS + TIME_REL * t`: converted speeds and ramps are rounded to the
+  target's resolution, so a move may end a little earlier or later;
+- why the run **stopped**, and the final positions and outputs. A run cut by the time or the step
+  limit is compared up to the earlier of the two cut-off times only.
+
+The first difference is returned as a `Divergence` naming its time, source line and what differs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from fractions import Fraction
+
+from mcc.compiler import ir, units
+from mcc.sim.interpreter import Options, simulate
+from mcc.sim.scenario import InputEvent, Scenario
+from mcc.sim.trace import Event, Trace
+
+TIME_ABS = 0.01  # seconds
+TIME_REL = 0.01  # share of the event's time
+POSITION_TOLERANCE = 1.0  # output steps
+OBSERVABLE = ("move", "arc", "slew", "stop", "home", "home_end", "set_position", "output", "print", "limit",
+              "error", "move_end")
+LIMITS = ("time-limit", "step-limit")
+VERIFY_UNTIL = 30.0
+VERIFY_STEPS = 200_000
+MAX_DRIVEN_INPUTS = 16
+
+
+@dataclass(frozen=True)
+class Divergence:
+    scenario: str
+    time: float
+    line: int | None  # the source's line
+    message: str
+
+    def __str__(self) -> str:
+        where = f"line {self.line}, " if self.line is not None else ""
+        return f"{where}t = {self.time:.3f} s, scenario '{self.scenario}': {self.message}"
+
+
+def inputs_read(module: ir.Module) -> list[int]:
+    """Every digital input the program reads (conditions, readings, input handlers)."""
+    found: set[int] = set()
+    for _, block in module.blocks():
+        exprs = [e for op in block.ops for e in ir.op_exprs(op)] + list(ir.term_exprs(block.terminator))
+        for op in block.ops:
+            if isinstance(op, ir.SetHandler) and op.event == "input" and op.args \
+                    and isinstance(op.args[0], ir.Const):
+                found.add(int(op.args[0].value))
+        for expr in exprs:
+            for node in ir.walk_expr(expr):
+                if isinstance(node, ir.Status) and node.meaning == "input" and node.index:
+                    found.add(node.index)
+                elif isinstance(node, ir.InputMatch):
+                    found.update(n for n, bit in enumerate(node.pattern.bits, 1) if bit in "01")
+    return sorted(found)[:MAX_DRIVEN_INPUTS]
+
+
+def default_scenarios(module: ir.Module) -> list[Scenario]:
+    """Every input the program reads driven both ways: all low, all high, and each one rising
+    then falling on its own."""
+    read = inputs_read(module)
+    out = [Scenario(name="inputs low")]
+    if not read:
+        return out
+    out.append(Scenario(inputs={n: 1 for n in read}, name="inputs high"))
+    for n in read:
+        out.append(Scenario(events=[InputEvent(n, 1, at=0.5), InputEvent(n, 0, at=2.5)],
+                            name=f"input {n} pulses high at 0.5 s"))
+    return out
+
+
+def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | None = None,
+            options: Options | None = None, source_profile=None, output_profile=None) -> Divergence | None:
+    """The first divergence between `source` and `output` on the scenarios, or None.
+
+    Both modules must keep the IR contract (`interpreter.ContractError` otherwise)."""
+    for scenario in scenarios or default_scenarios(source):
+        opts = options or Options(until=scenario.until or VERIFY_UNTIL, max_steps=VERIFY_STEPS)
+        opts.samples = False
+        a = simulate(source, scenario, _copy(opts), source_profile)
+        b = simulate(output, scenario, _copy(opts), output_profile)
+        found = compare_traces(a, b, units.ratio(source.steps_per_rev, output.steps_per_rev), scenario.name)
+        if found is not None:
+            return found
+    return None
+
+
+def _copy(options: Options) -> Options:
+    return Options(options.until, options.max_steps, options.nesting, options.spin, options.poll, False)
+
+
+def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "") -> Divergence | None:
+    """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps."""
+    cut = None
+    if a.stopped in LIMITS or b.stopped in LIMITS:
+        cut = min(a.time, b.time) - TIME_ABS
+    elif a.stopped != b.stopped:
+        return Divergence(scenario, min(a.time, b.time), _last_line(a),
+                          f"the source stopped with '{a.stopped}' ({a.reason}), the output with '{b.stopped}' "
+                          f"({b.reason})")
+    axis_map = _axis_map(a, b)
+    ea, eb = _observable(a, cut), _observable(b, cut)
+    scale = float(ratio)
+    for n in range(max(len(ea), len(eb))):
+        if n >= len(ea):
+            extra = eb[n]
+            return Divergence(scenario, extra.t, None, f"the output does more: {_show(extra)} at {extra.t:.3f} s")
+        if n >= len(eb):
+            missing = ea[n]
+            return Divergence(scenario, missing.t, missing.line, f"the output does not {_show(missing)}")
+        x, y = ea[n], eb[n]
+        problem = _differ(x, y, axis_map, scale)
+        if problem:
+            return Divergence(scenario, x.t, x.line, problem)
+    if cut is None:
+        for axis, pos in a.axes.items():
+            other = b.axes.get(axis_map.get(axis, axis))
+            if other is not None and abs(pos * scale - other) > POSITION_TOLERANCE + 1e-6:
+                return Divergence(scenario, a.time, None, f"axis {axis} ends at {pos * scale:g} steps in the source, "
+                                                          f"{other:g} in the output")
+        on_a = {n for n, v in a.outputs.items() if v}
+        on_b = {n for n, v in b.outputs.items() if v}
+        if on_a != on_b:
+            return Divergence(scenario, a.time, None, f"outputs on at the end: {sorted(on_a)} in the source, "
+                                                      f"{sorted(on_b)} in the output")
+    return None
+
+
+def _observable(trace: Trace, cut: float | None) -> list[Event]:
+    out = []
+    for event in trace.events:
+        if event.kind not in OBSERVABLE or (cut is not None and event.t > cut):
+            continue
+        if event.kind == "move" and event.data["from"] == event.data["to"]:
+            continue  # a move to where the axis already is does nothing
+        out.append(event)
+    return out
+
+
+def _axis_map(a: Trace, b: Trace) -> dict[str, str]:
+    """Source axis -> output axis: the same name, else paired in order of first use."""
+    def order(trace: Trace) -> list[str]:
+        seen: list[str] = []
+        for event in trace.events:
+            names = list(event.data.get("to", {})) + ([event.data["axis"]] if "axis" in event.data else [])
+            names += list(event.data.get("axes", []))
+            seen += [n for n in names if n not in seen]
+        return seen + [n for n in trace.axes if n not in seen]
+
+    first, second = order(a), order(b)
+    if set(first) <= set(second):
+        return {n: n for n in first}
+    return dict(zip(first, second))
+
+
+def _close_time(x: float, y: float) -> bool:
+    return abs(x - y) <= TIME_ABS + TIME_REL * max(abs(x), abs(y))
+
+
+def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float) -> str:
+    if x.kind != y.kind:
+        return f"the source does {_show(x)}, the output {_show(y)} at {y.t:.3f} s"
+    if not _close_time(x.t, y.t):
+        return f"{_show(x)} happens at {x.t:.3f} s in the source, at {y.t:.3f} s in the output"
+    dx, dy = x.data, y.data
+    if x.kind == "move":
+        for axis, target in dx["to"].items():
+            other = dy["to"].get(axis_map.get(axis, axis))
+            if other is None or abs(target * scale - other) > POSITION_TOLERANCE + 1e-6:
+                return f"the move on axis {axis} goes to {target * scale:g} steps in the source, to " \
+                       f"{'nothing' if other is None else format(other, 'g')} in the output"
+        return ""
+    if x.kind in ("move_end", "set_position"):
+        if abs(dx["position"] * scale - dy["position"]) > POSITION_TOLERANCE + 1e-6:
+            return f"axis {dx['axis']} is at {dx['position'] * scale:g} steps in the source, at " \
+                   f"{dy['position']:g} in the output"
+        return ""
+    if x.kind == "slew":
+        if abs(dx["velocity"] * scale - dy["velocity"]) > max(1.0, abs(dy["velocity"]) * TIME_REL):
+            return f"axis {dx['axis']} slews at {dx['velocity'] * scale:g} steps/s in the source, at " \
+                   f"{dy['velocity']:g} in the output"
+        return ""
+    if x.kind == "print":
+        if dx["text"].strip() != dy["text"].strip():
+            return f"the source prints {dx['text']!r}, the output {dy['text']!r}"
+        return ""
+    for key in ("output", "value", "code", "ramp", "switch"):
+        if key in dx and dx[key] != dy.get(key):
+            return f"{_show(x)} in the source, {_show(y)} in the output"
+    return ""
+
+
+def _show(event: Event) -> str:
+    d = event.data
+    if event.kind == "move":
+        return "move " + ", ".join(f"{a} to {t:g}" for a, t in d["to"].items())
+    if event.kind == "output":
+        return f"set output {d['output']} to {d['value']}"
+    if event.kind == "print":
+        return f"print {d['text']!r}"
+    if event.kind == "error":
+        return f"stop with error {d['code']}"
+    details = ", ".join(f"{k} {v}" for k, v in d.items())
+    return f"{event.kind.replace('_', ' ')}" + (f" ({details})" if details else "")
+
+
+def _last_line(trace: Trace) -> int | None:
+    for event in reversed(trace.events):
+        if event.line is not None:
+            return event.line
+    return None
+
+
+def check_translation(path: str, dialect: str, before: str | ir.Module, after_text: str, after_dialect: str | None = None,
+                      profile=None, scenarios: list[Scenario] | None = None) -> str:
+    """Why the translation of `path` into `after_text` cannot be trusted, or "" when it verifies.
+
+    `before` is the source text (or its module, already lowered); the translation is lowered as
+    `after_dialect` (default: the same dialect). Used by `mcc compile --verify`, `mcc fmt --verify`
+    and `mcc lint --fix --verify`: a non-empty answer means nothing is written."""
+    from mcc.compiler import dialects, driver
+    from mcc.sim.interpreter import ContractError
+
+    target = after_dialect or dialect
+    if isinstance(before, ir.Module):
+        source = before
+    else:
+        checked = driver.check_file(path, dialect, profile, before)
+        if checked.analysis is None or checked.analysis.module is None or checked.has_errors:
+            return "the source has errors, so it cannot be simulated"
+        source = checked.analysis.module
+    out_profile = profile if profile is not None and profile.dialect == target else None
+    written = driver.check_file(path, target, out_profile, after_text)
+    if written.analysis is None or written.analysis.module is None or written.has_errors:
+        return "the written program has errors, so it cannot be simulated"
+    src_profile = profile if profile is not None and profile.dialect == source.dialect else None
+    try:
+        src_profile = src_profile or driver.profile_for(dialects.get(source.dialect), None)
+        out_profile = out_profile or driver.profile_for(dialects.get(target), None)
+        found = compare(source, written.analysis.module, scenarios, None, src_profile, out_profile)
+    except ContractError as exc:
+        return f"cannot verify: {exc} (the frontend does not keep the IR contract yet)"
+    return str(found) if found is not None else ""
+
+
+def explain(problem: str) -> str:
+    """A `check_translation` answer as a sentence for the user: a divergence, or why none could be
+    looked for (either way nothing is written)."""
+    if problem.startswith(("cannot verify", "the source has errors", "the written program has errors")):
+        return f"cannot check the new program: {problem.removeprefix('cannot verify: ')}"
+    return f"the new program does not behave like the original: {problem}"
+
