@@ -199,3 +199,5 @@ def profiles() -> None:
 
 # `mcc lint` and `mcc fmt` register themselves on `cli` (cli/lint.py).
 from mcc.cli import lint as _lint  # noqa: E402,F401  (imported last: it uses `cli`)
+# `mcc download`, `upload`, `send`, `terminal` and `device` register themselves too (cli/link.py).
+from mcc.cli import link as _link  # noqa: E402,F401
