@@ -49,15 +49,18 @@ def download(proto, steps: list[Step], save: bool, run: bool,
     """Send `steps` through the connected protocol `proto` and return what happened."""
     report = DownloadReport(steps=steps)
     sent: list[Step] = []
+    current: list[Step] = []   # the step being sent (one at most), so that a failure names it
     try:
         report.device = proto.hello(steps)
         for step in steps:
             if step.kind in ("save", "run"):
                 continue
+            current[:] = [step]
             reply = proto.transact(step.command, retry=not step.stored)
             if not reply.ok:
                 raise DeviceError(reply)
             proto.check_step(step, reply)
+            current.clear()
             sent.append(step)
             report.sent = len(sent)
             if progress:
@@ -94,23 +97,28 @@ def download(proto, steps: list[Step], save: bool, run: bool,
         report.device_state = "; ".join(state)
         return report
     except DeviceError as exc:
-        failed = next((s for s in steps if s.command == exc.reply.command and s not in sent), None)
-        report.failed = failed or Step(exc.reply.command)
+        report.failed = current[0] if current else Step(exc.reply.command)
         report.error, report.meaning = exc.reply.error, exc.reply.meaning
         report.message = f"the device refused `{exc.reply.command}`"
     except LostReply as exc:
-        report.failed = next((s for s in steps if s.command == exc.command and s not in sent), Step(exc.command))
+        report.failed = current[0] if current else Step(exc.command)
         report.error = "garbled" if exc.garbled else "lost"
         report.meaning = (f"the reply did not match what was sent (received {exc.received!r})" if exc.garbled
                           else f"no complete reply within {proto.settings.timeout:g} s (received {exc.received!r})"
                           + ("; not resent, because a stored line could be stored twice" if report.failed.stored
                              else f" after {proto.settings.retries} retries"))
         report.message = f"the reply to `{exc.command}` was {report.error}"
+    except KeyboardInterrupt:
+        report.message = "interrupted (Ctrl-C)"
+        report.error = "interrupted"
+        report.failed = current[0] if current else None
+        report.device_state = describe_partial(sent, report.failed, True, flash(proto)) + (
+            "; interrupted before the read-back" if not report.verified else "")
+        return report
     except LinkError as exc:
         report.message = exc.message
         report.error = "port"
-        pending = [s for s in steps if s.kind not in ("save", "run")]
-        report.failed = pending[len(sent)] if len(sent) < len(pending) else None
+        report.failed = current[0] if current else None
         report.device_state = exc.device_state or describe_partial(sent, report.failed, True, flash(proto))
         if not report.verified and sent:
             report.device_state += "; the port closed, so mcc could not read back what the device holds"
@@ -120,6 +128,10 @@ def download(proto, steps: list[Step], save: bool, run: bool,
         cleanup = proto.after_failure(sent, report.failed)
     except (LinkError, LostReply, DeviceError):
         cleanup = "mcc could not read back what the device holds"
+    try:
+        proto.goodbye()   # e.g. restore the MCode echo mode the drive was in
+    except (LinkError, LostReply, DeviceError):
+        pass
     uncertain = report.error in ("lost", "garbled")
     report.device_state = describe_partial(sent, report.failed, uncertain, flash(proto)) + (
         f"; {cleanup}" if cleanup else "")

@@ -127,18 +127,19 @@ class Protocol:
     def plan(self, lines) -> list[Step]:
         steps: list[Step] = []
         defining = False
+        opened: tuple = ()   # the sources of the XD that opened the sequence being defined
         for number, line in enumerate(lines, 1):
             text = line.text.strip()
             if not text or text.startswith(";"):
                 continue
             address, word, _rest = split(text)
             if word == "XD":
-                defining = True
+                defining, opened = True, line.sources
                 steps.append(Step(text, "send", line.sources, False, number))
             elif word == "XT":
                 defining = False
                 steps.append(Step(text, "send", line.sources, False, number))
-                steps.append(Step(f"{address}XSD", "verify", line.sources, False, number))
+                steps.append(Step(f"{address}XSD", "verify", tuple(opened) + tuple(line.sources), False, number))
             elif defining:
                 steps.append(Step(text, "send", line.sources, True, number))
             elif word in SAVE_MNEMONICS:

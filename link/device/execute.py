@@ -22,6 +22,10 @@ OPS = {"+": operator.add, "-": operator.sub, "*": operator.mul, "/": lambda a, b
 RELOPS = {"=": operator.eq, "==": operator.eq, "<>": operator.ne, "!=": operator.ne, "<": operator.lt,
           "<=": operator.le, ">": operator.gt, ">=": operator.ge}
 STEP_BUDGET = 100_000
+# Dialect commands kept Native in the IR that only select a mode and never wait: running past them
+# changes nothing the host protocol can observe without a motion simulator.
+MODE_ONLY = {("arcus", "ABS"), ("arcus", "INC"), ("x150", "MPA"), ("x150", "MPI"), ("x150", "MN"),
+             ("x150", "MC"), ("mcode", "EE"), ("mcode", "MS")}
 
 
 class NeedsMachine(Exception):
@@ -107,6 +111,8 @@ def run_program(module: ir.Module, variables: dict[str, float], entry: str | int
                         label, index, called = target.entry.label, 0, True
                         break
                 elif isinstance(op, (ir.Save, ir.SetHandler, ir.SetMotion, ir.DriveEnable, ir.Print)):
+                    continue
+                elif isinstance(op, ir.Native) and (op.dialect, op.mnemonic.upper()) in MODE_ONLY:
                     continue
                 else:
                     raise NeedsMachine(type(op).__name__)

@@ -144,3 +144,15 @@ def test_a_device_that_does_not_answer(serve, tmp_path):
     assert device.lines == {}
     sent = mcc("send", "--port", server.url, "--dialect", "arcus", "--timeout", "0.2", "--retries", "1", "SASTAT")
     assert sent.returncode == 1 and "reply lost" in sent.stdout
+
+
+def test_a_refused_line_that_appears_twice_is_named_by_its_own_source_line(serve):
+    stored = [s for s in plan() if s.stored]
+    index = [i for i, s in enumerate(stored) if s.command == "H"][1]   # the second plain `H`
+    device = MCodeDevice(program_lines=index)
+    result, err = download(serve(device).url, "--format", "json")
+    report = json.loads(result.stdout)
+    assert report["failed"]["command"] == "H"
+    assert report["failed"]["sources"] == [f"{MXT}:{stored[index].sources[0].line}"]
+    first_h = stored[[i for i, s in enumerate(stored) if s.command == "H"][0]].sources[0].line
+    assert stored[index].sources[0].line != first_h

@@ -144,3 +144,10 @@ def test_every_checksummed_frame_passes_the_receivers_check(command, name):
     body = framed[:-1]
     assert framed[-1:] == b"\n" and body[-1] & 0x80
     assert sum(body) & 0x7F == 0   # the low 7 bits of the sum, checksum included, are 0 (L6888)
+
+
+def test_a_port_that_cannot_be_opened():
+    result = mcc("download", MXT, "--port", "/dev/mcc-no-such-port")
+    assert result.returncode == 1
+    assert "cannot open port /dev/mcc-no-such-port" in result.stderr
+    assert "nothing was sent" in result.stderr
