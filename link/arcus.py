@@ -33,6 +33,7 @@ NOT_DOWNLOADABLE = (
 class Protocol:
     dialect = "arcus"
     writes_to_flash = True   # "the program is immediately written on the flash memory" (L844)
+    unsaved_note = "written to flash as downloaded (L844)"
 
     def __init__(self, channel: Channel | None, settings) -> None:
         self.channel = channel

@@ -90,8 +90,7 @@ def download(proto, steps: list[Step], save: bool, run: bool,
         proto.goodbye()
         report.ok = True
         report.message = "downloaded and verified"
-        state = [held, "saved" if report.saved else ("written to flash as downloaded" if proto.dialect == "arcus"
-                                                     else "not saved: a power cycle loses it (pass --save)")]
+        state = [held, "saved" if report.saved else proto.unsaved_note]
         if report.ran:
             state.append("running")
         report.device_state = "; ".join(state)
@@ -157,7 +156,10 @@ def describe_partial(sent: list[Step], failed: Step | None, uncertain: bool, to_
     stored = sum(1 for s in sent if s.stored)
     where = ", ".join(sorted({f"{s.file}:{s.line}" for s in last.sources})) or f"listing line {last.line}"
     kept = "written to flash as they arrived" if to_flash else "NOT saved"
-    text = (f"partly written and {kept}: the device accepted {len(sent)} commands "
+    cleared = [s.command for s in sent if s.kind == "clear"]
+    text = (f"partly written and {kept}: "
+            + (f"what the device held before was cleared (`{cleared[0]}`); " if cleared else "")
+            + f"the device accepted {len(sent)} commands "
             f"({stored} stored program lines), the last one `{last.command}` from {where}")
     if failed is not None and failed.kind != "verify":
         text += (f"; `{failed.command}` may have reached the device" if uncertain

@@ -126,6 +126,10 @@ class Protocol:
         return complete
 
     # -- one exchange ----------------------------------------------------------------------
+    # The manual both says programs are stored in and run from NVM (L2149) and that a reset reloads
+    # them from NVM into RAM (L862); settings and variables are certainly lost without S.
+    unsaved_note = ("not saved with S: settings and user variables are lost at a power cycle, and whether the "
+                    "program lines are is contradictory in the manual (L2149, L862); pass --save")
     in_program = False   # between an accepted `PG n` and `PG`: lines are stored, not executed
 
     def transact(self, command: str, retry: bool = True, read_error: bool = True) -> Reply:

@@ -45,6 +45,7 @@ def explain(code: str) -> str:
 
 class Protocol:
     dialect = "x150"
+    unsaved_note = "not saved: sequences stay in volatile memory until SV (L4904); pass --save"
 
     def __init__(self, channel: Channel | None, settings: LinkSettings) -> None:
         self.channel = channel

@@ -44,7 +44,10 @@ class VirtualDevice:
             raise ConnectionDropped()
         if self.faults.garble == n and len(raw) > 2:
             middle = len(raw) // 2
-            raw = raw[:middle] + bytes([(raw[middle] ^ 0x04) & 0x7F or 0x21]) + raw[middle + 1:]
+            noisy = raw[middle] ^ 0x04
+            if noisy < 0x20 or noisy > 0x7E:
+                noisy = 0x23   # never a terminator or a control character: the line length stays the same
+            raw = raw[:middle] + bytes([noisy]) + raw[middle + 1:]
         reply = self.command(raw)
         if self.faults.drop_reply == n:
             return b""

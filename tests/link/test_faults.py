@@ -35,7 +35,7 @@ def source_of(command: str) -> str:
 
 
 def download(url: str, *extra: str, path: str = MXT):
-    result = mcc("download", path, "--port", url, "--save", "--timeout", "0.4", *extra)
+    result = mcc("download", path, "--port", url, "--save", "--timeout", "1.0", *extra)
     return result, result.stderr
 
 
@@ -75,6 +75,7 @@ def test_device_error_mid_download_names_the_source_line(serve):
     assert report["failed"]["sources"] == [f"{MXT}:{sixth.sources[0].line}"]
     assert "program memory now holds 5 lines, the first 5 as sent" in report["device_state"]
     assert "program mode was left" in report["device_state"] and not device.program_mode
+    assert "what the device held before was cleared (`CP 1`)" in report["device_state"]
 
 
 def test_port_closing_mid_download(serve):

@@ -151,3 +151,21 @@ def test_a_port_that_cannot_be_opened():
     assert result.returncode == 1
     assert "cannot open port /dev/mcc-no-such-port" in result.stderr
     assert "nothing was sent" in result.stderr
+
+
+def test_a_read_back_that_differs_is_never_saved_or_run(serve):
+    from mcc.backends.listing import ListingLine
+    from mcc.link.download import download
+    from mcc.link.x150 import Protocol as X150Protocol
+
+    device = X150Device()
+    server = serve(device)
+    settings = LinkSettings(address="1", timeout=1.0)
+    proto = X150Protocol(Channel(open_port(server.url, settings), settings), settings)
+    lines = [ListingLine(t) for t in ["1XE5", "1XD5", "1A10", "1QQQ7", "1XT", "1XR5"]]
+    report = download(proto, proto.plan(lines), save=True, run=True)
+    proto.channel.close()
+    assert not report.ok and not report.verified and not report.saved and not report.ran
+    assert report.message == "the device does not hold what was sent"
+    assert [(m.where, m.found) for m in report.mismatches] == [("device 1 sequence 5", "missing (XSS 0)")]
+    assert device.units["1"].saved["sequences"] == {} and not device.units["1"].running
