@@ -222,11 +222,12 @@ class Protocol:
         if self.settings.party:
             self.channel.send(b"\n")   # one CTRL+J activates party mode (L5002, L5006)
             self.channel.discard_input()
-        self.channel.send(self.frame(""))
-        self.channel.read_until(lambda b: len(b) if b[-1:] in (b">", b"?") else 0)
         if self.settings.echo != 0:
+            # In EM=1-3 no prompt ends a reply: switch to EM=0 first, then drop what it answered.
             self.channel.send(self.frame("EM=0"))
             self.channel.discard_input(0.2)
+        self.channel.send(self.frame(""))
+        self.channel.read_until(lambda b: len(b) if b[-1:] in (b">", b"?") else 0)
         try:
             return " ".join(self.query("PR VR"))
         except LostReply as exc:
@@ -235,10 +236,9 @@ class Protocol:
                             "nothing was changed on the device") from None
 
     def goodbye(self) -> None:
+        """Leave the drive in the echo mode the profile says it is used in."""
         if self.settings.echo != 0:
-            assert self.channel is not None
-            self.channel.send(self.frame(f"EM={self.settings.echo}"))
-            self.channel.discard_input(0.1)
+            self.transact(f"EM={self.settings.echo}", read_error=False)
 
     # -- download --------------------------------------------------------------------------
     def plan(self, lines) -> list[Step]:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import re
+import sys
 
 from mcc.link.protocol import LostReply
 
@@ -39,7 +40,7 @@ class Terminal:
 
     def loop(self) -> None:
         readline = None
-        if self.read is input:
+        if self.read is input and sys.stdin.isatty():
             try:
                 import readline  # noqa: PLC0415 - history when the platform has it
                 readline.read_history_file(HISTORY)

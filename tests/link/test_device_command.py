@@ -49,3 +49,18 @@ def test_virtual_mcode_device_process_keeps_state_between_connections(tmp_path):
 def test_bad_fault_spec_is_a_usage_error():
     result = run_mcc("device", "--dialect", "x150", "--fault", "explode=3")
     assert result.returncode == 2 and "drop_reply=N" in result.stderr
+
+
+def test_terminal_reads_commands_and_decodes_replies(tmp_path):
+    proc, url = start_device("--dialect", "mcode")
+    try:
+        result = run_mcc("terminal", "--port", url, "--dialect", "mcode",
+                         input="PR VM\nFOO=1\n:explain 20\n:status\n:quit\n")
+        assert result.returncode == 0, result.stderr
+        out = result.stdout
+        assert "connected: LMDCM 6.002" in out
+        assert "error 20: Tried to SET Unknown Variable/Flag (L8464)" in out
+        assert "BY 0, ER 0" in out
+    finally:
+        proc.terminate()
+        proc.wait(10)

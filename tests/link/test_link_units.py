@@ -169,3 +169,13 @@ def test_a_read_back_that_differs_is_never_saved_or_run(serve):
     assert report.message == "the device does not hold what was sent"
     assert [(m.where, m.found) for m in report.mismatches] == [("device 1 sequence 5", "missing (XSS 0)")]
     assert device.units["1"].saved["sequences"] == {} and not device.units["1"].running
+
+
+def test_a_drive_in_echo_mode_2_is_downloaded_in_mode_0_and_left_in_mode_2(serve, tmp_path):
+    device = MCodeDevice()
+    device.memory.variables["EM"] = 2   # no prompt, only PR and L output
+    prof = tmp_path / "quiet.toml"
+    prof.write_text('extends = "lmd-c"\nname = "quiet"\n\n[link]\necho = 2\n')
+    result = mcc("download", MXT, "--port", serve(device).url, "--profile", str(prof), "--save")
+    assert result.returncode == 0, result.stderr
+    assert device.memory.variables["EM"] == 2 and len(device.saved.program) == 21
