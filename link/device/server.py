@@ -4,7 +4,9 @@ connections as a real controller keeps it while the cable is unplugged."""
 from __future__ import annotations
 
 import socket
+import sys
 import threading
+import traceback
 
 from mcc.link.device.base import ConnectionDropped, VirtualDevice
 
@@ -45,6 +47,13 @@ class DeviceServer:
             try:
                 reply = self.device.feed(data)
             except ConnectionDropped:
+                self.device.buffer = b""
+                return
+            except Exception as exc:  # noqa: BLE001 - a bug in a virtual device must not kill the server
+                frames = traceback.extract_tb(exc.__traceback__)
+                where = f" at {frames[-1].filename.rsplit('/', 1)[-1]}:{frames[-1].lineno}" if frames else ""
+                print(f"virtual device: internal error {type(exc).__name__}: {exc}{where}; the connection was "
+                      "closed. This is a bug in mcc; please report it with the commands sent.", file=sys.stderr)
                 self.device.buffer = b""
                 return
             if reply:

@@ -32,7 +32,7 @@ def mnemonics() -> tuple[str, ...]:
 
 def parse(command: str) -> tuple[str, str, str]:
     """(address, mnemonic, argument): the longest catalog mnemonic at the start wins."""
-    match = re.match(r"^(\d*)(.*)$", command)
+    match = re.match(r"^(\d*)(.*)$", command, re.S)
     address, rest = match.group(1), match.group(2)
     if rest[:1] in ('"', "#", ";"):
         return address, rest[:1], rest[1:]
