@@ -31,3 +31,42 @@ def test_devices_survive_raw_noise(chunks):
         device.feed(b"CK=1\r")   # checksum mode for the MCode drive: noise is NAKed or refused
         for chunk in chunks:
             assert isinstance(device.feed(chunk + b"\r"), bytes)
+
+
+class NoisyPort:
+    """A port whose device answers `noise` to everything (then nothing)."""
+
+    def __init__(self, noise: bytes) -> None:
+        self.noise = noise
+        self.in_waiting = 0
+
+    def write(self, data: bytes) -> int:
+        return len(data)
+
+    def flush(self) -> None:
+        pass
+
+    def read(self, size: int = 1) -> bytes:
+        out, self.noise = self.noise[:size], self.noise[size:]
+        return out
+
+    def close(self) -> None:
+        pass
+
+
+@settings(max_examples=50, deadline=None)
+@given(st.binary(max_size=40), st.sampled_from(["mcode", "x150", "arcus"]), st.integers(0, 2))
+def test_hosts_turn_any_reply_into_a_reply_or_a_link_failure(noise, dialect, checksum):
+    from mcc.link import protocols
+    from mcc.link.errors import LinkError
+    from mcc.link.ports import Channel
+    from mcc.link.protocol import DeviceError, LostReply
+    from mcc.link.settings import LinkSettings
+
+    settings = LinkSettings(timeout=0.01, retries=1, checksum=checksum if dialect == "mcode" else 0)
+    proto = protocols.get(dialect)(Channel(NoisyPort(noise), settings), settings)
+    try:
+        reply = proto.transact("PR P" if dialect == "mcode" else "1R" if dialect == "x150" else "SASTAT")
+        assert isinstance(reply.lines, list)
+    except (LostReply, DeviceError, LinkError):
+        pass
