@@ -1,0 +1,407 @@
+"""A virtual Lexium MCode device: the host protocol of manual §7.1 and the state it exposes.
+
+State: echo mode EM, checksum mode CK, party mode PY and name DN, the error register ER/EF,
+program memory (lines stored between `PG n` and `PG`, with their labels), user variables (VA,
+global or local), the factory variables of the catalog with their defaults, ranges and access,
+the lock LK, and what `S` saved. Commands are recognised with mcc's MCode catalog; errors are the
+manual's codes (20 unknown variable, 21 bad value, 25 read only, 28 redefined, 29 name of a
+command, 30 unknown label, 42 bad address, 44 locked, 45 program space full, 46 not in program
+mode, 60 unknown command). Programs run through the execution seam (device/execute.py).
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+from mcc.compiler import catalog
+from mcc.link.device import execute
+from mcc.link.device.base import VirtualDevice
+from mcc.link.device.faults import Faults
+from mcc.link.device.programs import module_of
+
+ACK, NAK = b"\x06", b"\x15"
+USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
+
+
+class MCodeError(Exception):
+    def __init__(self, code: int) -> None:
+        super().__init__(code)
+        self.code = code
+
+
+@dataclass(frozen=True)
+class Name:
+    kind: str       # instruction | variable | flag | keyword | reserved | ...
+    access: str
+    default: object
+    range: tuple | None
+
+
+@lru_cache(maxsize=None)
+def names() -> dict[str, Name]:
+    """Every factory name of the catalog (indexed families expanded: I1-I4, R1-R4, ...)."""
+    table: dict[str, Name] = {}
+    for entry in catalog.load("mcode").entries:
+        if entry.kind in ("operator", "function"):
+            continue
+        info = Name(entry.kind, entry.get("access", "") or "", entry.default, entry.range)
+        index = entry.get("index")
+        spellings = [f"{entry.name}{i}" for i in range(index[0], index[1] + 1)] if index else [entry.name]
+        for spelling in spellings:
+            table.setdefault(spelling.upper(), info)
+    return table
+
+
+def split_items(text: str) -> list[str]:
+    """PR items / parameters split on commas outside double quotes."""
+    items, current, quoted = [], "", False
+    for ch in text:
+        if ch == '"':
+            quoted = not quoted
+        if ch == "," and not quoted:
+            items.append(current.strip())
+            current = ""
+        else:
+            current += ch
+    if current.strip():
+        items.append(current.strip())
+    return items
+
+
+@dataclass
+class Memory:
+    """What S saves and a power cycle restores."""
+
+    program: list[str] = field(default_factory=list)
+    origins: dict[int, int] = field(default_factory=dict)      # PG address -> first line index
+    labels: dict[str, int] = field(default_factory=dict)       # label -> line index
+    user: dict[str, list] = field(default_factory=dict)        # name -> [scope G|L, value]
+    variables: dict[str, object] = field(default_factory=dict)
+    lock: int = 0
+
+
+class MCodeDevice(VirtualDevice):
+    terminators = b"\r\n"
+
+    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str = "LMDCM 6.002") -> None:
+        super().__init__(faults)
+        self.program_lines = program_lines
+        self.version = version
+        self.memory = Memory(variables={n: i.default for n, i in names().items()
+                                        if i.kind in ("variable", "flag") and i.default is not None})
+        self.saved = copy.deepcopy(self.memory)
+        self.error = 0
+        self.program_mode = False
+        self.status = "idle"
+        self.status_reason = ""
+
+    # -- framing ---------------------------------------------------------------------------
+    def var(self, name: str, default=0):
+        return self.memory.variables.get(name, default)
+
+    def command(self, raw: bytes) -> bytes:
+        body = raw.rstrip(b"\r\n")
+        party = int(self.var("PY", 0) or 0)
+        checksum = int(self.var("CK", 0) or 0)
+        echo_mode = int(self.var("EM", 0) or 0)
+        reply_wanted = True
+        if party:
+            name = str(self.var("DN", "!")).strip('"')
+            prefix = body[:1].decode("latin-1")
+            if prefix == "*":
+                reply_wanted = False
+            elif prefix != name:
+                return b""  # addressed to another device on the line
+            body = body[1:]
+        echo = raw.rstrip(b"\r\n") if echo_mode in (0, 3) else b""
+        if checksum:
+            if not body or sum((raw.rstrip(b"\r\n"))) & 0x7F:
+                return (echo + NAK + b">") if reply_wanted else b""
+            body = body[:-1]
+        text = body.decode("latin-1")
+        output, ok = self.execute(text)
+        if not reply_wanted:
+            return b""
+        lines = b""
+        for line in output:
+            data = line.encode("latin-1")
+            if checksum:
+                data += bytes([((-sum(data)) & 0x7F) | 0x80])
+            lines += data + b"\r\n"
+        end = ACK if checksum else b"\r\n"
+        prompt = b">" if ok else b"?"
+        if echo_mode == 0:
+            return echo + end + lines + prompt
+        if echo_mode == 1:
+            return lines + end
+        if echo_mode == 2:
+            return lines
+        return echo + lines + end
+
+    # -- commands --------------------------------------------------------------------------
+    def execute(self, text: str) -> tuple[list[str], bool]:
+        try:
+            return self.dispatch(text.strip()), True
+        except MCodeError as exc:
+            self.error = exc.code
+            self.memory.variables["EF"] = 1
+            return [], False
+
+    def dispatch(self, text: str) -> list[str]:
+        if not text or text.startswith(("'", "`")):
+            return []
+        text = re.split(r"\s['`]", text, maxsplit=1)[0].strip()
+        word_match = re.match(r"([A-Za-z][A-Za-z0-9_]*)", text)
+        if not word_match:
+            raise MCodeError(60)
+        word = word_match.group(1).upper()
+        rest = text[word_match.end():]
+        if word == "PG":
+            return self.pg(rest.strip())
+        if self.program_mode:
+            return self.store(text, word, rest)
+        handler = getattr(self, f"cmd_{word}", None)
+        if handler is not None:
+            return handler(rest.strip())
+        return self.assign_or_instruction(word, rest)
+
+    def pg(self, arg: str) -> list[str]:
+        if not arg:
+            if not self.program_mode:
+                raise MCodeError(46)
+            self.program_mode = False
+            return []
+        if self.program_mode:
+            raise MCodeError(42)
+        if not arg.isdigit() or int(arg) < 1:
+            raise MCodeError(42)
+        if self.memory.lock:
+            raise MCodeError(44)
+        self.memory.origins.setdefault(int(arg), len(self.memory.program))
+        self.program_mode = True
+        return []
+
+    def store(self, text: str, word: str, rest: str) -> list[str]:
+        info = names().get(word)
+        if word not in self.memory.user and word not in self.memory.labels and info is None:
+            raise MCodeError(60 if not rest.lstrip().startswith("=") else 20)
+        if info is not None and info.kind == "reserved":
+            raise MCodeError(24)
+        if word == "LB":
+            label = rest.strip().upper()
+            if label in self.memory.labels or label in self.memory.user:
+                raise MCodeError(28)
+            if len(self.memory.labels) + len(self.memory.user) >= USER_NAME_TABLE:
+                raise MCodeError(31)
+        if word == "VA":
+            self.declare(rest.strip(), "L")
+        if len(self.memory.program) >= self.program_lines:
+            raise MCodeError(45)
+        if word == "LB":
+            self.memory.labels[rest.strip().upper()] = len(self.memory.program)
+        self.memory.program.append(" ".join(text.split()))
+        return []
+
+    def declare(self, spec: str, scope: str) -> None:
+        name, _, initial = spec.partition("=")
+        name = name.strip().upper()
+        if not re.fullmatch(r"[A-Z][A-Z0-9_]*", name):
+            raise MCodeError(24)
+        if name in names():
+            raise MCodeError(29)
+        if name in self.memory.user or name in self.memory.labels:
+            raise MCodeError(28)
+        if len(self.memory.labels) + len(self.memory.user) >= USER_NAME_TABLE:
+            raise MCodeError(31)
+        self.memory.user[name] = [scope, self.evaluate(initial) if initial.strip() else 0]
+
+    def evaluate(self, text: str):
+        text = text.strip()
+        try:
+            return int(text)
+        except ValueError:
+            pass
+        try:
+            return float(text)
+        except ValueError:
+            pass
+        upper = text.upper()
+        if upper in self.memory.user:
+            return self.memory.user[upper][1]
+        if upper in self.memory.variables:
+            return self.memory.variables[upper]
+        return text  # an expression or a multi-part setting kept as written
+
+    def read(self, name: str):
+        upper = name.upper()
+        if upper in self.memory.user:
+            return self.memory.user[upper][1]
+        info = names().get(upper)
+        if info is None or info.kind in ("instruction", "reserved"):
+            raise MCodeError(35)
+        return self.memory.variables.get(upper, 0)
+
+    def assign_or_instruction(self, word: str, rest: str) -> list[str]:
+        info = names().get(word)
+        user = word in self.memory.user
+        assigning = rest.lstrip().startswith("=") or (info is not None and info.kind in ("variable", "flag")
+                                                      and rest.strip() != "")
+        if not user and info is None:
+            if word in self.memory.labels:
+                raise MCodeError(32 if assigning else 60)
+            raise MCodeError(20 if rest.lstrip().startswith("=") else 60)
+        if info is not None and info.kind == "reserved":
+            raise MCodeError(24)
+        if not assigning:
+            if info is not None and info.kind in ("variable", "flag", "keyword") and not user:
+                raise MCodeError(60)
+            return []  # an instruction: accepted (motion is the simulator's work)
+        value_text = rest.strip().lstrip("=").strip()
+        if user:
+            self.memory.user[word][1] = self.evaluate(value_text)
+            return []
+        if info.kind == "instruction":
+            raise MCodeError(33)
+        if info.access in ("ro",):
+            raise MCodeError(25)
+        value = self.evaluate(value_text)
+        if info.access == "rc" and value != 0:
+            raise MCodeError(21)
+        if isinstance(value, (int, float)) and info.range and not (info.range[0] <= value <= info.range[1]):
+            raise MCodeError(21)
+        if word == "ER":
+            self.error = 0
+            self.memory.variables["EF"] = 0
+        self.memory.variables[word] = value
+        return []
+
+    # -- instructions with effects on the protocol state -----------------------------------
+    def cmd_PR(self, rest: str) -> list[str]:
+        out = ""
+        for item in split_items(rest.rstrip(";")):
+            if item.startswith('"'):
+                out += item.strip('"')
+            elif item.upper() == "ER":
+                out += str(self.error)
+                self.error = 0
+                self.memory.variables["EF"] = 0
+            elif item.upper() == "UV":
+                return [f"{n} = {scope} {v}" for n, (scope, v) in self.memory.user.items()]
+            elif item.upper() == "VR":
+                out += self.version
+            elif item.upper() == "EF":
+                out += str(self.memory.variables.get("EF", 0))
+            else:
+                value = self.read(item)
+                out += str(value)
+        return [out]
+
+    def cmd_VA(self, rest: str) -> list[str]:
+        self.declare(rest, "G")
+        return []
+
+    def cmd_L(self, rest: str) -> list[str]:
+        if self.memory.lock:
+            raise MCodeError(44)
+        start = 0
+        if rest:
+            key = rest.strip().upper()
+            if key.isdigit():
+                start = self.memory.origins.get(int(key), -1)
+            else:
+                start = self.memory.labels.get(key, -1)
+            if start < 0:
+                raise MCodeError(30 if not key.isdigit() else 42)
+        return self.memory.program[start:]
+
+    def cmd_CP(self, rest: str) -> list[str]:
+        params = [p.strip() for p in rest.split(",") if p.strip()]
+        self.memory.program, self.memory.origins, self.memory.labels = [], {}, {}
+        self.memory.lock = 0
+        if params[:1] == ["1"] or not params:
+            self.memory.user = {}
+        else:
+            self.memory.user = {n: v for n, v in self.memory.user.items() if v[0] == "G"}
+        return []
+
+    def cmd_S(self, rest: str) -> list[str]:
+        if rest:
+            raise MCodeError(60)
+        self.saved = copy.deepcopy(self.memory)
+        return []
+
+    def cmd_LK(self, rest: str) -> list[str]:
+        value = rest.strip().lstrip("=").strip()
+        if value not in ("0", "1"):
+            raise MCodeError(21)
+        self.memory.lock = int(value)
+        self.memory.variables["LK"] = int(value)
+        return []
+
+    def cmd_EX(self, rest: str) -> list[str]:
+        target = rest.strip().upper()
+        if target.isdigit():
+            if int(target) not in self.memory.origins:
+                raise MCodeError(42)
+            entry: str | int = int(target)
+        else:
+            if target not in self.memory.labels:
+                raise MCodeError(30)
+            entry = target
+        self.run(entry)
+        return []
+
+    def power_cycle(self) -> None:
+        """What a power cycle does: the saved state comes back (L862), SU runs."""
+        self.memory = copy.deepcopy(self.saved)
+        self.program_mode = False
+        self.error = 0
+        if "SU" in self.memory.labels:
+            self.run("SU")
+
+    # -- the execution seam ----------------------------------------------------------------
+    def program_text(self) -> str:
+        declared = [f"VA {n}={v[1] if isinstance(v[1], (int, float)) else 0}"
+                    for n, v in self.memory.user.items() if v[0] == "G"]
+        regions, lines = [], self.memory.program
+        starts = sorted(self.memory.origins.items(), key=lambda kv: kv[1])
+        for i, (address, first) in enumerate(starts):
+            last = starts[i + 1][1] if i + 1 < len(starts) else len(lines)
+            regions += [f"PG {address}", *lines[first:last], "PG"]
+        return "\n".join(declared + regions) + "\n"
+
+    def run(self, entry) -> None:
+        module = module_of("mcode", self.program_text())
+        if module is None:
+            self.status, self.status_reason = "idle", "the stored program does not compile"
+            return
+        values = {n: v[1] for n, v in self.memory.user.items() if isinstance(v[1], (int, float))}
+        outcome = execute.run_program(module, values, entry)
+        for name, value in outcome.variables.items():
+            if name in self.memory.user:
+                self.memory.user[name][1] = int(value) if float(value).is_integer() else value
+        self.status, self.status_reason = outcome.status, outcome.reason
+        self.memory.variables["BY"] = 1 if outcome.status == "running" else 0
+
+
+class MCodeBus(VirtualDevice):
+    """Several MCode drives in party mode on one RS-422/485 line (L5000-L5053): every drive sees
+    every command, each answers only to its own name, none to the global `*`."""
+
+    terminators = b"\r\n"
+
+    def __init__(self, names_on_bus: tuple[str, ...], faults: Faults | None = None, **options) -> None:
+        super().__init__(faults)
+        self.drives: dict[str, MCodeDevice] = {}
+        for name in names_on_bus:
+            drive = MCodeDevice(**options)
+            drive.memory.variables["PY"] = 1
+            drive.memory.variables["DN"] = name
+            drive.saved = copy.deepcopy(drive.memory)
+            self.drives[name] = drive
+
+    def command(self, raw: bytes) -> bytes:
+        return b"".join(drive.command(raw) for drive in self.drives.values())

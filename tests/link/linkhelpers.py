@@ -1,0 +1,44 @@
+"""Virtual devices served on the loopback address for the link tests (a real TCP socket)."""
+
+from __future__ import annotations
+
+import contextlib
+
+import pytest
+
+
+@contextlib.contextmanager
+def serving(device):
+    from mcc.link.device.server import DeviceServer
+
+    with DeviceServer(device) as server:
+        yield server
+
+
+@pytest.fixture
+def serve():
+    """serve(device) -> the server (its .url is the socket:// port); stopped after the test."""
+    stack = contextlib.ExitStack()
+
+    def start(device):
+        return stack.enter_context(serving(device))
+
+    with stack:
+        yield start
+
+
+class Result:
+    def __init__(self, returncode: int, stdout: str, stderr: str) -> None:
+        self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
+
+
+def mcc(*args: str) -> Result:
+    """Run an `mcc` command in this process (click's runner: the same command, parsing and exit
+    codes as the installed script, without starting an interpreter per call; the virtual device
+    runs in a thread of this process and the link still goes through a real socket)."""
+    from click.testing import CliRunner
+
+    from mcc.cli.commands import cli
+
+    result = CliRunner().invoke(cli, list(args), env={"NO_COLOR": "1"}, catch_exceptions=False)
+    return Result(result.exit_code, result.stdout, result.stderr)

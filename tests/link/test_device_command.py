@@ -1,0 +1,66 @@
+"""`mcc device` as a user starts it: a separate process on a TCP port, driven by `mcc download`,
+`mcc send` and `mcc upload` in other processes."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+from conftest import SAMPLES, run_mcc
+
+
+def start_device(*args: str) -> tuple[subprocess.Popen, str]:
+    exe = Path(sys.executable).parent / "mcc"
+    proc = subprocess.Popen([str(exe), "device", *args, "--listen", "127.0.0.1:0"], stderr=subprocess.PIPE,
+                            text=True)
+    line = proc.stderr.readline()
+    match = re.search(r"(socket://127\.0\.0\.1:\d+)", line)
+    assert match, line
+    return proc, match.group(1)
+
+
+def test_virtual_arcus_device_process_runs_its_program():
+    proc, url = start_device("--dialect", "arcus", "--program", str(SAMPLES / "arcus" / "drill_grid_variables.prg"))
+    try:
+        result = run_mcc("send", "--port", url, "--dialect", "arcus", "SASTAT", "SR=1", "SASTAT", "V4", "V14")
+        assert result.returncode == 0, result.stdout + result.stderr
+        assert result.stdout.splitlines() == ["SASTAT: 0  (stopped)", "SR=1: OK", "SASTAT: 1  (running)",
+                                              "V4: 1500", "V14: 4"]
+    finally:
+        proc.terminate()
+        proc.wait(10)
+
+
+def test_virtual_mcode_device_process_keeps_state_between_connections(tmp_path):
+    proc, url = start_device("--dialect", "mcode", "--fault", "")
+    try:
+        sample = str(SAMPLES / "mcode" / "trip_on_input.mxt")
+        assert run_mcc("download", sample, "--port", url, "--save").returncode == 0
+        out = tmp_path / "back.mxt"
+        assert run_mcc("upload", "--port", url, "--dialect", "mcode", "-o", str(out)).returncode == 0
+        assert run_mcc("check", str(out)).returncode == 0
+    finally:
+        proc.terminate()
+        proc.wait(10)
+
+
+def test_bad_fault_spec_is_a_usage_error():
+    result = run_mcc("device", "--dialect", "x150", "--fault", "explode=3")
+    assert result.returncode == 2 and "drop_reply=N" in result.stderr
+
+
+def test_terminal_reads_commands_and_decodes_replies(tmp_path):
+    proc, url = start_device("--dialect", "mcode")
+    try:
+        result = run_mcc("terminal", "--port", url, "--dialect", "mcode",
+                         input="PR VM\nFOO=1\n:explain 20\n:status\n:quit\n")
+        assert result.returncode == 0, result.stderr
+        out = result.stdout
+        assert "connected: LMDCM 6.002" in out
+        assert "error 20: Tried to SET Unknown Variable/Flag (L8464)" in out
+        assert "BY 0, ER 0" in out
+    finally:
+        proc.terminate()
+        proc.wait(10)
