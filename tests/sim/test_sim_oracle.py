@@ -43,3 +43,17 @@ def test_formatted_and_fixed_programs_behave_like_their_source(dialect, path, tm
         assert "--verify" not in outcome.error
     fixed = engine.lint_file(str(copy), Settings(), engine.Options(fix=True, verify=True))
     assert [d.message for d in fixed.diagnostics if d.code == "S010"] == []
+
+
+@pytest.mark.parametrize("level", ["O0", "O1", "O2", "Os"])
+@pytest.mark.parametrize("dialect, path", CASES, ids=IDS)
+def test_every_optimization_level_behaves_like_the_source(dialect, path, level):
+    """The optimizer's oracle (issue 10): each level's output runs like the program as written."""
+    result = contract_module(path, dialect)
+    compiled = driver.compile_file(str(path), dialect, opt_level=level)
+    if compiled.has_errors or compiled.listing is None:
+        pytest.skip(f"{path.name} does not compile")
+    problem = check_translation(str(path), dialect, result.analysis.module, compiled.listing.text, dialect)
+    if problem.startswith("cannot verify"):
+        pytest.skip(problem)
+    assert problem == ""
