@@ -37,11 +37,19 @@ local ok, err = pcall(function()
   end
   local params = { textDocument = { uri = vim.uri_from_bufnr(bufnr) },
                    position = { line = hover_line, character = hover_col } }
-  local responses = vim.lsp.buf_request_sync(bufnr, "textDocument/hover", params, 30000)
-  for _, response in pairs(responses or {}) do
-    if response.result and response.result.contents then
-      result.hover = response.result.contents.value or response.result.contents
+  -- The server answers hover from its latest finished analysis; on a loaded machine the first
+  -- diagnostics can arrive before that analysis is stored, so ask again until it answers.
+  for _ = 1, 60 do
+    local responses = vim.lsp.buf_request_sync(bufnr, "textDocument/hover", params, 30000)
+    for _, response in pairs(responses or {}) do
+      if response.result and response.result.contents then
+        result.hover = response.result.contents.value or response.result.contents
+      end
     end
+    if result.hover and result.hover ~= "" then
+      break
+    end
+    vim.wait(500)
   end
   vim.lsp.stop_client(client_id)
 end)
