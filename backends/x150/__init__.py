@@ -13,7 +13,7 @@ sequence memory: every stored character and its delimiter is one byte (L241), ag
 from __future__ import annotations
 
 from mcc.backends.listing import Listing
-from mcc.backends.x150 import naming
+from mcc.compiler.x150 import naming
 from mcc.backends.x150.writer import write
 from mcc.compiler import ir
 from mcc.compiler.profiles import Profile

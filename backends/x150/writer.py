@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
-from mcc.backends.x150 import naming
+from mcc.compiler.x150 import naming
 from mcc.compiler import ir, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
