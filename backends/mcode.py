@@ -217,6 +217,9 @@ class Writer:
                 needed.add(routine.entry.label)
             if routine.kind is ir.RoutineKind.POWERUP and routine.entry:
                 needed.add(routine.entry.label)
+        if self.foreign:  # another dialect's programs (X150 sequences) run by name: EX <label>
+            programs = [r for r in self.module.routines if r.kind is ir.RoutineKind.MAIN and r.entry]
+            needed.update(r.entry.label for r in programs[1:])
         return needed
 
     def allocate_labels(self) -> dict[str, str]:
@@ -329,7 +332,12 @@ class Writer:
         first = [r for r in routines if self.as_program(r) or r.kind in (ir.RoutineKind.MAIN,)]
         rest = [r for r in routines if r not in first]
         immediate = [r for r in rest if r.kind is ir.RoutineKind.IMMEDIATE]
-        return immediate + first + [r for r in rest if r not in immediate]
+        program = first + [r for r in rest if r not in immediate]
+        # immediate commands keep their place around the program region: a save (S) sent after the
+        # definitions must follow them, or it saves the program before it is loaded
+        start = min((line_of(r) for r in program), default=0)
+        before = [r for r in immediate if line_of(r) <= start]
+        return before + program + [r for r in immediate if r not in before]
 
     def stats(self) -> None:
         text_lines = [line.text for line in self.listing.lines]
@@ -785,6 +793,14 @@ class Writer:
         if isinstance(node, ir.Truth):
             return self.expr(node.expr)
         raise Unsupported("a condition with AND/OR or an input pattern here (MCode tests one condition)")
+
+
+def line_of(routine: ir.Routine) -> int:
+    """The source line a routine starts on (its first spanned operation when it has no span)."""
+    if routine.span is not None:
+        return routine.span.line
+    spans = (op.span for block in routine.blocks for op in block.ops if op.span is not None)
+    return next((span.line for span in spans), 0)
 
 
 def threaded(term, through):

@@ -650,12 +650,14 @@ class Writer:
         first, last = ends(op.span)
         register = isinstance(target, ir.Var) and target.name.startswith(DISTANCE)
         distance = "" if register else self.position(target, axis)
-        self.set_mode("move", key, "MN", prefix, first)
-        self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
+        # D before the mode switches, as the X150 frontend's distance register reads it back: the
+        # output is then the same when compiled again
         if not register and self.state.get(("D", key)) != distance:
             self.emit(prefix + "D" + distance, first)
             self.state[("D", key)] = distance
             self.state.pop(("sign", key), None)
+        self.set_mode("move", key, "MN", prefix, first)
+        self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
         self.emit(prefix + "G", last)
 
     def register(self, op: ir.Assign) -> None:
