@@ -650,15 +650,23 @@ class Writer:
         first, last = ends(op.span)
         register = isinstance(target, ir.Var) and target.name.startswith(DISTANCE)
         distance = "" if register else self.position(target, axis)
-        # D before the mode switches, as the X150 frontend's distance register reads it back: the
-        # output is then the same when compiled again
-        if not register and self.state.get(("D", key)) != distance:
-            self.emit(prefix + "D" + distance, first)
-            self.state[("D", key)] = distance
-            self.state.pop(("sign", key), None)
+        # A computed distance `D(VARn)` goes before the mode switches, where the X150 frontend's
+        # distance register reads it back (so the output compiles again to the same text); a
+        # constant one after them, as the manual's examples write it
+        computed = not isinstance(target, ir.Const)
+        if computed and not register:
+            self.distance(prefix, key, distance, first)
         self.set_mode("move", key, "MN", prefix, first)
         self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
+        if not computed:
+            self.distance(prefix, key, distance, first)
         self.emit(prefix + "G", last)
+
+    def distance(self, prefix: str, key: str, distance: str, span) -> None:
+        if self.state.get(("D", key)) != distance:
+            self.emit(prefix + "D" + distance, span)
+            self.state[("D", key)] = distance
+            self.state.pop(("sign", key), None)
 
     def register(self, op: ir.Assign) -> None:
         """The X150 frontend's distance register: `D<n>`, or `H` / `H+` / `H-` for its sign."""
