@@ -485,7 +485,7 @@ class Writer:
                 self.refuse(exc, before.op.span)
                 text = "L"
             self.emit(self.address() + text, before.op.span or node.span)
-            self.nodes(node.body[:-1])
+            self.nodes(unnested(node.body)[:-1])
             self.emit(self.address() + "N", node.end_span or node.span)
             return
         self.emit(f"{self.address()}REPEAT", node.span)
@@ -932,14 +932,25 @@ def is_true(cond) -> bool:
         and isinstance(cond.right, ir.Const) and cond.left.value == cond.right.value
 
 
+def unnested(body: list) -> list:
+    """`IF(c) .. (never falls through) ELSE rest NIF` as `IF(c) .. NIF rest`: the same program, with
+    what follows the IF at the loop's level again (so an L loop's closing `N` is found after it)."""
+    if body and isinstance(body[-1], IfNode) and body[-1].orelse \
+            and all(ends_with(arm) for _, arm in body[-1].arms):
+        last = body[-1]
+        return body[:-1] + [IfNode(last.arms, [], last.spans, None, last.end_span)] + unnested(last.orelse)
+    return body
+
+
 def counted(node: RepeatNode) -> str | None:
     """The counter of an X150 L loop: `until %Lk = 0` after a body ending in `%Lk = %Lk - 1`."""
     until = node.until
+    body = unnested(node.body)
     if not (isinstance(until, ir.Compare) and until.op == "=" and isinstance(until.left, ir.Var)
             and until.left.name.startswith(LOOP_PREFIX) and isinstance(until.right, ir.Const)
-            and until.right.value == 0 and node.body):
+            and until.right.value == 0 and body):
         return None
-    last = node.body[-1]
+    last = body[-1]
     name = until.left.name
     if isinstance(last, Simple) and isinstance(last.op, ir.Assign) and last.op.target.name == name \
             and isinstance(last.op.value, ir.BinOp) and last.op.value.op == "-" \

@@ -172,3 +172,10 @@ def test_conditions_x150_cannot_say_are_x202():
               block("c")]
     listing = backend.emit(module(ir.Routine("immediate", ir.RoutineKind.IMMEDIATE, blocks, SPAN)), PROFILE)
     assert [d.code for d in listing.diagnostics] == ["X202"]  # VAR1<1 OR VAR1>1 AND IN_1: three terms
+
+
+def test_a_counted_loop_whose_body_returns_early_keeps_its_count():
+    """The structurer nests what follows an IF that returns into its ELSE; the L loop's closing
+    N (the hidden counter's decrement) must still be found after it, not written as a variable."""
+    text = "XE1\nXD1\nL(VAR2)\nWHILE(IN_1)\nXRT\nNWHILE\nIF(VAR1>5)\nXRT\nNIF\nN\nXT\n"
+    assert output(text) == ["XE1", "XD1", "L(VAR2)", "IF(IN_1)", "XRT", "NIF", "IF(VAR1>5)", "XRT", "NIF", "N", "XT"]
