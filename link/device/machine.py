@@ -171,14 +171,24 @@ class DeviceMachine:
             return self._ended(Outcome("error", f"internal error in the simulator ({type(exc).__name__}: {exc}); "
                                                 "this is a bug in mcc, please report it"), program)
         self.last = trace
-        self.clock += trace.time
+        end = trace.time
+        if trace.stopped == "end":
+            # The program ended while moves it started were still running: they go on to their
+            # end, or up to the run limit (the trace stops at the program's end when the moves
+            # would finish after the limit).
+            ends = [a.motion.t_end for a in self.machine.axes.values()
+                    if a.motion is not None and end < a.motion.t_end < float("inf")]
+            end = min(max(ends, default=end), max(self.run_limit, end))
+        self.clock += end
         for name, axis in self.machine.axes.items():
             if axis.motion is not None:       # freeze: no virtual time passes between commands
-                if axis.moving(trace.time):
-                    self.moving[name] = axis.speed(trace.time)
+                if axis.moving(end):
+                    self.moving[name] = axis.speed(end)
                     if axis.motion.t_end == float("inf"):   # a slew: it reports the speed it runs at
-                        self.moving[name] = self.slewing[name] = axis.speed(trace.time + 3600.0)
-                axis.position = round(axis.at(trace.time), 6)
+                        self.moving[name] = self.slewing[name] = axis.speed(end + 3600.0)
+                axis.position = round(axis.at(end), 6)
+                if not axis.moving(end) and axis.on_end == "home":
+                    axis.offset, axis.position = axis.offset + axis.position, 0.0
                 axis.motion = None
                 axis.on_end = ""
         self.variables.update(trace.variables)

@@ -258,12 +258,12 @@ class MCodeDevice(VirtualDevice):
     def live(self, name: str):
         """What the simulator's machine says for a factory variable, or None."""
         sim = self.sim
-        if name in ("P", "C1", "C2"):
-            return plain(sim.position(AXIS))
+        if name in ("P", "C1", "C2"):   # counters: whole steps
+            return int(round(sim.position(AXIS)))
         if name == "MV":
             return 1 if AXIS in sim.moving else 0
         if name == "V":
-            return plain(sim.moving.get(AXIS, 0))
+            return int(round(sim.moving.get(AXIS, 0)))
         if name == "BY":
             return 1 if sim.status == "running" else 0
         if name in SETTINGS and SETTINGS[name] in sim.machine.axis(AXIS).settings:

@@ -71,3 +71,20 @@ def test_terminal_reads_commands_and_decodes_replies(tmp_path):
     finally:
         proc.terminate()
         proc.wait(10)
+
+
+def test_run_limit_cuts_a_long_move_in_virtual_time():
+    # A 5 s move on a device that runs each command for at most 1 virtual second: the axis is
+    # where the move had got to after 1 s (about 2000 steps at 2000 steps/s), still moving.
+    proc, url = start_device("--dialect", "mcode", "--run-limit", "1")
+    try:
+        result = run_mcc("send", "--port", url, "--dialect", "mcode", "VM=2000", "MR 10000", "PR P", "PR MV")
+        assert result.returncode == 0, result.stdout + result.stderr
+        lines = result.stdout.splitlines()
+        position = int(lines[2].split(": ")[1])
+        assert 1500 < position < 2100 and lines[3] == "PR MV: 1"
+    finally:
+        proc.terminate()
+        proc.wait(10)
+    bad = run_mcc("device", "--dialect", "mcode", "--run-limit", "0")
+    assert bad.returncode == 2 and "--run-limit" in bad.stderr
