@@ -1,5 +1,5 @@
-"""The parts of the link one at a time: framing, settings, the execution seam, send, terminal,
-dry runs, and the message without pyserial."""
+"""The parts of the link one at a time: framing, settings, programs on the simulator's machine,
+send, terminal, dry runs, and the message without pyserial."""
 
 from __future__ import annotations
 
