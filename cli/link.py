@@ -392,12 +392,18 @@ def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
               help="MCode: program memory in lines (error 45 beyond it; the manual gives no size).")
 @click.option("--sequence-bytes", type=int, default=8000, show_default=True,
               help="X150: sequence memory in bytes (L4871).")
+@click.option("--run-limit", type=click.FloatRange(min=0, min_open=True), default=60.0, show_default=True,
+              metavar="SECONDS",
+              help="Virtual seconds a program (or command) may run on the simulator's machine before the "
+                   "device answers; a program still going then stays 'running'.")
 def device(dialect: str, listen: str, program: str | None, fault: str, addresses: str, party_names: str,
-           program_lines: int, sequence_bytes: int) -> None:
+           program_lines: int, sequence_bytes: int, run_limit: float) -> None:
     """Run a virtual device on a TCP port, behind the dialect's host protocol.
 
     Connect with --port socket://HOST:PORT. The device keeps its state between connections
-    until it is stopped (Ctrl-C). See docs/LINK.md for what it models.
+    until it is stopped (Ctrl-C). Programs and commands run on the simulator's machine (as
+    `mcc sim`), in virtual time: each runs to its end, or to --run-limit, before the device
+    answers. See docs/LINK.md for what it models.
 
     \b
     Example:
@@ -418,7 +424,7 @@ def device(dialect: str, listen: str, program: str | None, fault: str, addresses
     try:
         dev = make_device(dialect, faults, addresses=tuple(a.strip() for a in addresses.split(",") if a.strip()),
                           program_lines=program_lines, sequence_bytes=sequence_bytes, program=program,
-                          party=tuple(n.strip() for n in party_names.split(",") if n.strip()))
+                          party=tuple(n.strip() for n in party_names.split(",") if n.strip()), run_limit=run_limit)
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--program") from None
     server = DeviceServer(dev, host or "127.0.0.1", int(port_text))

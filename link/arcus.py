@@ -23,11 +23,14 @@ VARIABLES = 64        # V0..V63 (L1703-L1706)
 SASTAT = {"0": "stopped", "1": "running", "2": "paused", "4": "in error"}
 IMAGE_LINE = re.compile(r"^SA(\d+)=(.*)$")
 NOT_DOWNLOADABLE = (
-    "a .prg standalone program must be compiled by the Arcus Windows software into assembly lines whose "
-    "format the manual does not document (L1109, SAn L1642-L1645), so mcc cannot put it on the controller. "
-    "Download it with the vendor's software; mcc can then run it (mcc send SR=1), read its status and "
-    "variables, save it to an image (mcc upload --image FILE) and put that image on other controllers "
-    "(mcc download FILE.sa).")
+    "a .prg cannot be downloaded by mcc: the controller stores a standalone program only as the "
+    "\"assembly level code\" that the Arcus Windows software compiles it into (manual L1105-L1112; "
+    "memory is counted in those lines, L827-L829), and the manual does not document that code: SAn "
+    "reads and SAn=value writes a \"single line of compiled code\" whose format is never given "
+    "(L1642-L1645). Instead, open the .prg in the Arcus Windows software (\"Program and Control "
+    "Software\", manual section 12), click Compile, then Download; mcc can then run and stop it "
+    "(mcc send SR=1 / SR=0), read its status and variables, save it to an image (mcc upload --image "
+    "FILE.sa) and put that image on other controllers, verified line by line (mcc download FILE.sa).")
 
 
 class Protocol:

@@ -4,17 +4,20 @@ State (manual L1492-L1715): the standalone program's compiled lines SA0-SA3229 (
 as they arrive, L844), its status SASTAT and program counter SPC, SR run/stop/pause/continue,
 the variables V0-V63, SLOAD and the parameters STORE keeps, and the motion settings the host can
 read back. The real compiled-line format is the vendor compiler's and undocumented; the virtual
-device holds mcc's compiled statements in their place (one per line), which only it interprets,
-so that running a program (SR=1) can go through the execution seam (device/execute.py).
+device holds mcc's compiled statements in their place (one per line), which only it interprets:
+running the program (SR=1, GSn for a subroutine) compiles them back into the IR and runs them on
+the simulator's machine (device/machine.py), as do the host's motion, position and output
+commands (spelled as standalone statements, HOST_COMMANDS); PX, PP, PS, DO and DI read it.
 """
 
 from __future__ import annotations
 
 import re
 
-from mcc.link.device import execute
+from mcc.compiler import ir
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
+from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
 
 PROGRAM_LINES = 3230
@@ -22,21 +25,49 @@ INVALID = "?Invalid Command"   # the manual: "?(Error Message)" (L1494), the tex
 SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO": "0", "SLOAD": "0",
             "DB": "1", "DN": "4EX00", "TR": "0"}
 ACTIONS = ("ABORT", "ABS", "INC", "STOP", "BO", "BF", "STORE")
+AXES = "XYZU"
+# Host commands that act on the machine, as the standalone statement mcc's frontend compiles
+# (the catalog's `ascii` spellings, compiler/catalogs/arcus.toml): (pattern, statement template).
+HOST_COMMANDS = [
+    (r"J([XYZU])([+-])", r"JOG\1\2"),
+    (r"H([XYZU])([+-])0?", r"HOME\1\2"),
+    (r"H([XYZU])([+-])2", r"ZHOME\1\2"),
+    (r"H([XYZU])([+-])3", r"ZOME\1\2"),
+    (r"(STOP|ABORT)([XYZU]?)", r"\1\2"),
+    (r"((?:[XYZU]-?\d+\s*)+)", r"\1"),
+    (r"P([XYZU])=(-?\d+)", r"P\1=\2"),
+    (r"HS=(\d+)", r"HSPD=\1"),
+    (r"LS=(\d+)", r"LSPD=\1"),
+    (r"ACC=(\d+)", r"ACC=\1"),
+    (r"DO=(\d+)", r"DO=\1"),
+    (r"DO([1-8])=([01])", r"DO\1=\2"),
+]
 
 
 class ArcusDevice(VirtualDevice):
     terminators = b"\r"
 
-    def __init__(self, faults: Faults | None = None, address: str = "00", version: str = "V135") -> None:
+    def __init__(self, faults: Faults | None = None, address: str = "00", version: str = "V135",
+                 run_limit: float = RUN_LIMIT) -> None:
         super().__init__(faults)
+        self.sim = DeviceMachine("arcus", run_limit)
+        self.mode = "ABS"   # ABS / INC: the move mode of the host's X/Y/Z/U commands (L1512, L1547)
         self.address = address
         self.version = version
         self.lines: dict[int, str] = {}
         self.variables = [0] * 64
         self.settings = dict(SETTINGS)
         self.stored_settings = dict(SETTINGS)
-        self.state = "0"   # SASTAT: 0 stopped, 1 running, 2 paused, 4 in error
+        self.paused = False
         self.pc = 0
+
+    @property
+    def state(self) -> str:
+        """SASTAT: 0 stopped, 1 running, 2 paused, 4 in error (from the machine's program)."""
+        status = self.sim.status
+        if status == "running":
+            return "2" if self.paused else "1"
+        return "4" if status == "error" else "0"
 
     def load_program(self, text: str, name: str = "<device>") -> None:
         """Put a .prg on the device as the vendor's software would (mcc's statements stand in
@@ -73,6 +104,12 @@ class ArcusDevice(VirtualDevice):
                 return INVALID   # the program is running: its flash is not written
             self.lines[index] = match.group(2)
             return "OK"
+        match = re.fullmatch(r"GS(\d+)", upper)
+        if match:   # call a subroutine of the standalone program; an undefined one is an error (L823, L1551)
+            return "OK" if self.run(int(match.group(1))) else INVALID
+        reading = self.reading(upper)
+        if reading is not None:
+            return reading
         match = re.fullmatch(r"V(\d+)(?:=(-?\d+))?", upper)
         if match:
             n = int(match.group(1))
@@ -93,32 +130,80 @@ class ArcusDevice(VirtualDevice):
             if match.group(2) is None:
                 return self.settings[match.group(1)]
             self.settings[match.group(1)] = match.group(2)
+            self.on_machine(upper)
             return "OK"
-        if upper in ACTIONS or re.fullmatch(r"([XYZU]-?\d+\s*)+", upper) or re.fullmatch(r"J[XYZU][+-]", upper):
+        if upper in ("ABS", "INC"):
+            self.mode = upper
+            return "OK"
+        if self.on_machine(upper) or upper in ACTIONS:
             return "OK"
         return INVALID
 
+    def reading(self, cmd: str) -> str | None:
+        """Positions, speeds and I/O read from the machine (L1581-L1614), or None."""
+        sim = self.sim
+        if re.fullmatch(r"P[XYZU]", cmd) or re.fullmatch(r"E[XYZU]", cmd):
+            return str(int(round(sim.position(cmd[1]))))
+        if cmd in ("PP", "PE"):
+            return ":".join(str(int(round(sim.position(a)))) for a in AXES)
+        if cmd == "PS":
+            return ":".join(str(int(round(abs(sim.moving.get(a, 0))))) for a in AXES)
+        if cmd == "DO":
+            return str(sim.machine.output_mask())
+        if cmd == "DI":
+            return str(sim.machine.input_mask())
+        match = re.fullmatch(r"D([OI])([1-8])", cmd)
+        if match:
+            table = sim.machine.outputs if match.group(1) == "O" else sim.machine.inputs
+            return str(table.get(int(match.group(2)), 0))
+        return None
+
+    def on_machine(self, cmd: str) -> bool:
+        """Run a host command that acts on the machine; False when it is not one."""
+        for pattern, template in HOST_COMMANDS:
+            match = re.fullmatch(pattern, cmd)
+            if match:
+                statement = match.expand(template)
+                module = module_of("arcus", f"{self.mode}\n{statement}\nEND\n")
+                if module is None:
+                    return False
+                self.sim.variables.update({f"V{i}": v for i, v in enumerate(self.variables)})
+                self.sim.run(module, None, program=False)
+                self.take_variables()
+                return True
+        return False
+
     def control(self, code: str) -> str:
         if code == "0":
-            self.state = "0"
+            self.sim.stop()
+            self.paused = False
         elif code == "1":
             self.run()
         elif code == "2" and self.state == "1":
-            self.state = "2"
+            self.paused = True
         elif code == "3" and self.state == "2":
-            self.state = "1"
+            self.paused = False
         return "OK"
 
-    # -- the execution seam ------------------------------------------------------------------
-    def run(self) -> None:
+    # -- the standalone program on the simulator's machine ------------------------------------
+    def run(self, subroutine: int | None = None) -> bool:
+        """SR=1: run the standalone program from its start (or GSn: subroutine n)."""
         text = "\n".join(self.lines[i] for i in sorted(self.lines))
         module = module_of("arcus", text + "\n") if text else None
-        if module is None:
-            self.state = "4"
-            return
-        values = {f"V{i}": v for i, v in enumerate(self.variables)}
-        outcome = execute.run_program(module, values)
-        for name, value in outcome.variables.items():
+        kind = ir.RoutineKind.MAIN if subroutine is None else ir.RoutineKind.SUBROUTINE
+        routine = None if module is None else next(
+            (r for r in module.routines if r.kind is kind and (subroutine is None or r.number == subroutine)), None)
+        self.paused = False
+        if routine is None:
+            if subroutine is None:
+                self.sim.status, self.sim.reason = "error", "no program to run"
+            return False
+        self.sim.variables.update({f"V{i}": v for i, v in enumerate(self.variables)})
+        self.sim.run(module, (routine.name, None))
+        self.take_variables()
+        return True
+
+    def take_variables(self) -> None:
+        for name, value in self.sim.variables.items():
             if re.fullmatch(r"V\d+", name) and int(name[1:]) < 64:
                 self.variables[int(name[1:])] = int(value)
-        self.state = "1" if outcome.status == "running" else "0"

@@ -6,7 +6,9 @@ global or local), the factory variables of the catalog with their defaults, rang
 the lock LK, and what `S` saved. Commands are recognised with mcc's MCode catalog; errors are the
 manual's codes (20 unknown variable, 21 bad value, 25 read only, 28 redefined, 29 name of a
 command, 30 unknown label, 42 bad address, 44 locked, 45 program space full, 46 not in program
-mode, 60 unknown command). Programs run through the execution seam (device/execute.py).
+mode, 60 unknown command). Programs and immediate commands run on the simulator's machine
+(device/machine.py), and P, V, MV, BY, the outputs, the inputs and the motion settings are read
+from it.
 """
 
 from __future__ import annotations
@@ -16,14 +18,18 @@ import re
 from dataclasses import dataclass, field
 from functools import lru_cache
 
-from mcc.compiler import catalog
-from mcc.link.device import execute
+from mcc.compiler import catalog, ir
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
+from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
 
 ACK, NAK = b"\x06", b"\x15"
 USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
+AXIS = "1"              # the IR's name for the drive's own axis
+# factory variables that are motion settings of the simulator's machine
+SETTINGS = {"VM": ir.MotionParam.MAX_SPEED, "VI": ir.MotionParam.INITIAL_SPEED, "A": ir.MotionParam.ACCEL,
+            "D": ir.MotionParam.DECEL}
 
 
 class MCodeError(Exception):
@@ -86,17 +92,18 @@ class Memory:
 class MCodeDevice(VirtualDevice):
     terminators = b"\r\n"
 
-    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str = "LMDCM 6.002") -> None:
+    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str = "LMDCM 6.002",
+                 run_limit: float = RUN_LIMIT) -> None:
         super().__init__(faults)
         self.program_lines = program_lines
+        self.run_limit = run_limit
+        self.sim = DeviceMachine("mcode", run_limit)
         self.version = version
         self.memory = Memory(variables={n: i.default for n, i in names().items()
                                         if i.kind in ("variable", "flag") and i.default is not None})
         self.saved = copy.deepcopy(self.memory)
         self.error = 0
         self.program_mode = False
-        self.status = "idle"
-        self.status_reason = ""
 
     # -- framing ---------------------------------------------------------------------------
     def var(self, name: str, default=0):
@@ -166,7 +173,10 @@ class MCodeDevice(VirtualDevice):
         handler = getattr(self, f"cmd_{word}", None)
         if handler is not None:
             return handler(rest.strip())
-        return self.assign_or_instruction(word, rest)
+        before = self.numbers()   # an assignment's expression reads the values before it
+        self.assign_or_instruction(word, rest)
+        self.on_machine(text, before)
+        return []
 
     def pg(self, arg: str) -> list[str]:
         if not arg:
@@ -242,7 +252,31 @@ class MCodeDevice(VirtualDevice):
         info = names().get(upper)
         if info is None or info.kind in ("instruction", "reserved"):
             raise MCodeError(35)
-        return self.memory.variables.get(upper, 0)
+        live = self.live(upper)
+        return live if live is not None else self.memory.variables.get(upper, 0)
+
+    def live(self, name: str):
+        """What the simulator's machine says for a factory variable, or None."""
+        sim = self.sim
+        if name in ("P", "C1", "C2"):   # counters: whole steps
+            return int(round(sim.position(AXIS)))
+        if name == "MV":
+            return 1 if AXIS in sim.moving else 0
+        if name == "V":
+            return int(round(sim.moving.get(AXIS, 0)))
+        if name == "BY":
+            return 1 if sim.status == "running" else 0
+        if name in SETTINGS and SETTINGS[name] in sim.machine.axis(AXIS).settings:
+            return plain(sim.setting(AXIS, SETTINGS[name]))
+        match = re.fullmatch(r"([OI])(\d)", name)
+        if match:
+            table = sim.machine.outputs if match.group(1) == "O" else sim.machine.inputs
+            return table.get(int(match.group(2)), 0)
+        if name == "OT":
+            return sim.machine.output_mask()
+        if name == "IN":
+            return sim.machine.input_mask()
+        return None
 
     def assign_or_instruction(self, word: str, rest: str) -> list[str]:
         info = names().get(word)
@@ -258,7 +292,7 @@ class MCodeDevice(VirtualDevice):
         if not assigning:
             if info is not None and info.kind in ("variable", "flag", "keyword") and not user:
                 raise MCodeError(60)
-            return []  # an instruction: accepted (motion is the simulator's work)
+            return []  # an instruction: accepted, then run on the machine (dispatch)
         value_text = rest.strip().lstrip("=").strip()
         if user:
             self.memory.user[word][1] = self.evaluate(value_text)
@@ -359,10 +393,14 @@ class MCodeDevice(VirtualDevice):
         self.memory = copy.deepcopy(self.saved)
         self.program_mode = False
         self.error = 0
+        self.sim = DeviceMachine("mcode", self.run_limit)
         if "SU" in self.memory.labels:
             self.run("SU")
 
-    # -- the execution seam ----------------------------------------------------------------
+    # -- the simulator's machine ----------------------------------------------------------
+    def declarations(self) -> list[str]:
+        return [f"VA {n}" for n in self.memory.user]
+
     def program_text(self) -> str:
         declared = [f"VA {n}={v[1] if isinstance(v[1], (int, float)) else 0}"
                     for n, v in self.memory.user.items() if v[0] == "G"]
@@ -373,18 +411,65 @@ class MCodeDevice(VirtualDevice):
             regions += [f"PG {address}", *lines[first:last], "PG"]
         return "\n".join(declared + regions) + "\n"
 
-    def run(self, entry) -> None:
-        module = module_of("mcode", self.program_text())
-        if module is None:
-            self.status, self.status_reason = "idle", "the stored program does not compile"
-            return
+    def numbers(self) -> dict[str, int | float]:
+        """The user variables and registers the device holds, as the simulator reads them."""
         values = {n: v[1] for n, v in self.memory.user.items() if isinstance(v[1], (int, float))}
-        outcome = execute.run_program(module, values, entry)
-        for name, value in outcome.variables.items():
+        values.update({n: v for n, v in self.memory.variables.items()
+                       if isinstance(v, (int, float)) and re.fullmatch(r"[RF]\d+", n)})
+        return values
+
+    def before_run(self, values: dict | None = None) -> None:
+        self.sim.variables.update(self.numbers() if values is None else values)
+
+    def after_run(self) -> None:
+        """What the run changed, back into the variables the host reads."""
+        for name, value in self.sim.variables.items():
             if name in self.memory.user:
-                self.memory.user[name][1] = int(value) if float(value).is_integer() else value
-        self.status, self.status_reason = outcome.status, outcome.reason
-        self.memory.variables["BY"] = 1 if outcome.status == "running" else 0
+                self.memory.user[name][1] = plain(value)
+            elif re.fullmatch(r"[RF]\d+", name) and name in names():
+                self.memory.variables[name] = plain(value)
+        settings = self.sim.machine.axis(AXIS).settings
+        for name, param in SETTINGS.items():
+            if param in settings:
+                self.memory.variables[name] = plain(settings[param])
+
+    def on_machine(self, text: str, before: dict) -> None:
+        """Run an immediate command on the machine (a move, a setting, an output, an assignment).
+        A command mcc's frontend does not compile changes only what the protocol state above holds."""
+        module = module_of("mcode", "\n".join([*self.declarations(), text]) + "\n")
+        if module is None:
+            return
+        self.before_run(before)
+        self.sim.run(module, None, program=False)
+        self.after_run()
+
+    def run(self, entry) -> None:
+        """Run the stored program from a label or a PG address (EX, the power-up label SU)."""
+        module = module_of("mcode", self.program_text())
+        start = None if module is None else self.entry(module, entry)
+        if start is None:
+            self.sim.status, self.sim.reason = "error", "the stored program does not compile"
+            return
+        self.before_run()
+        self.sim.run(module, start)
+        self.after_run()
+
+    @staticmethod
+    def entry(module: ir.Module, entry) -> tuple[str, str | None] | None:
+        for routine in module.routines:
+            if isinstance(entry, int) and routine.origin == entry:
+                return routine.name, None
+            for block in routine.blocks:
+                if not isinstance(entry, int) and block.named and block.label.upper() == str(entry).upper():
+                    return routine.name, block.label
+        return None
+
+
+def plain(value):
+    """A number as the drive prints it: integers without a decimal point."""
+    if isinstance(value, float) and value.is_integer():
+        return int(value)
+    return value
 
 
 class MCodeBus(VirtualDevice):

@@ -4,8 +4,10 @@ State per device (manual L4860-L5447, L3064, L1433): the sequences 1-64 and the 
 share (XBS), the definition in progress (XD ... XT) and the last download status (XSD), what SV
 saved, the upload password (PASS), the communication style EX (terminal/computer), echo (SSA),
 the variables VAR1-VAR50, the last run status (XSR) and the status bits R reports. Commands are
-echoed (SSA0) and, in terminal mode, answered with the prompt `>`. Running a sequence goes through
-the execution seam (device/execute.py).
+echoed (SSA0) and, in terminal mode, answered with the prompt `>`. Every other command (a move,
+a setting, an output) and every sequence run (XR, XG, GOSUB, GOTO) runs on the simulator's
+machine (device/machine.py), shared by the devices of the chain (one axis per address); R and
+PR read it.
 """
 
 from __future__ import annotations
@@ -16,12 +18,18 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from mcc.compiler import catalog
-from mcc.link.device import execute
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
+from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
 
 SEQUENCE_BYTES = 8000   # L4871
+# Commands whose effect mcc's frontend resolves where the program is compiled (the distance D and
+# the move modes that G uses, L1433): a device remembers the last of each group per address and
+# compiles each later command after them, so `1D4000` then `1G` moves 4000 steps.
+CONTEXT = {"D": "D", "MPA": "MP", "MPI": "MP", "MN": "MODE", "MC": "MODE", "MQ": "MODE", "V": "V", "A": "A",
+           "AA": "AA", "AD": "AD"}
+RUNS = ("XR", "XG", "GOSUB", "GOTO", "XRP")
 
 
 @lru_cache(maxsize=None)
@@ -59,7 +67,7 @@ class Unit:
     buffer: list[str] = field(default_factory=list)
     refused: str = ""        # why the definition in progress will not be stored
     saved: dict = field(default_factory=dict)
-    running: bool = False
+    context: dict[str, str] = field(default_factory=dict)   # CONTEXT group -> the command last sent
 
     def used(self) -> int:
         return sum(len(c) + 1 for body in self.sequences.values() for c in body)
@@ -69,10 +77,11 @@ class X150Device(VirtualDevice):
     terminators = b"\r"
 
     def __init__(self, faults: Faults | None = None, addresses: tuple[str, ...] = ("1", "2", "3", "4"),
-                 capacity: int = SEQUENCE_BYTES) -> None:
+                 capacity: int = SEQUENCE_BYTES, run_limit: float = RUN_LIMIT) -> None:
         super().__init__(faults)
         self.units = {a: Unit(a) for a in addresses}
         self.capacity = capacity
+        self.sim = DeviceMachine("x150", run_limit)
         for unit in self.units.values():
             unit.saved = self.snapshot(unit)
 
@@ -90,6 +99,8 @@ class X150Device(VirtualDevice):
         for unit in targets:
             out += self.execute(unit, text, word, arg.strip())
         first = targets[0]
+        if first.defining is None and word not in PROTOCOL and word != ";" and text:
+            self.on_machine(first, text, word)
         reply = (raw if first.echo else b"") + "".join(line + "\r" for line in out).encode("latin-1")
         return reply + (b">" if first.terminal else b"")
 
@@ -110,7 +121,7 @@ class X150Device(VirtualDevice):
             return handler(unit, arg)
         if word == "VAR":
             return self.var(unit, arg)
-        return []   # other commands: accepted (motion and I/O are the simulator's work)
+        return []   # other commands: accepted, then run on the machine (command)
 
     # -- sequences ---------------------------------------------------------------------------
     def do_XD(self, unit: Unit, arg: str) -> list[str]:
@@ -139,7 +150,7 @@ class X150Device(VirtualDevice):
 
     def do_S(self, unit: Unit, arg: str) -> list[str]:
         unit.defining, unit.buffer = None, []   # S aborts a download in progress (L3661)
-        unit.running = False
+        self.sim.stop()
         return []
 
     do_STOP = do_S
@@ -200,7 +211,18 @@ class X150Device(VirtualDevice):
 
     def do_R(self, unit: Unit, arg: str) -> list[str]:
         function_error = unit.xsr == "2"
-        return [("*B" if unit.running else "*R") if not function_error else ("*C" if unit.running else "*S")]
+        running = self.sim.status == "running" or unit.address in self.sim.moving
+        return [("*B" if running else "*R") if not function_error else ("*C" if running else "*S")]
+
+    def do_PR(self, unit: Unit, arg: str) -> list[str]:
+        """The absolute position counter (L3141-L3144), from the machine."""
+        return [f"*{number(self.sim.position(unit.address))}"]
+
+    def do_IS(self, unit: Unit, arg: str) -> list[str]:
+        """Input status (L2173-L2178): the 7 dedicated inputs (none active on a virtual device),
+        then the 10 user inputs from the machine."""
+        user = "".join(str(self.sim.machine.inputs.get(n, 0)) for n in range(1, 11))
+        return [f"*0000000_{user}"]
 
     def var(self, unit: Unit, arg: str) -> list[str]:
         match = re.fullmatch(r"(\d+)(?:=(-?\d+(?:\.\d+)?))?", arg.replace(" ", ""))
@@ -212,23 +234,40 @@ class X150Device(VirtualDevice):
         unit.variables[n] = float(match.group(2))
         return []
 
-    # -- the execution seam ------------------------------------------------------------------
-    def do_XR(self, unit: Unit, arg: str) -> list[str]:
-        if not arg.isdigit() or int(arg) not in unit.sequences:
-            unit.xsr = "2"
-            return []
-        unit.xsr = "0"
-        text = "\n".join(f"{unit.address}XD{n}\n" + "\n".join(body) + f"\n{unit.address}XT"
-                         for n, body in sorted(unit.sequences.items()))
-        module = module_of("x150", text + "\n")
+    # -- the simulator's machine ----------------------------------------------------------
+    def on_machine(self, unit: Unit, text: str, word: str) -> None:
+        """Run a command on the machine, after the unit's context; a sequence run (XR, XG, GOSUB,
+        GOTO) also compiles the unit's sequences and is the device's program."""
+        arg = parse(text)[2].strip()
+        if word in CONTEXT and re.fullmatch(r"-?\d+(\.\d+)?" if CONTEXT[word] not in ("MP", "MODE") else "", arg):
+            unit.context[CONTEXT[word]] = text
+            if word == "D":
+                self.sim.variables[f"%D{unit.address}"] = float(arg) if "." in arg else int(arg)
+        lines = [line for key, line in unit.context.items() if line != text]
+        program = word in RUNS
+        if program:
+            if not arg.isdigit() or int(arg) not in unit.sequences:
+                unit.xsr = "2"
+                return
+            unit.xsr = "0"
+            for n, body in sorted(unit.sequences.items()):
+                lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
+        module = module_of("x150", "\n".join([*lines, text]) + "\n")
         if module is None:
-            return []
-        values = {f"VAR{k}": v for k, v in unit.variables.items()}
-        outcome = execute.run_program(module, values, int(arg))
-        for name, value in outcome.variables.items():
-            if name.startswith("VAR") and name[3:].isdigit():
-                unit.variables[int(name[3:])] = value
-        unit.running = outcome.status == "running"
-        return []
+            return
+        self.sim.variables.update({f"VAR{k}": v for k, v in unit.variables.items()})
+        outcome = self.sim.run(module, None, program=program)
+        for name, value in self.sim.variables.items():
+            if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
+                unit.variables[int(name[3:])] = float(value)
+        if program and outcome.status == "error":
+            unit.xsr = "2"
 
-    do_XG = do_GOSUB = do_GOTO = do_XR
+
+PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",
+            "R", "PR", "IS", '"', "#"}
+
+
+def number(value: float) -> str:
+    """A position as the device reports it: whole steps."""
+    return str(int(round(value)))

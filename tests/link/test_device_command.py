@@ -10,6 +10,8 @@ from pathlib import Path
 
 from conftest import SAMPLES, run_mcc
 
+from mcc.sim.files import simulate_file
+
 
 def start_device(*args: str) -> tuple[subprocess.Popen, str]:
     exe = Path(sys.executable).parent / "mcc"
@@ -22,12 +24,17 @@ def start_device(*args: str) -> tuple[subprocess.Popen, str]:
 
 
 def test_virtual_arcus_device_process_runs_its_program():
-    proc, url = start_device("--dialect", "arcus", "--program", str(SAMPLES / "arcus" / "drill_grid_variables.prg"))
+    # The program runs on the simulator's machine: it ends (in virtual time) with the variables
+    # `mcc sim` computes for it.
+    sample = str(SAMPLES / "arcus" / "drill_grid_variables.prg")
+    predicted = simulate_file(sample).trace
+    assert predicted.stopped == "end"
+    proc, url = start_device("--dialect", "arcus", "--program", sample)
     try:
         result = run_mcc("send", "--port", url, "--dialect", "arcus", "SASTAT", "SR=1", "SASTAT", "V4", "V14")
         assert result.returncode == 0, result.stdout + result.stderr
-        assert result.stdout.splitlines() == ["SASTAT: 0  (stopped)", "SR=1: OK", "SASTAT: 1  (running)",
-                                              "V4: 1500", "V14: 4"]
+        assert result.stdout.splitlines() == ["SASTAT: 0  (stopped)", "SR=1: OK", "SASTAT: 0  (stopped)",
+                                              f"V4: {predicted.variables['V4']}", f"V14: {predicted.variables['V14']}"]
     finally:
         proc.terminate()
         proc.wait(10)
@@ -64,3 +71,20 @@ def test_terminal_reads_commands_and_decodes_replies(tmp_path):
     finally:
         proc.terminate()
         proc.wait(10)
+
+
+def test_run_limit_cuts_a_long_move_in_virtual_time():
+    # A 5 s move on a device that runs each command for at most 1 virtual second: the axis is
+    # where the move had got to after 1 s (about 2000 steps at 2000 steps/s), still moving.
+    proc, url = start_device("--dialect", "mcode", "--run-limit", "1")
+    try:
+        result = run_mcc("send", "--port", url, "--dialect", "mcode", "VM=2000", "MR 10000", "PR P", "PR MV")
+        assert result.returncode == 0, result.stdout + result.stderr
+        lines = result.stdout.splitlines()
+        position = int(lines[2].split(": ")[1])
+        assert 1500 < position < 2100 and lines[3] == "PR MV: 1"
+    finally:
+        proc.terminate()
+        proc.wait(10)
+    bad = run_mcc("device", "--dialect", "mcode", "--run-limit", "0")
+    assert bad.returncode == 2 and "--run-limit" in bad.stderr

@@ -157,3 +157,21 @@ def test_a_refused_line_that_appears_twice_is_named_by_its_own_source_line(serve
     assert report["failed"]["sources"] == [f"{MXT}:{stored[index].sources[0].line}"]
     first_h = stored[[i for i, s in enumerate(stored) if s.command == "H"][0]].sources[0].line
     assert stored[index].sources[0].line != first_h
+
+
+def test_a_failed_download_never_runs_the_program_on_the_machine(serve):
+    # The X150 sample moves device 1 when it runs; each fault mid-download leaves the machine of
+    # the virtual device (the simulator's) where it was, and the program not running.
+    path = str(SAMPLES / "x150" / "01_feed_punch_cell.x150")
+    for fault in (Faults(garble=22), Faults(drop_reply=22), Faults(close=22)):
+        device = X150Device(fault)
+        result, err = download(serve(device).url, "--run", path=path)
+        assert result.returncode == 1, fault
+        assert "NOT saved" in err and "ran" not in result.stdout, fault
+        assert all(p == 0 for p in device.sim.positions().values()), (fault, device.sim.positions())
+        assert device.sim.status != "running" and device.sim.clock == 0, fault
+    # The same download without a fault runs, and moves.
+    device = X150Device()
+    result, err = download(serve(device).url, "--run", path=path)
+    assert result.returncode == 0, err
+    assert device.sim.positions()["1"] != 0

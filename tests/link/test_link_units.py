@@ -1,5 +1,5 @@
-"""The parts of the link one at a time: framing, settings, the execution seam, send, terminal,
-dry runs, and the message without pyserial."""
+"""The parts of the link one at a time: framing, settings, programs on the simulator's machine,
+send, terminal, dry runs, and the message without pyserial."""
 
 from __future__ import annotations
 
@@ -73,15 +73,19 @@ def test_dry_run_prints_the_framed_exchange_without_a_port():
     assert stored["sources"] == [f"{MXT}:14"] or stored["sources"][0].startswith(MXT + ":")
 
 
-def test_execution_seam_runs_assignments_and_calls(serve):
+def test_programs_run_on_the_simulators_machine():
     device = MCodeDevice()
     program = ["VA QA=0", "VA QB=0", "PG 1", "LB GA", "QA=5", "QB=QA*3", "CL KB", "E", "LB KB", "QA=QA+1",
                "RT", "PG", "EX GA", "PR QA", "PR QB", "PR BY"]
     replies = [device.feed((line + "\r").encode()) for line in program]
     assert all(reply.endswith(b">") for reply in replies), replies
     assert replies[-3:] == [b"PR QA\r\n6\r\n>", b"PR QB\r\n15\r\n>", b"PR BY\r\n0\r\n>"]
-    # A program that reaches a move is still running on a device: busy.
-    for line in ["CP 1", "PG 10", "LB GM", "MR 1000", "E", "PG", "EX 10"]:
+    # A move runs to its end in virtual time before the device answers: P is where it stopped.
+    for line in ["CP 1", "PG 10", "LB GM", "MR 1000", "H", "MR -250", "E", "PG", "EX 10"]:
+        assert device.feed((line + "\r").encode()).endswith(b">")
+    assert device.feed(b"PR P,\" \",BY,\" \",MV\r") == b"PR P,\" \",BY,\" \",MV\r\n750 0 0\r\n>"
+    # A program waiting for an input that nothing sets is still running: busy.
+    for line in ["PG 20", "LB GW", "BR GW,I1=0", "E", "PG", "EX GW"]:
         assert device.feed((line + "\r").encode()).endswith(b">")
     assert device.feed(b"PR BY\r") == b"PR BY\r\n1\r\n>"
 
@@ -168,7 +172,7 @@ def test_a_read_back_that_differs_is_never_saved_or_run(serve):
     assert not report.ok and not report.verified and not report.saved and not report.ran
     assert report.message == "the device does not hold what was sent"
     assert [(m.where, m.found) for m in report.mismatches] == [("device 1 sequence 5", "missing (XSS 0)")]
-    assert device.units["1"].saved["sequences"] == {} and not device.units["1"].running
+    assert device.units["1"].saved["sequences"] == {} and device.sim.status != "running"
 
 
 def test_a_drive_in_echo_mode_2_is_downloaded_in_mode_0_and_left_in_mode_2(serve, tmp_path):

@@ -105,7 +105,11 @@ def test_arcus_sample_refused_then_image_cloned(path, serve, tmp_path):
     server = serve(blank)
     refused = (run_mcc if path.endswith("pick_and_place.prg") else mcc)("download", path, "--port", server.url)
     assert refused.returncode == 1
-    assert "vendor" in refused.stderr and "nothing was sent" in refused.stderr
+    # ... and the message says why (the undocumented compiled-line format, with the manual's lines)
+    # and what to do instead (compile and download with the vendor's Windows software).
+    message = " ".join(refused.stderr.split())
+    assert "L1642-L1645" in message and "Arcus Windows software" in message and "Compile" in message
+    assert "nothing was sent" in message
     assert blank.lines == {} and blank.received == 0
     # A controller that holds the program (put there by the vendor's software): upload it as an image ...
     source = ArcusDevice()

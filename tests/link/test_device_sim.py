@@ -1,0 +1,128 @@
+"""A program downloaded to a virtual device and run there ends where the simulator says it does.
+
+The virtual devices run programs on mcc.sim's machine (link/device/machine.py): for every sample
+of each dialect, a download followed by a run over a real socket must leave the axes where
+`mcc sim` (sim.files.simulate_file, the same default run limit) predicts, read back through the
+dialect's own position query, and the device must report the program running exactly when the
+simulator's run did not end.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+
+import pytest
+from conftest import SAMPLES
+from linkhelpers import mcc, serve  # noqa: F401  (serve: fixture)
+
+from mcc.compiler import driver
+from mcc.link.device.arcus import ArcusDevice
+from mcc.link.device.mcode import MCodeBus, MCodeDevice
+from mcc.link.device.x150 import X150Device
+from mcc.sim.files import simulate_file
+
+
+def samples(dialect: str, ext: str) -> list[str]:
+    return sorted(str(p) for p in (SAMPLES / dialect).glob(f"*{ext}"))
+
+
+def replies(url: str, dialect: str, *commands: str) -> list[str]:
+    result = mcc("send", "--port", url, "--dialect", dialect, *commands)
+    assert result.returncode == 0, result.stdout + result.stderr
+    return [line.split(": ", 1)[1].split("  (")[0] for line in result.stdout.splitlines()]
+
+
+def prediction(path: str):
+    trace = simulate_file(path).trace
+    assert trace is not None, f"{path} cannot be simulated"
+    return trace
+
+
+def position(trace, axis: str) -> int:
+    return round(trace.axes.get(axis, 0.0))
+
+
+PARTY = "party_mode_setup.mxt"
+
+
+@pytest.mark.parametrize("path", [p for p in samples("mcode", ".mxt") if not p.endswith(PARTY)],
+                         ids=lambda p: p.rsplit("/", 1)[-1])
+def test_mcode_sample_runs_where_the_simulator_predicts(path, serve):
+    server = serve(MCodeDevice())
+    result = mcc("download", path, "--port", server.url, "--run", "--format", "json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert json.loads(result.stdout)["ran"]
+    trace = prediction(path)
+    p, busy = replies(server.url, "mcode", "PR P", "PR BY")
+    assert int(p) == position(trace, "1")
+    assert busy == ("0" if trace.stopped == "end" else "1")
+
+
+def test_mcode_party_drives_run_where_the_simulator_predicts(serve):
+    path = str(SAMPLES / "mcode" / PARTY)
+    bus = MCodeBus(("a", "b"))
+    server = serve(bus)
+    result = mcc("download", path, "--port", server.url, "--party", "--address", "a", "--run")
+    assert result.returncode == 0, result.stdout + result.stderr
+    trace = prediction(path)
+    assert {"a", "b"} <= set(trace.axes)
+    for name in ("a", "b"):
+        # each drive's own axis; the position is read the way a host reads it, by its party name
+        reply = bus.drives[name].command(f"{name}PR P\n".encode())
+        assert int(reply.split(b"\r\n")[1]) == position(trace, name), (name, reply)
+
+
+def run_lines(path: str) -> list[str]:
+    """What runs an X150 file's program: its own top-level runs, else its power-up sequence (XPn,
+    which a real X150 runs when it is switched on) run by hand."""
+    top, inside = [], False
+    for line in driver.compile_file(path).listing.text.splitlines():
+        if re.match(r"^\d*XD\d+$", line):
+            inside = True
+        elif re.match(r"^\d*XT$", line):
+            inside = False
+        elif not inside:
+            top.append(line)
+    if any(re.match(r"^\d*(XR|XG|GOSUB|GOTO)\d", line) for line in top):
+        return []
+    return [re.sub(r"XP(\d+)", r"XR\1", line) for line in top if re.match(r"^\d*XP\d+$", line)]
+
+
+@pytest.mark.parametrize("path", samples("x150", ".x150"), ids=lambda p: p.rsplit("/", 1)[-1])
+def test_x150_sample_runs_where_the_simulator_predicts(path, serve):
+    device = X150Device()
+    server = serve(device)
+    result = mcc("download", path, "--port", server.url, "--save", "--run", "--format", "json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    extra = run_lines(path)
+    assert json.loads(result.stdout)["ran"] or extra
+    if extra:
+        replies(server.url, "x150", *extra)
+    trace = prediction(path)
+    axes = sorted(set(trace.axes) | set(device.sim.positions()))
+    reported = replies(server.url, "x150", *[f"{a}PR" for a in axes])
+    assert [int(r.lstrip("*")) for r in reported] == [position(trace, a) for a in axes]
+    status = replies(server.url, "x150", f"{axes[0]}R")[0]
+    assert status == ("*R" if trace.stopped == "end" else "*B")
+
+
+@pytest.mark.parametrize("path", samples("arcus", ".prg"), ids=lambda p: p.rsplit("/", 1)[-1])
+def test_arcus_sample_runs_where_the_simulator_predicts(path, serve, tmp_path):
+    # The program reaches a controller as the vendor's software puts it there; mcc copies it to
+    # another controller as an image (mcc upload --image, mcc download FILE.sa --run).
+    source = ArcusDevice()
+    source.load_program(open(path).read(), path)
+    image = tmp_path / "machine.sa"
+    assert mcc("upload", "--port", serve(source).url, "--dialect", "arcus", "--image", str(image),
+               "-o", str(tmp_path / "vars.prg")).returncode == 0
+    server = serve(ArcusDevice())
+    result = mcc("download", str(image), "--port", server.url, "--run", "--format", "json")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert json.loads(result.stdout)["ran"]
+    trace = prediction(path)
+    names = sorted(trace.variables, key=lambda n: int(n[1:]))
+    pp, state, *values = replies(server.url, "arcus", "PP", "SASTAT", *names)
+    assert [int(v) for v in pp.split(":")] == [position(trace, a) for a in "XYZU"]
+    assert state == ("0" if trace.stopped == "end" else "1")
+    assert [int(v) for v in values] == [int(trace.variables[n]) for n in names]
