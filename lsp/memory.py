@@ -37,7 +37,7 @@ class Usage:
 def usage(snap) -> Usage | None:
     if snap.dialect not in ("arcus", "x150") or snap.module is None:
         return None
-    if any(d.severity.value == "error" for d in snap.diagnostics):
+    if snap.check_errors:
         return None
     try:
         dialect = dialects.get(snap.dialect)
