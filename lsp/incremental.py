@@ -78,9 +78,30 @@ class Mover:
         return scope["move"]
 
 
-def _move_span(span: Span, lines: int, chars: int) -> Span:
-    return Span(span.file, span.line + lines, span.column, span.end_line + lines, span.end_column,
-                span.start + chars, span.end + chars)
+def _span_mover() -> Callable:
+    """A moved copy of a span, its slots filled directly: twice as fast as the frozen dataclass's
+    generated __init__, which does the same through object.__setattr__ (spans are most of what
+    is moved)."""
+    slots = {name: getattr(Span, name).__set__ for name in ("file", "line", "column", "end_line", "end_column",
+                                                            "start", "end")}
+    file, line, column, end_line, end_column, start, end = slots.values()
+    new = object.__new__
+
+    def move(span: Span, lines: int, chars: int) -> Span:
+        copy = new(Span)
+        file(copy, span.file)
+        line(copy, span.line + lines)
+        column(copy, span.column)
+        end_line(copy, span.end_line + lines)
+        end_column(copy, span.end_column)
+        start(copy, span.start + chars)
+        end(copy, span.end + chars)
+        return copy
+
+    return move
+
+
+_move_span = _span_mover()
 
 
 class LineCache:
@@ -134,12 +155,9 @@ class LineCache:
             entries[index] = placed[(texts[index], index + 1, starts[index])] = (
                 self.mover.move(node, index, starts[index]), [self.mover.move(d, index, starts[index]) for d in found])
         self.placed, self.relative = placed, relative
-        lines = []
-        for node, found in entries:
-            lines.append(node)
-            # the cached diagnostics are copied: settling them sets their severity in place
-            diags.extend(dataclasses.replace(d) for d in found)
-        return self.syntax.SyntaxTree(source.path, lines)
+        # the cached diagnostics are copied: settling them sets their severity in place
+        diags.extend([dataclasses.replace(d) for _, found in entries if found for d in found])
+        return self.syntax.SyntaxTree(source.path, [node for node, _ in entries])
 
     def parse_texts(self, source: SourceFile, fresh: list[str], relative: dict[str, Entry]) -> bool:
         """Parse the lines `fresh` in one call, store them in `relative`, and answer whether that
