@@ -6,9 +6,11 @@ and are coalesced. The newest text is analysed off the protocol thread, in one w
 frontend's checks (parsing only the lines that changed since the document's previous version),
 then the lint rules, after which the diagnostics are published (once: the checks alone are
 published first only when the rules are still running `early` seconds after the analysis
-started), then the editor model and the program memory. Between steps, and between lint rules,
-the worker asks whether a newer edit has arrived; if so the old work stops and nothing stale is
-published. Requests (hover, completion, definition, ...) read `latest`, the last snapshot with
+started), then the editor model, and `memory_delay` seconds later, unless the document changed
+meanwhile, the program memory (Arcus and X150 programs are priced by their backend, which takes
+as long as the checks: done at once, it would hold up the next keystroke's checks). Between
+steps, and between lint rules, the worker asks whether a newer edit has arrived; if so the old
+work stops and nothing stale is published. Requests (hover, completion, definition, ...) read `latest`, the last snapshot with
 an editor model, and never wait.
 """
 
@@ -23,17 +25,20 @@ from typing import Callable
 
 from mcc.compiler import config
 from mcc.compiler.config import Resolver
-from mcc.lsp import analysis, incremental
+from mcc.lsp import analysis, incremental, memory
 from mcc.lsp.analysis import Snapshot
 
 log = logging.getLogger(__name__)
 
 
 class Documents:
-    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.02, early: float = 0.15):
+    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.02, early: float = 0.15,
+                 memory_delay: float = 0.2, priced: Callable[[Snapshot], None] | None = None):
         self.publish = publish
+        self.priced = priced  # called (protocol thread) when a version's program memory is current
         self.debounce = debounce
         self.early = early
+        self.memory_delay = memory_delay
         self.latest: dict[str, Snapshot] = {}
         self.generation: dict[str, int] = {}
         self.timers: dict[str, asyncio.TimerHandle] = {}
@@ -149,11 +154,40 @@ class Documents:
         indexed = analysis.with_index(linted)
         if stop():
             return
+        deferred = memory.priced(indexed) and self.memory_delay > 0
+        if deferred:  # until this version is priced, the lenses show the previous figures
+            previous = self.latest.get(uri)
+            indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
         # the editor model's own failure (G001) is one more diagnostic: published again then
         self.deliver(indexed, generation, publish=len(indexed.diagnostics) != len(linted.diagnostics))
         if stop():
             return
-        self.deliver(analysis.complete(indexed), generation, publish=False)
+        if not deferred:
+            self.deliver(analysis.complete(indexed), generation, publish=False)
+        elif self.loop is not None and not self.loop.is_closed():
+            # pricing the program (the backend's work) waits for a pause in the typing, so that it
+            # never holds up the checks of the next keystroke
+            self.loop.call_soon_threadsafe(self.price_later, indexed, generation)
+
+    def price_later(self, snap: Snapshot, generation: int) -> None:
+        """On the protocol thread: price the program `memory_delay` seconds from now, unless the
+        document changes meanwhile."""
+        def fire() -> None:
+            if not self.stale(snap.uri, generation):
+                try:
+                    self.executor.submit(self.price, snap, generation)
+                except RuntimeError:  # the server is shutting down
+                    pass
+
+        self.loop.call_later(self.memory_delay, fire)
+
+    def price(self, snap: Snapshot, generation: int) -> None:
+        if self.stale(snap.uri, generation):
+            return
+        try:
+            self.deliver(analysis.complete(snap), generation, publish=False)
+        except Exception:  # noqa: BLE001
+            log.exception("pricing %s failed", snap.uri)
 
     def deliver(self, snap: Snapshot, generation: int, queries: bool = True, publish: bool = True) -> None:
         """On the protocol thread: make `snap` what queries answer from (`queries`; a snapshot
@@ -163,6 +197,11 @@ class Documents:
                 return
             if queries or snap.uri not in self.latest:
                 self.latest[snap.uri] = snap
+            if snap.complete and snap.memory is not None and self.priced is not None:
+                try:
+                    self.priced(snap)
+                except Exception:  # noqa: BLE001
+                    log.exception("announcing the program memory of %s failed", snap.uri)
             if not publish:
                 return
             try:
