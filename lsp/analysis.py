@@ -1,10 +1,12 @@
 """One finished analysis of one document version: diagnostics, syntax tree, editor model, memory.
 
-`analyze` runs in a worker thread (see documents.py) in two steps, so the editor shows the
-checks of `mcc check` as soon as the frontend is done and the lint rules when they finish:
-`check` (the frontend and the editor model) and `complete` (lint rules, configuration, noqa,
-program memory). Both reuse the lint engine and the project configuration exactly as `mcc lint`
-does, so the editor and the command line never disagree.
+`analyze` runs in a worker thread (see documents.py) in steps, so that the diagnostics reach the
+editor as soon as they are known and the rest follows: `check` (the frontend, parsing only the
+lines an edit changed: incremental.py), `lint` (the lint rules, configuration and noqa: the
+diagnostics are complete and published), `with_index` (the editor model hover, completion, ...
+answer from) and `complete` (program memory for the code lenses). The checks and the rules reuse
+the lint engine and the project configuration exactly as `mcc lint` does, so the editor and the
+command line never disagree.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from mcc.compiler.config import Resolver, Settings
 from mcc.compiler.diagnostics import Diagnostic
 from mcc.compiler.lint import engine
 from mcc.compiler.span import SourceFile
-from mcc.lsp import model
+from mcc.lsp import incremental, model
 
 INDEXERS = {"mcode": "mcc.lsp.mcode_index", "arcus": "mcc.lsp.arcus_index", "x150": "mcc.lsp.x150_index"}
 
@@ -38,7 +40,8 @@ class Snapshot:
     module: object | None = None
     index: model.Index = field(default_factory=lambda: model.Index(""))
     diagnostics: list[Diagnostic] = field(default_factory=list)
-    complete: bool = False  # the lint rules have run
+    complete: bool = False  # every step has run (lint rules, editor model, program memory)
+    check_errors: bool = False  # the frontend's checks found errors (no program memory then)
     memory: object | None = None  # memory.Usage
     config_diagnostics: list[tuple[str, list[Diagnostic]]] = field(default_factory=list)
 
@@ -55,10 +58,16 @@ def settings_for(path: str, resolver: Resolver) -> Settings:
 
 
 def check(uri: str, path: str, version: int | None, text: str, resolver: Resolver,
-          dialect: str | None = None) -> tuple[Snapshot, engine.Checked]:
-    """The frontend's checks (first step), without the editor model (see `with_index`)."""
+          dialect: str | None = None, cache: incremental.LineCache | None = None,
+          stop: Callable[[], bool] | None = None):
+    """The frontend's checks (first step), parsing through `cache` (the lines of the document's
+    previous version): (snapshot, checked, cache to keep). The snapshot has the checks'
+    diagnostics only and no editor model; snapshot and checked are None when `stop` answered
+    True (a newer version arrived) before the checks were done."""
     settings = settings_for(path, resolver)
-    checked = engine.check_text(path, text, settings, dialect)
+    checked, cache = incremental.check_text(path, text, settings, dialect, cache, stop)
+    if checked is None:
+        return None, None, cache
     result = checked.result
     analysis = result.analysis
     source = analysis.source if analysis is not None else SourceFile(path, text)
@@ -66,8 +75,18 @@ def check(uri: str, path: str, version: int | None, text: str, resolver: Resolve
     if analysis is not None:
         snap.tree, snap.module = analysis.tree, analysis.module
     snap.diagnostics = engine.settle(checked, settings, rules=False)
+    snap.check_errors = any(d.severity.value == "error" for d in snap.diagnostics)
     snap.config_diagnostics = [(p, d) for p, d, _ in resolver.diagnostics()]
-    return snap, checked
+    return snap, checked, cache
+
+
+def lint(snap: Snapshot, checked: engine.Checked, stop: Callable[[], bool] | None = None) -> Snapshot | None:
+    """The snapshot with all the diagnostics of `mcc check` and `mcc lint` (second step); None when
+    `stop` says the work is stale."""
+    diagnostics = engine.settle(checked, snap.settings, rules=True, stop=stop)
+    if stop is not None and stop():
+        return None
+    return Snapshot(**{**snap.__dict__, "diagnostics": diagnostics})
 
 
 def with_index(snap: Snapshot) -> Snapshot:
@@ -102,22 +121,16 @@ class _Sink:
         self.items.extend(collected.items)
 
 
-def complete(snap: Snapshot, checked: engine.Checked, stop: Callable[[], bool] | None = None) -> Snapshot | None:
-    """The lint rules and program memory (second step); None when `stop` says the work is stale."""
-    diagnostics = engine.settle(checked, snap.settings, rules=True, stop=stop)
-    if stop is not None and stop():
-        return None
+def complete(snap: Snapshot) -> Snapshot:
+    """The snapshot with its program memory (last step): every feature has what it needs."""
     from mcc.lsp import memory
 
-    usage = memory.usage(snap)
-    done = Snapshot(**{**snap.__dict__, "diagnostics": diagnostics, "complete": True, "memory": usage})
-    return done
+    return Snapshot(**{**snap.__dict__, "complete": True, "memory": memory.usage(snap)})
 
 
 def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resolver | None = None,
             dialect: str | None = None) -> Snapshot:
-    """Both steps at once (for tests, the benchmark and one-off requests)."""
-    snap, checked = check(uri, path, version, text, resolver or Resolver(), dialect)
-    snap = with_index(snap)
-    return complete(snap, checked) or snap
-
+    """All the steps at once (for tests, the benchmark and one-off requests)."""
+    snap, checked, _ = check(uri, path, version, text, resolver or Resolver(), dialect)
+    snap = lint(snap, checked) or snap
+    return complete(with_index(snap))

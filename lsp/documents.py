@@ -2,11 +2,16 @@
 
 Every edit bumps the document's generation. The first edit after a quiet spell is analysed at
 once; edits that arrive while an analysis is under way wait for a short quiet time (`debounce`)
-and are coalesced. The newest text is analysed off the protocol thread: first the frontend's
-checks (published at once), then the editor model, then, in a second thread, the lint rules,
-asked between rules whether a newer edit has arrived, in which case the old work stops and
-nothing stale is published. Requests (hover, completion, definition, ...) read `latest`, the
-last finished snapshot, and never wait.
+and are coalesced. The newest text is analysed off the protocol thread, in one worker: the
+frontend's checks (parsing only the lines that changed since the document's previous version),
+then the lint rules, after which the diagnostics are published (once: the checks alone are
+published first only when the rules are still running `early` seconds after the analysis
+started), then the editor model, and `memory_delay` seconds later, unless the document changed
+meanwhile, the program memory (Arcus and X150 programs are priced by their backend, which takes
+as long as the checks: done at once, it would hold up the next keystroke's checks). Between
+steps, and between lint rules, the worker asks whether a newer edit has arrived; if so the old
+work stops and nothing stale is published. Requests (hover, completion, definition, ...) read `latest`, the last snapshot with
+an editor model, and never wait.
 """
 
 from __future__ import annotations
@@ -14,30 +19,35 @@ from __future__ import annotations
 import asyncio
 import logging
 import threading
+import time
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable
 
 from mcc.compiler import config
 from mcc.compiler.config import Resolver
-from mcc.lsp import analysis
+from mcc.lsp import analysis, incremental, memory
 from mcc.lsp.analysis import Snapshot
 
 log = logging.getLogger(__name__)
 
 
 class Documents:
-    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.05):
+    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.02, early: float = 0.15,
+                 memory_delay: float = 0.2, priced: Callable[[Snapshot], None] | None = None):
         self.publish = publish
+        self.priced = priced  # called (protocol thread) when a version's program memory is current
         self.debounce = debounce
+        self.early = early
+        self.memory_delay = memory_delay
         self.latest: dict[str, Snapshot] = {}
         self.generation: dict[str, int] = {}
         self.timers: dict[str, asyncio.TimerHandle] = {}
         self.executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcc-check")
-        self.lint_executor = ThreadPoolExecutor(max_workers=1, thread_name_prefix="mcc-lint")
         self.lock = threading.Lock()
         self.resolver = Resolver()
         self.dialects: dict[str, str] = {}  # uri -> dialect, from the client's languageId
         self.checking: dict[str, int] = {}  # documents whose checks are queued or being computed
+        self.caches: dict[str, incremental.LineCache] = {}  # uri -> parsed lines (worker thread only)
         self.loop: asyncio.AbstractEventLoop | None = None
 
     # -- scheduling (protocol thread) --------------------------------------------------------------
@@ -77,6 +87,10 @@ class Documents:
     def closed(self, uri: str) -> None:
         with self.lock:
             self.generation[uri] = self.generation.get(uri, 0) + 1
+        try:  # in the worker, after the document's analyses
+            self.executor.submit(self.caches.pop, uri, None)
+        except RuntimeError:  # the server is shutting down
+            pass
         timer = self.timers.pop(uri, None)
         if timer is not None:
             timer.cancel()
@@ -95,12 +109,11 @@ class Documents:
 
     # -- analysis (worker threads) -----------------------------------------------------------------
     def work(self, uri: str, path: str, version: int | None, text: str, generation: int) -> None:
-        """The checks, published at once; then the editor model (queries use it from then on);
-        then the lint rules, in their own thread so that a new edit's checks never queue behind
-        an old edit's rules (which stop at the next rule once they are stale)."""
         stop = lambda: self.stale(uri, generation)  # noqa: E731
         try:
-            self.check_and_index(uri, path, version, text, generation, stop)
+            self.analyse(uri, path, version, text, generation, stop)
+        except Exception:  # noqa: BLE001 - one bad analysis must not stop the server
+            log.exception("analysis of %s failed", uri)
         finally:
             with self.lock:
                 left = self.checking.get(uri, 1) - 1
@@ -109,30 +122,72 @@ class Documents:
                 else:
                     self.checking.pop(uri, None)
 
-    def check_and_index(self, uri, path, version, text, generation, stop) -> None:
-        try:
-            snap, checked = analysis.check(uri, path, version, text, self.resolver, self.dialects.get(uri))
-            if stop():
-                return
-            self.deliver(snap, generation, queries=False)
-            snap = analysis.with_index(snap)
-            if stop():
-                return
-            self.deliver(snap, generation, publish=False)
-            self.lint_executor.submit(self.lint, snap, checked, generation)
-        except Exception:  # noqa: BLE001 - one bad analysis must not stop the server
-            log.exception("analysis of %s failed", uri)
+    def analyse(self, uri, path, version, text, generation, stop) -> None:
+        """The steps of analysis.py, publishing the diagnostics as soon as they are complete."""
+        if stop():  # a newer edit arrived while this one waited for the worker
+            return
+        started = time.perf_counter()
+        snap, checked, cache = analysis.check(uri, path, version, text, self.resolver, self.dialects.get(uri),
+                                              self.caches.get(uri), stop)
+        if cache is not None:  # right for its text even when stale: the next version starts from it
+            self.caches[uri] = cache
+        else:
+            self.caches.pop(uri, None)
+        if snap is None or stop():
+            return
+        published = False
 
-    def lint(self, snap: Snapshot, checked, generation: int) -> None:
-        stop = lambda: self.stale(snap.uri, generation)  # noqa: E731
-        try:
+        def stop_or_publish_checks() -> bool:
+            """Asked between lint rules: stale work stops; slow rules let the checks go first."""
+            nonlocal published
             if stop():
-                return
-            done = analysis.complete(snap, checked, stop)
-            if done is not None and not stop():
-                self.deliver(done, generation)
+                return True
+            if not published and time.perf_counter() - started > self.early:
+                self.deliver(snap, generation, queries=False)
+                published = True
+            return False
+
+        linted = analysis.lint(snap, checked, stop_or_publish_checks)
+        if linted is None or stop():
+            return
+        self.deliver(linted, generation, queries=False)
+        indexed = analysis.with_index(linted)
+        if stop():
+            return
+        deferred = memory.priced(indexed) and self.memory_delay > 0
+        if deferred:  # until this version is priced, the lenses show the previous figures
+            previous = self.latest.get(uri)
+            indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
+        # the editor model's own failure (G001) is one more diagnostic: published again then
+        self.deliver(indexed, generation, publish=len(indexed.diagnostics) != len(linted.diagnostics))
+        if stop():
+            return
+        if not deferred:
+            self.deliver(analysis.complete(indexed), generation, publish=False)
+        elif self.loop is not None and not self.loop.is_closed():
+            # pricing the program (the backend's work) waits for a pause in the typing, so that it
+            # never holds up the checks of the next keystroke
+            self.loop.call_soon_threadsafe(self.price_later, indexed, generation)
+
+    def price_later(self, snap: Snapshot, generation: int) -> None:
+        """On the protocol thread: price the program `memory_delay` seconds from now, unless the
+        document changes meanwhile."""
+        def fire() -> None:
+            if not self.stale(snap.uri, generation):
+                try:
+                    self.executor.submit(self.price, snap, generation)
+                except RuntimeError:  # the server is shutting down
+                    pass
+
+        self.loop.call_later(self.memory_delay, fire)
+
+    def price(self, snap: Snapshot, generation: int) -> None:
+        if self.stale(snap.uri, generation):
+            return
+        try:
+            self.deliver(analysis.complete(snap), generation, publish=False)
         except Exception:  # noqa: BLE001
-            log.exception("linting %s failed", snap.uri)
+            log.exception("pricing %s failed", snap.uri)
 
     def deliver(self, snap: Snapshot, generation: int, queries: bool = True, publish: bool = True) -> None:
         """On the protocol thread: make `snap` what queries answer from (`queries`; a snapshot
@@ -142,6 +197,11 @@ class Documents:
                 return
             if queries or snap.uri not in self.latest:
                 self.latest[snap.uri] = snap
+            if snap.complete and snap.memory is not None and self.priced is not None:
+                try:
+                    self.priced(snap)
+                except Exception:  # noqa: BLE001
+                    log.exception("announcing the program memory of %s failed", snap.uri)
             if not publish:
                 return
             try:
@@ -157,4 +217,3 @@ class Documents:
 
     def shutdown(self) -> None:
         self.executor.shutdown(wait=False, cancel_futures=True)
-        self.lint_executor.shutdown(wait=False, cancel_futures=True)

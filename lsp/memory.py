@@ -34,10 +34,23 @@ class Usage:
         return f"{used} {self.unit}{share}"
 
 
-def usage(snap) -> Usage | None:
-    if snap.dialect not in ("arcus", "x150") or snap.module is None:
+def priced(snap) -> bool:
+    """Whether `usage` has anything to compute for the snapshot (the backend's work)."""
+    return snap.dialect in ("arcus", "x150") and snap.module is not None and not snap.check_errors
+
+
+def carried(previous: Usage | None, snap) -> Usage | None:
+    """The previous version's figures placed on this version's routines (matched by name), shown
+    until this version is priced, so that the code lenses do not vanish while the user types."""
+    if previous is None or not priced(snap):
         return None
-    if any(d.severity.value == "error" for d in snap.diagnostics):
+    lines = {routine.name: routine.span.line for routine in snap.index.routines}
+    return Usage(previous.unit, previous.total, previous.budget,
+                 [RoutineUsage(r.name, lines[r.name], r.used) for r in previous.routines if r.name in lines])
+
+
+def usage(snap) -> Usage | None:
+    if not priced(snap):
         return None
     try:
         dialect = dialects.get(snap.dialect)

@@ -33,7 +33,7 @@ REQUEST_FAILED = -32803  # LSP's RequestFailed: the request was valid but cannot
 class MccServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("mcc", __version__, text_document_sync_kind=t.TextDocumentSyncKind.Incremental)
-        self.documents = Documents(self.publish)
+        self.documents = Documents(self.publish, priced=self.refresh_lenses)
         self.rules_url: str | None = None
 
     def publish(self, snap) -> None:
@@ -41,6 +41,15 @@ class MccServer(LanguageServer):
                        if d.span.file == snap.path or d.span.file == snap.source.path]
         self.text_document_publish_diagnostics(
             t.PublishDiagnosticsParams(uri=snap.uri, diagnostics=diagnostics, version=snap.version))
+
+    def refresh_lenses(self, snap) -> None:
+        """A document's program memory is priced (after a pause in the typing): ask the editor to
+        ask again for code lenses and inlay hints, when it supports being asked."""
+        workspace = getattr(self.client_capabilities, "workspace", None)
+        for name, refresh in (("code_lens", self.workspace_code_lens_refresh),
+                              ("inlay_hint", self.workspace_inlay_hint_refresh)):
+            if getattr(getattr(workspace, name, None), "refresh_support", False):
+                refresh(None)
 
     def report_server_error(self, error, source) -> None:  # log; never pop up a message per failure
         log.warning("request failed (%s): %s", getattr(source, "__name__", source), error)
@@ -106,6 +115,8 @@ def initialize(params: t.InitializeParams) -> None:
     options = params.initialization_options if isinstance(params.initialization_options, dict) else {}
     if isinstance(options.get("debounce"), (int, float)):
         server.documents.debounce = max(0.0, float(options["debounce"]) / 1000.0)
+    if isinstance(options.get("memoryDelay"), (int, float)):
+        server.documents.memory_delay = max(0.0, float(options["memoryDelay"]) / 1000.0)
     if isinstance(options.get("rulesUrl"), str):
         server.rules_url = options["rulesUrl"]
 

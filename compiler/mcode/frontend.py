@@ -13,6 +13,12 @@ from mcc.compiler.span import SourceFile
 def analyze(source: SourceFile, profile: Profile) -> Analysis:
     diags = Diagnostics()
     tree = parser.parse(source, diags)
+    return analyze_tree(source, tree, profile, diags)
+
+
+def analyze_tree(source: SourceFile, tree, profile: Profile, diags: Diagnostics) -> Analysis:
+    """Everything after parsing, on a tree the caller parsed (the editor server reuses the lines
+    of the previous version that did not change: lsp/incremental.py)."""
     lowering = Lowering(tree, profile, diags)
     module = lowering.run()
     checks.check_labels(lowering, diags)

@@ -27,6 +27,16 @@ SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "mcc", "lsp"])
 
 @pytest_lsp.fixture(config=SERVER, scope="module")
 async def client(lsp_client: LanguageClient):
+    lsp_client.refreshed = []  # the lens and hint refreshes the server asked for, in order
+
+    @lsp_client.feature(t.WORKSPACE_CODE_LENS_REFRESH)
+    def code_lens_refresh(params) -> None:
+        lsp_client.refreshed.append("codeLens")
+
+    @lsp_client.feature(t.WORKSPACE_INLAY_HINT_REFRESH)
+    def inlay_hint_refresh(params) -> None:
+        lsp_client.refreshed.append("inlayHint")
+
     await lsp_client.initialize_session(t.InitializeParams(
         capabilities=client_capabilities("visual-studio-code"),
         root_uri=FIXTURES.as_uri(),

@@ -351,7 +351,11 @@ def apply(text: str, edits: list[t.TextEdit]) -> str:
 @pytest.mark.parametrize("dialect,unit,routines", [
     ("arcus", "assembly lines", ["main program", "SUB 1", "SUB 2"]), ("x150", "bytes", ["sequence 2 (device 1)"])])
 async def test_program_memory_as_code_lens_and_inlay_hints(client, dialect, unit, routines):
+    client.refreshed.clear()
     doc = await open_fixture(client, dialect)
+    # the program is priced after a pause in the typing; the editor is then asked to ask again for
+    # lenses (VS Code's capabilities declare that it can be asked for lenses, not for inlay hints)
+    assert client.refreshed == ["codeLens"]
     lenses = await client.text_document_code_lens_async(t.CodeLensParams(doc.id()))
     titles = [lens.command.title for lens in lenses]
     assert all(unit in title and "% of" in title for title in titles)
