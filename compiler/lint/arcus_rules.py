@@ -3,6 +3,8 @@
 The IR of an Arcus program is neutral (Move, Slew for JOG, Home, Arc, Stop, WaitMotion per axis,
 SetMotion for HSPD/LSPD/ACC/SCV, Setting for SSPD/SYN.../EO, Status readings); what stays
 `Native("arcus", <spelling>)` (SSPDM) is recognised through the catalog's patterns.
+Rules that mean the same in every dialect are written once in ir_rules.py; `VOICE` gives their
+codes and messages here, and hooks for what only this dialect knows.
 """
 
 from __future__ import annotations
@@ -67,13 +69,6 @@ def motion_axes(op) -> tuple[str, ...]:
     if isinstance(op, (ir.Slew, ir.Home)):
         return (op.axis,)
     return ()
-
-
-def reads(item):
-    if item is None:
-        return ()
-    return flow.term_reads(item) if isinstance(item, (ir.Branch, ir.Jump, ir.Return, ir.End, ir.FallOff)) \
-        else flow.op_reads(item)
 
 
 def forward_all(module: ir.Module, transfer, join=frozenset.union, entry=frozenset()):

@@ -3,6 +3,8 @@
 Rules work on the IR where the question is about behaviour (flow, trips, calls) and on the syntax
 tree where it is about how something is written (`=<`, argument order, the last line). Facts about
 commands come from the catalog (trip bits, float registers), never from tables written here.
+Rules that mean the same in every dialect are written once in ir_rules.py; `VOICE` at the end
+gives their MCode codes and messages.
 """
 
 from __future__ import annotations
@@ -19,8 +21,6 @@ from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.lower import TRIP_EVENTS
 
 MCODE = "mcode"
-# The position counters a program reads to know where the axis is (L656-L657, L1862-L1868).
-POSITION_REGISTERS = ("position", "encoder")  # readings of P, C1, C2
 # Flags a program polls to wait for the end of a move instead of H (L4207, L4427).
 MOTION_FLAGS = ("moving", "moving_to_position")  # MV, MP
 MOTION_OPS = (ir.Move, ir.Slew, ir.Home, ir.Arc)

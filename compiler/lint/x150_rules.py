@@ -5,6 +5,8 @@ later, and commands that run them. The IR gives each stretch of the stream and e
 routine; settings made by the stream persist on the controller, so a sequence nothing in the file
 calls starts with what the whole stream set. What a command *means* (stop, kill, goto, call) comes
 from the catalog's `ir` field; only the manual's few shutdown commands are named here.
+Rules that mean the same in every dialect are written once in ir_rules.py; `VOICE` gives their
+codes and messages here, and hooks for what only this dialect knows.
 """
 
 from __future__ import annotations

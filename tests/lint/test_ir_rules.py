@@ -192,3 +192,16 @@ def test_def_use_counts_every_write_and_read(program) -> None:
         assert len(defuse.uses.get(name, [])) == sum(reads.count(name) for _, reads, _ in program)
         expect_read = any(name in reads and target != name for target, reads, _ in program)
         assert defuse.read(name) == expect_read
+
+
+# fixes of the shared rules, end to end ---------------------------------------------------------------
+
+def test_unsafe_fixes_of_shared_rules_delete_the_unused_declaration_and_subroutine(mcc, tmp_path) -> None:
+    arcus = tmp_path / "p.prg"
+    arcus.write_text("DO1=1\nEND\nSUB 3\nDO2=1\nENDSUB\n", encoding="utf-8")
+    mcode = tmp_path / "p.mxt"
+    mcode.write_text("VA Q5=0\nPG 1\nLB G1\n  E\nPG\nS\n' end\n", encoding="utf-8")
+    result = mcc("lint", "--fix", "--unsafe-fixes", "--select", "A307,M306", str(arcus), str(mcode))
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert arcus.read_text(encoding="utf-8") == "DO1=1\nEND\n"
+    assert mcode.read_text(encoding="utf-8") == "PG 1\nLB G1\n  E\nPG\nS\n' end\n"
