@@ -239,11 +239,14 @@ def stream_entries(module: ir.Module, transfer, join) -> dict[str, frozenset]:
 
 @shared("move-before-speed")
 def move_before_speed(ctx: Context, voice: Voice) -> None:
-    """Option `params`: the motion settings a move needs (`ir.MotionParam`s); hooks `facts(item)`
+    """Option `params`: the motion settings a move needs (`ir.MotionParam`s), `kinds`: the operations
+    that use them (default: moves, arcs, slews, homing); hooks `facts(item)`
     and `needs(item)` add settings only the dialect has (X150's distance register), `moves(item)`
     recognises a move the dialect keeps native. Fields: axis, names (the missing settings in the
     dialect's words, ", "), verb ("is" or "are"). One finding per routine: its first such move."""
-    params = tuple(voice.options["move-before-speed"]["params"])
+    options = voice.options["move-before-speed"]
+    params = tuple(options["params"])
+    kinds = tuple(options.get("kinds", MOTION))
     extra_facts = voice.hook("facts", lambda item: ())
     extra_needs = voice.hook("needs", lambda item: ())
     native_move = voice.hook("moves", lambda item: False)
@@ -257,7 +260,7 @@ def move_before_speed(ctx: Context, voice: Voice) -> None:
     for name, states in facts.states(entries).items():
         routine = ctx.module.routine(name)
         for item, state in walk(routine, states, facts.transfer):
-            axes = motion_axes(item) if isinstance(item, MOTION) else \
+            axes = motion_axes(item) if isinstance(item, kinds) else \
                 (item.axis,) if native_move(item) else ()
             missing: list = []
             for axis in axes:

@@ -373,7 +373,9 @@ VOICE = ir_rules.Voice(
         "division-by-zero": "division by zero: the result is undefined",
     },
     words={"accel": "A", "max_speed": "V", "distance": "D"},
-    options={"move-before-speed": {"params": (ir.MotionParam.ACCEL, ir.MotionParam.MAX_SPEED)},
+    # GH homes at the speed it is given and with GA (L1701-L1711): only G uses A and V
+    options={"move-before-speed": {"params": (ir.MotionParam.ACCEL, ir.MotionParam.MAX_SPEED),
+                                   "kinds": (ir.Move, ir.Slew)},
              # a G kept as text may or may not be in continuous mode (X142 says why): said once per file
              "motion-never-stopped": {"once": ("native",)}},
     hooks={"facts": distance_facts, "needs": distance_needed, "moves": lambda item: native(item, "G"),

@@ -205,3 +205,50 @@ def test_unsafe_fixes_of_shared_rules_delete_the_unused_declaration_and_subrouti
     assert result.returncode == 0, result.stdout + result.stderr
     assert arcus.read_text(encoding="utf-8") == "DO1=1\nEND\n"
     assert mcode.read_text(encoding="utf-8") == "PG 1\nLB G1\n  E\nPG\nS\n' end\n"
+
+
+def run_rule(code: str, dialect: str, module, text: str = "") -> list:
+    """Run one rule on a module built by hand (the neutral operations a lowering may produce)."""
+    from mcc.compiler.analysis import Analysis
+    from mcc.compiler.config import load_profile
+    from mcc.compiler import dialects
+    from mcc.compiler.diagnostics import Diagnostics
+    from mcc.compiler.lint.rules import Context
+    from mcc.compiler.span import SourceFile
+
+    source = SourceFile(f"p{dialects.get(dialect).extensions[0]}", text or "\n" * 5)
+    ctx = Context(Analysis(source, None, module, Diagnostics()),
+                  load_profile(dialects.get(dialect).default_profile), dialect)
+    ctx.code = code
+    RULES[code].check(ctx)
+    return ctx.diagnostics.items
+
+
+def neutral_module(dialect: str, *ops):
+    from mcc.compiler import ir
+    from mcc.compiler.span import Span
+
+    spans = [Span("p", n + 1, 1, n + 1, 2, 0, 0) for n in range(len(ops) + 1)]
+    for op, span in zip(ops, spans):
+        op.span = span
+    block = ir.Block("%1", list(ops), ir.FallOff(spans[-1]))
+    return ir.Module(dialect, "", routines=[ir.Routine("SEQ1", ir.RoutineKind.MAIN, [block], number=1)])
+
+
+def test_x150_homing_does_not_need_a_and_v_but_a_move_does() -> None:
+    """GH homes at its own speed with GA (L1701-L1711): a neutral Home is not an X301 move."""
+    from mcc.compiler import ir
+
+    home = neutral_module("x150", ir.Home("1", "switch", 1))
+    assert run_rule("X301", "x150", home) == []
+    move = neutral_module("x150", ir.Move(ir.MoveMode.RELATIVE, (("1", ir.Const(4000, ir.Unit.STEPS)),)))
+    assert [d.code for d in run_rule("X301", "x150", move)] == ["X301"]
+
+
+def test_neutral_stops_end_endless_motion_in_x150_without_its_spellings() -> None:
+    """When the X150 lowering writes S as a neutral Stop, X307 needs no change."""
+    from mcc.compiler import ir
+
+    jog = ir.Slew("1", None, 1)
+    assert [d.code for d in run_rule("X307", "x150", neutral_module("x150", jog))] == ["X307"]
+    assert run_rule("X307", "x150", neutral_module("x150", ir.Slew("1", None, 1), ir.Stop("1"))) == []
