@@ -138,41 +138,42 @@ def build(module: ir.Module) -> tuple[Symbols, DefUse]:
             symbols.variables[name] = Symbol(name, "variable", None)
         return symbols.variables[name]
 
+    def reads(exprs, site: Site | None, own: str | None, where: tuple) -> None:
+        for expr in exprs:
+            for node in ir.walk_expr(expr):
+                if isinstance(node, ir.Var):
+                    site = site or Site(*where)
+                    defuse.uses.setdefault(node.name, []).append(Use(site, node, node.name == own))
+                    note(variable(node.name), node.span or site.span)
+                elif isinstance(node, ir.LabelRef):
+                    refer(node.name, node.span or getattr(where[3], "span", None))
+
     for routine in module.routines:
         for block in routine.blocks:
-            items = [*block.ops, block.terminator]
-            for index, item in enumerate(items):
-                if item is None:
-                    continue
-                site = Site(routine.name, block.label, index if index < len(block.ops) else -1, item)
-                own = None
-                exprs: tuple = ()
-                if isinstance(item, ir.Assign):
-                    own = item.target.name
+            for index, op in enumerate(block.ops):
+                where = (routine.name, block.label, index, op)
+                if isinstance(op, ir.Assign):
+                    site = Site(*where)
+                    own = op.target.name
                     defuse.defs.setdefault(own, []).append(site)
-                    note(variable(own), item.target.span or item.span)
-                    exprs = ir.op_exprs(item)
-                elif _is_declaration(item, module):
-                    defuse.defs.setdefault(item.args[0].name, []).append(site)
-                    exprs = item.args[1:]
-                elif index < len(block.ops):
-                    exprs = ir.op_exprs(item)
-                    if isinstance(item, ir.Call):
-                        refer(item.routine, item.span)
-                    elif isinstance(item, ir.SetHandler) and item.routine:
-                        refer(item.routine, item.span)
+                    note(variable(own), op.target.span or op.span)
+                    reads((op.value,), site, own, where)
+                elif isinstance(op, ir.Native) and _is_declaration(op, module):
+                    site = Site(*where)
+                    defuse.defs.setdefault(op.args[0].name, []).append(site)
+                    reads(op.args[1:], site, None, where)
                 else:
-                    exprs = ir.term_exprs(item)
-                    if isinstance(item, ir.GotoRoutine):
-                        refer(item.routine, item.span)
-                    for label in ir.successors(item):
-                        if not _is_fallthrough(item, blocks.get(label)) and label in symbols.labels:
-                            note(symbols.labels[label], item.span)
-                for expr in exprs:
-                    for node in ir.walk_expr(expr):
-                        if isinstance(node, ir.Var):
-                            defuse.uses.setdefault(node.name, []).append(Use(site, node, node.name == own))
-                            note(variable(node.name), node.span or site.span)
-                        elif isinstance(node, ir.LabelRef):
-                            refer(node.name, node.span or site.span)
+                    if isinstance(op, ir.Call) or isinstance(op, ir.SetHandler) and op.routine:
+                        refer(op.routine, op.span)
+                    reads(ir.op_exprs(op), None, None, where)
+            term = block.terminator
+            if term is None:
+                continue
+            if isinstance(term, ir.GotoRoutine):
+                refer(term.routine, term.span)
+            for label in ir.successors(term):
+                if label in symbols.labels and not _is_fallthrough(term, blocks.get(label)):
+                    note(symbols.labels[label], term.span)
+            if isinstance(term, ir.Branch):
+                reads((term.cond,), None, None, (routine.name, block.label, -1, term))
     return symbols, defuse

@@ -119,6 +119,8 @@ VOICE = ir_rules.Voice(
         "division-by-zero": "'{op} 0': division by zero has no result",
         "motion-never-stopped.slew": "axis {axis} jogs until something stops it, and the program never does "
                                      "(STOP{axis}, STOP or ABORT)",
+        "motion-never-stopped.move": "axis {axis} keeps moving after it reaches its target, and the program never "
+                                     "stops it (STOP{axis}, STOP or ABORT)",
     },
     words={"position": "P", "encoder": "E", "max_speed": "HSPD", "initial_speed": "LSPD", "accel_time": "ACC"},
     options={

@@ -60,6 +60,12 @@ class Voice:
 
 
 SHARED: dict[str, Callable[[Context, Voice], None]] = {}
+# The message variants a rule may ask for (`"rule.variant"`): a dialect that lists the rule gives
+# each of them (tests/lint/test_ir_rules.py), plus the kinds its own hooks return.
+VARIANTS: dict[str, tuple[str, ...]] = {
+    "motion-never-stopped": ("slew", "move"),
+    "unused-variable": ("never", "written"),
+}
 
 
 def shared(name: str):

@@ -370,6 +370,7 @@ VOICE = ir_rules.Voice(
                              "suppress this if a host runs it",
         "motion-never-stopped.native": CONTINUOUS,
         "motion-never-stopped.slew": CONTINUOUS,
+        "motion-never-stopped.move": CONTINUOUS,
         "division-by-zero": "division by zero: the result is undefined",
     },
     words={"accel": "A", "max_speed": "V", "distance": "D"},
