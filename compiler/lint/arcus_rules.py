@@ -3,6 +3,8 @@
 The IR of an Arcus program is neutral (Move, Slew for JOG, Home, Arc, Stop, WaitMotion per axis,
 SetMotion for HSPD/LSPD/ACC/SCV, Setting for SSPD/SYN.../EO, Status readings); what stays
 `Native("arcus", <spelling>)` (SSPDM) is recognised through the catalog's patterns.
+Rules that mean the same in every dialect are written once in ir_rules.py; `VOICE` gives their
+codes and messages here, and hooks for what only this dialect knows.
 """
 
 from __future__ import annotations
@@ -13,18 +15,13 @@ from mcc.compiler import ir
 from mcc.compiler.arcus import catalog as acat
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler.diagnostics import Fix
-from mcc.compiler.lint import flow
+from mcc.compiler.lint import flow, ir_rules
 from mcc.compiler.lint.edits import line_bounds, replace
 from mcc.compiler.lint.rules import Context, rule
 
 ARCUS = "arcus"
 MOTION = (ir.Move, ir.Slew, ir.Home, ir.Arc)
-SPEED_PARAMS = (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED, ir.MotionParam.ACCEL_TIME)
-PARAM_NAMES = {ir.MotionParam.MAX_SPEED: "HSPD", ir.MotionParam.INITIAL_SPEED: "LSPD",
-               ir.MotionParam.ACCEL_TIME: "ACC"}
 SETTING_KEYWORDS = {"speed_change": "SSPD", "compare_output": "SYNO"}  # neutral settings the rules follow
-READ_WHILE_MOVING = ("position", "encoder")  # IR meanings of P[axis] and E[axis]
-FINITE_MOTION = (ir.Move, ir.Home, ir.Arc)  # motion that ends by itself (a jog does not)
 AXES = ("X", "Y", "Z", "U")
 
 
@@ -74,13 +71,6 @@ def motion_axes(op) -> tuple[str, ...]:
     return ()
 
 
-def reads(item):
-    if item is None:
-        return ()
-    return flow.term_reads(item) if isinstance(item, (ir.Branch, ir.Jump, ir.Return, ir.End, ir.FallOff)) \
-        else flow.op_reads(item)
-
-
 def forward_all(module: ir.Module, transfer, join=frozenset.union, entry=frozenset()):
     """(routine, item, state before it) for every reachable operation and terminator."""
     for routine in module.routines:
@@ -91,91 +81,56 @@ def forward_all(module: ir.Module, transfer, join=frozenset.union, entry=frozens
                     yield routine, item, state
 
 
-# A301 ---------------------------------------------------------------------------------------------
+# The rules written once over the IR (compiler/lint/ir_rules.py), in Arcus's codes and words ------------
 
-@rule("A301", ARCUS)
-def position_read_while_moving(ctx: Context) -> None:
-    def transfer(moving: frozenset, item) -> frozenset:
-        if isinstance(item, ir.WaitMotion):
-            return frozenset(m for m in moving if m[0] != item.axis)
-        polled = {n.axis for n in reads(item) if isinstance(n, ir.Status) and n.meaning == "motor_status"}
-        if polled:
-            moving = frozenset(m for m in moving if m[0] not in polled)
-        axes = motion_axes(item) if isinstance(item, FINITE_MOTION) else ()
-        return moving | {(axis, item.span.line) for axis in axes} if axes else moving
-
-    for _, item, moving in forward_all(ctx.module, transfer):
-        if not moving:
-            continue
-        for node in reads(item):
-            if isinstance(node, ir.Status) and node.meaning in READ_WHILE_MOVING:
-                lines = sorted(line for axis, line in moving if axis == node.axis)
-                if lines:
-                    name = "P" if node.meaning == "position" else "E"
-                    ctx.report(node.span or item.span,
-                               f"{name}{node.axis} is read while the move at line {lines[-1]} may still be "
-                               f"running: add WAIT{node.axis} before reading it (L2706)")
+def unused_sub_fix(ctx: Context, routine: ir.Routine) -> Fix | None:
+    """Delete `SUB n` ... `ENDSUB` (the routine's span to its last return)."""
+    last = routine.blocks[-1].terminator if routine.blocks else None
+    if routine.span is None or not isinstance(last, ir.Return) or last.span is None \
+            or last.span.line <= routine.span.line:
+        return None
+    start, _ = line_bounds(ctx.source, routine.span.line)
+    _, end = line_bounds(ctx.source, last.span.line)
+    return Fix("delete the subroutine", (replace(ctx.source.span(start, end), ""),), safe=False)
 
 
-# A302 ---------------------------------------------------------------------------------------------
-
-@rule("A302", ARCUS)
-def move_before_speed(ctx: Context) -> None:
-    def gen(item):
-        if isinstance(item, ir.SetMotion) and item.param in SPEED_PARAMS:
-            return ((item.param, item.axis),)
-        return ()
-
-    facts = flow.MustFacts(ctx.module, gen)
-    for name, states in facts.states().items():
-        unset = first_unset(first_per_routine(ctx.module.routine(name), states, facts.transfer))
-        if unset is not None:  # one finding per routine: the first move is where to fix it
-            item, axis, missing = unset
-            names = ", ".join(PARAM_NAMES[p] for p in missing)
-            ctx.report(item.span, f"this moves axis {axis} before {names} {'is' if len(missing) == 1 else 'are'} set "
-                                  "on every path: speeds are not kept in flash (L833-L844); set them at the start of "
-                                  "the program")
-
-
-def first_unset(items):
-    for item, state in items:
-        for axis in motion_axes(item):
-            missing = [p for p in SPEED_PARAMS if (p, ir.ALL_AXES) not in state]
-            if missing and any((p, axis) not in state for p in SPEED_PARAMS):
-                return item, axis, missing
-    return None
-
-
-def first_per_routine(routine: ir.Routine, states: dict, transfer):
-    """Every reachable operation of a routine with the state before it, in block order."""
-    for block in routine.blocks:
-        if block.label in states:
-            yield from flow.replay(block, states[block.label], transfer)
-
-
-# A303 ---------------------------------------------------------------------------------------------
-
-def busy(block: ir.Block) -> bool:
-    """A block that does nothing but compute: no delay, wait, motion, output, call or native command."""
-    return all(isinstance(op, ir.Assign) for op in block.ops)
-
-
-@rule("A303", ARCUS)
-def busy_wait(ctx: Context) -> None:
-    for routine in ctx.module.routines:
-        forest = flow.loop_forest(routine)  # innermost first, each block in one loop: linear
-        idle: dict[str, bool] = {}  # header -> the whole loop (inner loops included) only computes
-        for loop in forest:
-            idle[loop.header.label] = all(busy(block) for block in loop.blocks) and \
-                all(idle[inner.header.label] for inner in loop.inner)
-        for loop in forest:
-            header = loop.header
-            if not isinstance(header.terminator, ir.Branch):
-                continue
-            if idle[header.label]:
-                ctx.report(header.terminator.span,
-                           "this loop only tests its condition again and again: add DELAY=<ms> inside it (L1868), "
-                           "or WAIT[axis] to wait for a move")
+VOICE = ir_rules.Voice(
+    ARCUS,
+    codes={
+        "position-read-while-moving": "A301",
+        "move-before-speed": "A302",
+        "busy-wait": "A303",
+        "unused-subroutine": "A307",
+        "variable-read-before-write": "A308",
+        "division-by-zero": "A309",
+        "motion-never-stopped": "A314",
+    },
+    messages={
+        "position-read-while-moving": "{reading}{axis} is read while the move at line {line} may still be running: "
+                                      "add WAIT{axis} before reading it (L2706)",
+        "move-before-speed": "this moves axis {axis} before {names} {verb} set on every path: speeds are not kept "
+                             "in flash (L833-L844); set them at the start of the program",
+        "busy-wait": "this loop only tests its condition again and again: add DELAY=<ms> inside it (L1868), or "
+                     "WAIT[axis] to wait for a move",
+        "unused-subroutine": "no GOSUB calls SUB {number}: remove it, or call it (a host can run it with GS{number}, "
+                             "L823)",
+        "variable-read-before-write": "{name} is read before the program writes it on some path: variables are not "
+                                      "kept in flash; set it first (e.g. {name}=0)",
+        "division-by-zero": "'{op} 0': division by zero has no result",
+        "motion-never-stopped.slew": "axis {axis} jogs until something stops it, and the program never does "
+                                     "(STOP{axis}, STOP or ABORT)",
+        "motion-never-stopped.move": "axis {axis} keeps moving after it reaches its target, and the program never "
+                                     "stops it (STOP{axis}, STOP or ABORT)",
+    },
+    words={"position": "P", "encoder": "E", "max_speed": "HSPD", "initial_speed": "LSPD", "accel_time": "ACC"},
+    options={
+        "position-read-while-moving": {"anchor": "reading"},
+        "move-before-speed": {"params": (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED,
+                                         ir.MotionParam.ACCEL_TIME)},
+    },
+    hooks={"fix": unused_sub_fix},
+)
+ir_rules.register(VOICE)
 
 
 # A304 / A311 / A312 — per-axis modes ---------------------------------------------------------------
@@ -243,7 +198,7 @@ def output_used_by_sync(ctx: Context) -> None:
                                   f"(SYN{outputs[index]}O): it cannot be set until SYN{outputs[index]}F (L765)")
 
 
-# A305 / A314 — whole program -------------------------------------------------------------------------
+# A305 — whole program -------------------------------------------------------------------------
 
 @rule("A305", ARCUS)
 def drives_never_enabled(ctx: Context) -> None:
@@ -256,16 +211,7 @@ def drives_never_enabled(ctx: Context) -> None:
                            "stay disabled (L748)")
 
 
-@rule("A314", ARCUS)
-def jog_never_stopped(ctx: Context) -> None:
-    stopped = {op.axis for _, _, op in flow.ops(ctx.module, ir.Stop)}
-    for _, _, op in flow.ops(ctx.module, ir.Slew):
-        if op.axis not in stopped and ir.ALL_AXES not in stopped:
-            ctx.report(op.span, f"axis {op.axis} jogs until something stops it, and the program never does "
-                                f"(STOP{op.axis}, STOP or ABORT)")
-
-
-# A306 / A307 — subroutines -------------------------------------------------------------------------
+# A306 — subroutines -------------------------------------------------------------------------
 
 def calls(module: ir.Module) -> dict[str, list[ir.Call]]:
     graph: dict[str, list[ir.Call]] = {r.name: [] for r in module.routines}
@@ -308,54 +254,6 @@ def call_path(targets: dict[str, list[str]], start: str, goal: str, component: d
         path.append(name)
         name = before[name]
     return path[::-1]
-
-
-@rule("A307", ARCUS)
-def unused_subroutine(ctx: Context) -> None:
-    called = {op.routine for _, _, op in flow.ops(ctx.module, ir.Call)}
-    for routine in ctx.module.routines:
-        if routine.kind is not ir.RoutineKind.SUBROUTINE or routine.name in called or routine.span is None:
-            continue
-        last = routine.blocks[-1].terminator if routine.blocks else None
-        fix = None
-        if isinstance(last, ir.Return) and last.span is not None and last.span.line > routine.span.line:
-            start, _ = line_bounds(ctx.source, routine.span.line)
-            _, end = line_bounds(ctx.source, last.span.line)
-            fix = Fix("delete the subroutine", (replace(ctx.source.span(start, end), ""),), safe=False)
-        ctx.report(routine.span, f"no GOSUB calls SUB {routine.number}: remove it, or call it (a host can run it with "
-                                 f"GS{routine.number}, L823)", fix=fix)
-
-
-# A308 / A309 — variables and arithmetic -------------------------------------------------------------
-
-@rule("A308", ARCUS)
-def variable_read_before_write(ctx: Context) -> None:
-    def gen(item):
-        return (item.target.name,) if isinstance(item, ir.Assign) else ()
-
-    facts = flow.MustFacts(ctx.module, gen)
-    seen: set[tuple[str, str]] = set()
-    for name, states in facts.states().items():
-        routine = ctx.module.routine(name)
-        for block in routine.blocks:
-            if block.label not in states:
-                continue
-            for item, written in flow.replay(block, states[block.label], facts.transfer):
-                for node in reads(item):
-                    if isinstance(node, ir.Var) and node.name not in written and (name, node.name) not in seen:
-                        seen.add((name, node.name))
-                        ctx.report(node.span or item.span,
-                                   f"{node.name} is read before the program writes it on some path: variables are not "
-                                   f"kept in flash; set it first (e.g. {node.name}=0)")
-
-
-@rule("A309", ARCUS)
-def division_by_zero(ctx: Context) -> None:
-    for _, block in ctx.module.blocks():
-        for item in [*block.ops, block.terminator]:
-            for node in reads(item):
-                if isinstance(node, ir.BinOp) and node.op in ("/", "%") and const(node.right) == 0:
-                    ctx.report(node.span or item.span, f"'{node.op} 0': division by zero has no result")
 
 
 # A310 ---------------------------------------------------------------------------------------------

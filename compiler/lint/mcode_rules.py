@@ -3,6 +3,8 @@
 Rules work on the IR where the question is about behaviour (flow, trips, calls) and on the syntax
 tree where it is about how something is written (`=<`, argument order, the last line). Facts about
 commands come from the catalog (trip bits, float registers), never from tables written here.
+Rules that mean the same in every dialect are written once in ir_rules.py; `VOICE` at the end
+gives their MCode codes and messages.
 """
 
 from __future__ import annotations
@@ -11,7 +13,7 @@ from functools import lru_cache
 
 from mcc.compiler import ir
 from mcc.compiler.diagnostics import Edit, Fix
-from mcc.compiler.lint import flow
+from mcc.compiler.lint import flow, ir_rules
 from mcc.compiler.lint.edits import delete_line, insert_after_line, replace
 from mcc.compiler.lint.rules import Context, rule
 from mcc.compiler.mcode import catalog as mcat
@@ -19,8 +21,6 @@ from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.lower import TRIP_EVENTS
 
 MCODE = "mcode"
-# The position counters a program reads to know where the axis is (L656-L657, L1862-L1868).
-POSITION_REGISTERS = ("position", "encoder")  # readings of P, C1, C2
 # Flags a program polls to wait for the end of a move instead of H (L4207, L4427).
 MOTION_FLAGS = ("moving", "moving_to_position")  # MV, MP
 MOTION_OPS = (ir.Move, ir.Slew, ir.Home, ir.Arc)
@@ -137,19 +137,6 @@ class Motion:
         for block in routine.blocks:
             if block.label in states:
                 yield from flow.replay(block, states[block.label], self.transfer)
-
-
-@rule("M301", MCODE)
-def position_read_while_moving(ctx: Context) -> None:
-    motion = Motion(ctx.module, (ir.Move, ir.Home))
-    for routine in ctx.module.routines:
-        if routine.kind is ir.RoutineKind.IMMEDIATE:
-            continue  # typed or downloaded outside a program, where H does not exist (program only)
-        for item, state in motion.run(routine):
-            if state and item is not None and reads_any(item, POSITION_REGISTERS):
-                where = ", ".join(str(n) for n in sorted(state) if n > 0)
-                ctx.report(item.span, f"the position is read while the move at line {where} may still be running: "
-                                      "add `H` after the move so the program waits for it to finish")
 
 
 # M302 / M312 / M323 --------------------------------------------------------------------------------
@@ -377,35 +364,14 @@ def motion_at_power_up(ctx: Context) -> None:
                     return
 
 
-# M305 / M306 / M307 / M310 — names and dead code --------------------------------------------------
-
-def referenced_labels(module: ir.Module) -> set[str]:
-    index = flow.block_index(module)
-    used: set[str] = set()
-    for routine, block in module.blocks():
-        term = block.terminator
-        for label in ir.successors(term):
-            if not (isinstance(term, ir.Jump) and flow.is_fallthrough(term, index.get(label, (None, None))[1])):
-                used.add(label)
-        for op in block.ops:
-            if isinstance(op, ir.Call):
-                used.add(op.routine)
-            elif isinstance(op, ir.SetHandler) and op.routine:
-                used.add(op.routine)
-            for node in flow.op_reads(op):
-                if isinstance(node, ir.LabelRef):
-                    used.add(node.name)
-        if isinstance(term, ir.GotoRoutine):
-            used.add(term.routine)
-    return used
-
+# M305 / M310 — names and declarations --------------------------------------------------
 
 @rule("M305", MCODE)
 def unused_label(ctx: Context) -> None:
-    used = ctx.shared("labels", lambda: referenced_labels(ctx.module))
+    labels = ctx.analysis.symbols.labels  # references: BR (not a fall-through), CL, EX, trips, OE
     for routine in ctx.module.routines:
         for block in routine.blocks:
-            if not block.named or block.label in used or block.label == "SU":
+            if not block.named or labels[block.label].used or block.label == "SU":
                 continue
             if routine.origin is not None and block is routine.entry:
                 continue  # a program start: run with EX <label> or EX <address>
@@ -414,71 +380,14 @@ def unused_label(ctx: Context) -> None:
                                    "or branch to it", fix=fix)
 
 
-def variable_reads(module: ir.Module) -> tuple[set[str], set[str]]:
-    """(variables read, variables mentioned at all), not counting the declaration itself."""
-    read: set[str] = set()
-    mentioned: set[str] = set()
-    for _, block in module.blocks():
-        for op in block.ops:
-            if isinstance(op, ir.Native) and op.mnemonic == "VA":
-                nodes = [n for a in op.args[1:] for n in ir.walk_expr(a)]
-            else:
-                nodes = list(flow.op_reads(op))
-            own = op.target.name if isinstance(op, ir.Assign) else None
-            if own is not None:
-                mentioned.add(own)
-            for node in nodes:
-                if isinstance(node, ir.Var):
-                    mentioned.add(node.name)
-                    if node.name != own:  # `IC Q1` (Q1=Q1+1) alone does not use Q1
-                        read.add(node.name)
-        for node in flow.term_reads(block.terminator):
-            if isinstance(node, ir.Var):
-                read.add(node.name)
-                mentioned.add(node.name)
-    return read, mentioned
-
-
-@rule("M306", MCODE)
-def unused_variable(ctx: Context) -> None:
-    read, mentioned = variable_reads(ctx.module)
-    for name, var in ctx.module.variables.items():
-        if name in read or var.span is None:
-            continue
-        fix = None if name in mentioned else Fix("delete the declaration", (delete_line(ctx.source, var.span.line),),
-                                                 safe=False)
-        what = "only written, never read" if name in mentioned else "never used"
-        host = " (if a host reads it with PR, suppress this line)" if var.scope == "global" else ""
-        where = declared_name(ctx, var.span)
-        written = ctx.source.text[where.start:where.end] if where is not var.span else name
-        ctx.report(where, f"variable {written} is {what}{host}", fix=fix)
-
-
-def declared_name(ctx: Context, span):
+def declared_name(ctx: Context, var: ir.Variable):
     """The span of the name in `VA <name>` (the IR keeps the whole statement's span)."""
+    span = var.span
     for stmt in ctx.tree.statements():
         if stmt.span.line == span.line and stmt.head.key == "VA" and stmt.args:
             arg = stmt.args[0]
             return (arg.left if isinstance(arg, st.Comparison) else arg).span
     return span
-
-
-@rule("M307", MCODE)
-def unreachable_code(ctx: Context) -> None:
-    module = ctx.module
-    targeted = {label for _, block in module.blocks() for label in ir.successors(block.terminator)}
-    for routine in module.routines:
-        if routine.kind is ir.RoutineKind.IMMEDIATE:
-            continue
-        live = {b.label for b in flow.reachable(routine)}
-        for block in routine.blocks:
-            if block.label in live or block.named or block.label in targeted:
-                continue
-            if not block.ops and isinstance(block.terminator, (ir.End, ir.FallOff)):
-                continue  # the conventional `E` after the main loop (L7643)
-            first = block.ops[0] if block.ops else block.terminator
-            ctx.report(first.span, "this line can never run: the line before it always branches, returns or ends "
-                                   "and no label leads here")
 
 
 @rule("M310", MCODE)
@@ -566,23 +475,7 @@ def reversed_comparison(ctx: Context) -> None:
                            fix=Fix("write <=", (Edit(span, "<="),)))
 
 
-# M313 / M314 — moves ------------------------------------------------------------------------------
-
-def is_continuous(op: ir.Move) -> bool:
-    return any(key == "continuous" and isinstance(value, ir.Const) and value.value == 1 for key, value in op.options)
-
-
-@rule("M313", MCODE)
-def continuous_move_never_stopped(ctx: Context) -> None:
-    stops = any(isinstance(op, ir.Stop) or isinstance(op, ir.Slew) and isinstance(op.velocity, ir.Const)
-                and op.velocity.value == 0 for _, _, op in flow.ops(ctx.module))
-    if stops:
-        return
-    for _, _, op in flow.ops(ctx.module, ir.Move):
-        if is_continuous(op):
-            ctx.report(op.span, "this move keeps running after it reaches its position (parameter 3 = 1) and no "
-                                "`SL 0` stops it anywhere in the program")
-
+# M314 — moves ------------------------------------------------------------------------------
 
 @rule("M314", MCODE)
 def move_after_slew_without_hold(ctx: Context) -> None:
@@ -665,3 +558,40 @@ def save_on_last_line(ctx: Context) -> None:
     fix = Fix("add a comment line after S",
               (insert_after_line(ctx.source, last.number, f"{marker} keep this line: it ends the S\n"),))
     ctx.report(stmt.span, "S is the last line: add a comment line after it so its line end is sent (L5269)", fix=fix)
+
+
+# The rules written once over the IR (compiler/lint/ir_rules.py), in MCode's codes and words -----------
+
+VOICE = ir_rules.Voice(
+    MCODE,
+    codes={
+        "position-read-while-moving": "M301",
+        "unused-variable": "M306",
+        "unreachable-code": "M307",
+        "motion-never-stopped": "M313",
+        "division-by-zero": "M324",
+    },
+    messages={
+        "position-read-while-moving": "the position is read while the move at line {lines} may still be running: "
+                                      "add `H` after the move so the program waits for it to finish",
+        "unused-variable.never": "variable {name} is never used{host}",
+        "unused-variable.written": "variable {name} is only written, never read{host}",
+        "unused-variable.host": " (if a host reads it with PR, suppress this line)",
+        "unreachable-code": "this line can never run: the line before it always branches, returns or ends and no "
+                            "label leads here",
+        "motion-never-stopped.move": "this move keeps running after it reaches its position (parameter 3 = 1) and "
+                                     "no `SL 0` stops it anywhere in the program",
+        "motion-never-stopped.slew": "SL keeps the axis running at this velocity and no `SL 0` stops it anywhere in "
+                                     "the program",
+        "division-by-zero": "'{op} 0' divides by zero, which the manual does not define (L6337-L6356): test the "
+                            "divisor first",
+    },
+    words={"position": "P", "encoder": "C2"},
+    options={
+        # H is a program instruction (L4207): typed or downloaded outside a program there is no H to add
+        "position-read-while-moving": {"anchor": "operation", "skip_immediate": True},
+        "unreachable-code": {"skip_immediate": True},
+    },
+    hooks={"name_span": declared_name},
+)
+ir_rules.register(VOICE)

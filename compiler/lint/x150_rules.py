@@ -5,6 +5,8 @@ later, and commands that run them. The IR gives each stretch of the stream and e
 routine; settings made by the stream persist on the controller, so a sequence nothing in the file
 calls starts with what the whole stream set. What a command *means* (stop, kill, goto, call) comes
 from the catalog's `ir` field; only the manual's few shutdown commands are named here.
+Rules that mean the same in every dialect are written once in ir_rules.py; `VOICE` gives their
+codes and messages here, and hooks for what only this dialect knows.
 """
 
 from __future__ import annotations
@@ -12,14 +14,12 @@ from __future__ import annotations
 from functools import lru_cache
 
 from mcc.compiler import ir
-from mcc.compiler.lint import flow
+from mcc.compiler.lint import flow, ir_rules
 from mcc.compiler.lint.rules import Context, rule
 from mcc.compiler.x150 import catalog as xcat
 from mcc.compiler.x150 import syntax as st
 
 X150 = "x150"
-SETTINGS = (ir.MotionParam.ACCEL, ir.MotionParam.MAX_SPEED)
-SETTING_NAMES = {ir.MotionParam.ACCEL: "A", ir.MotionParam.MAX_SPEED: "V", "distance": "D"}
 SHUTDOWN = {"ST": "ST1", "OFF": "OFF"}  # L4019-L4027, L2796-L2800; re-enabled by ST0 / ON
 STOPPING_IRS = ("stop", "kill")  # S, SB, LS, K (catalog `ir`)
 LOOP_EXIT_IRS = ("stop", "kill", "goto", "return")
@@ -99,49 +99,6 @@ def forward_all(module: ir.Module, transfer):
                     yield routine, item, state
 
 
-# X301 ---------------------------------------------------------------------------------------------
-
-def setting_facts(item):
-    if isinstance(item, ir.SetMotion) and item.param in SETTINGS:
-        return ((item.param, item.axis),)
-    if isinstance(item, ir.Move) and not uses_distance(item):
-        return (("distance", axis_of(item)),)
-    if isinstance(item, ir.Assign) and item.target.name.startswith("%D"):
-        return (("distance", item.target.name[2:]),)
-    return ()
-
-
-def stream_facts(module: ir.Module, facts: flow.MustFacts) -> dict[str, frozenset]:
-    """Entry facts: each stretch of the stream starts with what the stretches before it set; a
-    sequence that nothing calls starts with what the whole stream set (it runs after download)."""
-    return stream_entries(module, facts.transfer, frozenset.intersection)
-
-
-@rule("X301", X150)
-def move_before_settings(ctx: Context) -> None:
-    facts = flow.MustFacts(ctx.module, setting_facts)
-    entries = stream_facts(ctx.module, facts)
-    for name, states in facts.states(entries).items():
-        routine = ctx.module.routine(name)
-        for block in routine.blocks:
-            if block.label not in states:
-                continue
-            for item, state in flow.replay(block, states[block.label], facts.transfer):
-                if not is_go(item):
-                    continue
-                axis = axis_of(item)
-                needed = list(SETTINGS) + (["distance"] if isinstance(item, ir.Move) and uses_distance(item) else [])
-                missing = [p for p in needed if (p, axis) not in state and (p, ir.ALL_AXES) not in state]
-                if missing:
-                    names = ", ".join(SETTING_NAMES[p] for p in missing)
-                    ctx.report(item.span, f"G moves with the {names} left by whatever ran before: set "
-                                          f"{names} before the first G (L1675)")
-                    break
-            else:
-                continue
-            break
-
-
 # X302 ---------------------------------------------------------------------------------------------
 
 def loop_end_input(tree: st.SyntaxTree) -> bool:
@@ -179,7 +136,7 @@ def endless_loop(ctx: Context) -> None:
             stack = [(opener, True) for opener, _ in stack]
 
 
-# X303 ---------------------------------------------------------------------------------------------
+# X303 unused-subroutine (written once in ir_rules): sequences chosen at run time ----------------
 
 def dynamic_selection(module: ir.Module, tree: st.SyntaxTree) -> bool:
     """Sequences chosen at run time: XR(VARn), GOTO(VARn), thumbwheels (XRD), select inputs (B/O)."""
@@ -189,27 +146,6 @@ def dynamic_selection(module: ir.Module, tree: st.SyntaxTree) -> bool:
         if op.mnemonic in ("XRD", "XRP"):
             return True
     return any(isinstance(c.arg, st.IoFunction) and c.arg.function.upper() in ("B", "O") for c in tree.commands())
-
-
-@rule("X303", X150)
-def unused_sequence(ctx: Context) -> None:
-    module = ctx.module
-    if dynamic_selection(module, ctx.tree):
-        return
-    used: set[str] = set()
-    for _, block in module.blocks():
-        for op in block.ops:
-            if isinstance(op, ir.Call):
-                used.add(op.routine)
-            elif isinstance(op, ir.SetHandler) and op.routine:
-                used.add(op.routine)
-        if isinstance(block.terminator, ir.GotoRoutine):
-            used.add(block.terminator.routine)
-    for routine in module.routines:
-        if routine.number is not None and routine.kind is ir.RoutineKind.MAIN and routine.name not in used:
-            ctx.report(routine.span or ctx.source.line_span(1),
-                       f"nothing in this file runs sequence {routine.number} (XR, XG, XP, XFK, XWHEN): remove it, "
-                       "or suppress this if a host runs it")
 
 
 # X304 ---------------------------------------------------------------------------------------------
@@ -286,7 +222,7 @@ def when_without_sequence(ctx: Context) -> None:
         return
 
 
-# X307 ---------------------------------------------------------------------------------------------
+# X307 motion-never-stopped (written once in ir_rules): what stops an axis ---------------------
 
 def stops(item) -> bool:
     if isinstance(item, ir.Native) and item.dialect == X150:
@@ -294,18 +230,7 @@ def stops(item) -> bool:
     return isinstance(item, ir.SetMotion) and item.param is ir.MotionParam.MAX_SPEED and const(item.value) == 0
 
 
-@rule("X307", X150)
-def continuous_move_never_stopped(ctx: Context) -> None:
-    if any(stops(op) for _, _, op in flow.ops(ctx.module)):
-        return
-    for _, _, op in flow.ops(ctx.module, ir.Native):
-        if native(op, "G"):
-            ctx.report(op.span, "in continuous mode this G runs until S, SB, LS, K or V0 (L2498), and the program "
-                                "has none of them")
-            return
-
-
-# X308 / X309 — variable arithmetic -----------------------------------------------------------------
+# X308 — variable arithmetic -----------------------------------------------------------------
 
 @rule("X308", X150)
 def left_to_right_arithmetic(ctx: Context) -> None:
@@ -322,17 +247,6 @@ def left_to_right_arithmetic(ctx: Context) -> None:
                 ctx.report(statement.value.span, f"X150 evaluates left to right: this {op} applies to everything "
                                                  "before it, not only to the operand before it (L4638-L4642)")
                 break
-
-
-@rule("X309", X150)
-def division_by_zero(ctx: Context) -> None:
-    for _, block in ctx.module.blocks():
-        for item in [*block.ops, block.terminator]:
-            found = flow.term_reads(item) if isinstance(item, ir.Branch) else \
-                flow.op_reads(item) if item is not None else ()
-            for node in found:
-                if isinstance(node, ir.BinOp) and node.op == "/" and const(node.right) == 0:
-                    ctx.report(node.span or item.span, "division by zero: the result is undefined")
 
 
 # X310 / X311 / X313 — motion state -----------------------------------------------------------------
@@ -410,3 +324,63 @@ def direction_reversal_overridden(ctx: Context) -> None:
                                "sets the direction itself (L819): H has no effect")
         elif name in ("G", "XD", "XT"):
             pending.pop(command.address, None)
+
+
+# The rules written once over the IR (compiler/lint/ir_rules.py), in X150's codes and words ------------
+
+def distance_facts(item) -> tuple:
+    """D is its own setting on X150: a move with a known distance, or setting the register, sets it."""
+    if isinstance(item, ir.Move) and not uses_distance(item):
+        return tuple(("distance", axis) for axis, _ in item.targets)
+    if isinstance(item, ir.Assign) and item.target.name.startswith("%D"):
+        return (("distance", item.target.name[2:]),)
+    return ()
+
+
+def distance_needed(item) -> tuple:
+    return ("distance",) if isinstance(item, ir.Move) and uses_distance(item) else ()
+
+
+def native_endless(item) -> str:
+    """A G kept as X150 text: in continuous mode with a direction not known statically (L2498)."""
+    return "native" if native(item, "G") else ""
+
+
+def stopped_axis(item) -> str | None:
+    """The axis an X150 command stops: S, SB, LS, K (catalog `ir`), HALT, OFF, or V0 (L4547)."""
+    if stops(item):
+        return getattr(item, "axis", "")
+    return None
+
+
+CONTINUOUS = "in continuous mode this G runs until S, SB, LS, K or V0 (L2498), and the program has none of them"
+
+VOICE = ir_rules.Voice(
+    X150,
+    codes={
+        "move-before-speed": "X301",
+        "unused-subroutine": "X303",
+        "motion-never-stopped": "X307",
+        "division-by-zero": "X309",
+    },
+    messages={
+        "move-before-speed": "G moves with the {names} left by whatever ran before: set {names} before the first G "
+                             "(L1675)",
+        "unused-subroutine": "nothing in this file runs sequence {number} (XR, XG, XP, XFK, XWHEN): remove it, or "
+                             "suppress this if a host runs it",
+        "motion-never-stopped.native": CONTINUOUS,
+        "motion-never-stopped.slew": CONTINUOUS,
+        "motion-never-stopped.move": CONTINUOUS,
+        "division-by-zero": "division by zero: the result is undefined",
+    },
+    words={"accel": "A", "max_speed": "V", "distance": "D"},
+    # GH homes at the speed it is given and with GA (L1701-L1711): only G uses A and V
+    options={"move-before-speed": {"params": (ir.MotionParam.ACCEL, ir.MotionParam.MAX_SPEED),
+                                   "kinds": (ir.Move, ir.Slew)},
+             # a G kept as text may or may not be in continuous mode (X142 says why): said once per file
+             "motion-never-stopped": {"once": ("native",)}},
+    hooks={"facts": distance_facts, "needs": distance_needed, "moves": lambda item: native(item, "G"),
+           "endless": native_endless, "stops": stopped_axis,
+           "dynamic": lambda ctx: dynamic_selection(ctx.module, ctx.tree)},
+)
+ir_rules.register(VOICE)

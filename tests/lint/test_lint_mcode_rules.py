@@ -512,6 +512,26 @@ CASES = [
        RT
      PG
      """),
+    ("M324",  # a division by 0 inside a larger expression; a divisor in a variable is not followed
+     """
+     VA Q1=0
+     PG 1
+     LB G1
+       Q1=Q1+100/0
+       PR Q1
+       E
+     PG
+     """,
+     """
+     VA Q1=0
+     VA R2=0
+     PG 1
+     LB G1
+       Q1=100/R2
+       PR Q1
+       E
+     PG
+     """),
 ]
 
 
