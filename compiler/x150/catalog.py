@@ -10,7 +10,7 @@ catalog names ("VARn=FUN", "RSIN") are not tokens.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Any
 
 from mcc.compiler import catalog as generic
@@ -34,7 +34,9 @@ class Field:
 
 @dataclass(frozen=True, eq=False)
 class Command:
-    """One mnemonic and what the catalog says about it."""
+    """One mnemonic and what the catalog says about it. The accessors are computed once per
+    command (the entry never changes): the tokeniser, the lowering and the checks ask them for
+    every command of a program."""
 
     name: str
     entry: generic.Entry
@@ -42,39 +44,39 @@ class Command:
     def _get(self, key: str, default: Any = "") -> Any:
         return self.entry.get(key, default)
 
-    @property
+    @cached_property
     def exec(self) -> str:
         return self._get("exec", "?")
 
-    @property
+    @cached_property
     def address(self) -> str:
         return self._get("address", "?")
 
-    @property
+    @cached_property
     def policy(self) -> str:
         return self._get("policy", "allow")
 
-    @property
+    @cached_property
     def arg(self) -> str:
         return self._get("arg", "none")
 
-    @property
+    @cached_property
     def ir(self) -> str:
         return self._get("ir", "")
 
-    @property
+    @cached_property
     def var_subst(self) -> bool:
         return bool(self._get("var_subst", False))
 
-    @property
+    @cached_property
     def b_prefixable(self) -> bool:
         return self.exec == "I*"
 
-    @property
+    @cached_property
     def range(self) -> tuple[Any, Any] | None:
         return self.entry.range
 
-    @property
+    @cached_property
     def intervals(self) -> tuple[tuple[Any, Any], ...] | None:
         """The allowed values as closed intervals: `ranges` when the catalog gives a union (a range
         with a hole, "0, or 0.060 up"), else the one `range`."""
@@ -83,42 +85,42 @@ class Command:
             return tuple((low, high) for low, high in union)
         return (tuple(self.range),) if self.range is not None else None
 
-    @property
+    @cached_property
     def values(self) -> tuple[Any, ...] | None:
         vals = self._get("values", None)
         return tuple(vals) if isinstance(vals, list) else None
 
-    @property
+    @cached_property
     def special(self) -> tuple[Any, ...]:
         return tuple(self._get("special", ()))
 
-    @property
+    @cached_property
     def products(self) -> dict[str, str] | None:
         prods = self.entry.products
         return prods if isinstance(prods, dict) else None
 
-    @property
+    @cached_property
     def fields(self) -> tuple[Field, ...]:
         return _fields(self.entry)
 
-    @property
+    @cached_property
     def separator(self) -> str:
         return self._get("separator", ",")
 
-    @property
+    @cached_property
     def counts(self) -> tuple[int, ...]:
         counts = self._get("counts", None)
         return tuple(counts) if isinstance(counts, list) else (len(self.fields),)
 
-    @property
+    @cached_property
     def tail(self) -> str:
         return self._get("tail", "")
 
-    @property
+    @cached_property
     def value_required(self) -> bool:
         return self.arg in REQUIRED_ARG
 
-    @property
+    @cached_property
     def manual(self) -> str:
         return self.entry.manual
 

@@ -136,6 +136,10 @@ class Resolver:
         self.entries: dict[str, State | None] = {}
         self.exits: dict[str, State | None] = {}
         self.before: dict[int, State] = {}  # id(op) -> the state just before it
+        # id(routine) -> (start, exits of what it calls, end, its call sites' states): the walk of a
+        # routine is a function of these, so a later round whose inputs did not change reuses it
+        self.memo: dict[int, tuple] = {}
+        self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
 
     def touching(self) -> dict[str, bool]:
         """Routines that may change a mode or D, themselves or through what they call."""
@@ -176,7 +180,7 @@ class Resolver:
                     start = self.entries.get(routine.name) or {}
                 else:
                     start = dict(DEFAULTS)  # run by the host, at power-up or by an event: assumed defaults
-                end = self.routine(routine, start, sites)
+                end = self.walk(routine, start, sites)
                 if routine.kind is ir.RoutineKind.IMMEDIATE and end is not None:
                     carried = end
                 if not states_equal(self.exits.get(routine.name), end):
@@ -191,7 +195,35 @@ class Resolver:
             if not changed:
                 break
 
-    def routine(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
+    def walk(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
+        """`routine` walked from `start`, its call sites' states met into `sites` (in the order the
+        walk reaches them); the walk of an earlier round when its inputs are exactly the same."""
+        called = [self.exits.get(op.routine) for op in self.calls(routine)]
+        memo = self.memo.get(id(routine))
+        if memo is not None and identical(memo[0], start) and len(memo[1]) == len(called) \
+                and all(identical(a, b) for a, b in zip(memo[1], called)):
+            end, reached = memo[2], memo[3]
+        else:
+            reached = []
+            end = self.routine(routine, start, reached)
+            self.memo[id(routine)] = (dict(start), called, end, reached)
+        for name, state in reached:
+            sites[name] = meet(sites.get(name), state)
+        return end
+
+    def calls(self, routine: ir.Routine) -> list:
+        return [op for block in routine.blocks for op in self.ops_of(block) if isinstance(op, ir.Call)]
+
+    def ops_of(self, block: ir.Block) -> list:
+        """The operations of `block` that `transfer` or the rewriting look at (the others leave
+        the state as it is)."""
+        found = self.relevant.get(id(block))
+        if found is None:
+            found = [op for op in block.ops if isinstance(op, (ir.Native, ir.Assign, ir.Call, ir.Move))]
+            self.relevant[id(block)] = found
+        return found
+
+    def routine(self, routine: ir.Routine, start: State, reached: list) -> State | None:
         if not routine.blocks:
             return None
         blocks = {b.label: b for b in routine.blocks}
@@ -205,15 +237,15 @@ class Resolver:
             visits[label] = visits.get(label, 0) + 1
             block = blocks[label]
             state = dict(entry[label] or {})
-            for op in block.ops:
+            for op in self.ops_of(block):
                 if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
                     self.before[id(op)] = dict(state)
                 if isinstance(op, ir.Call):
-                    sites[op.routine] = meet(sites.get(op.routine), state)
+                    reached.append((op.routine, dict(state)))
                 state = transfer(state, op, self.touched, self.exits)
             term = block.terminator
             if isinstance(term, ir.GotoRoutine):
-                sites[term.routine] = meet(sites.get(term.routine), state)
+                reached.append((term.routine, dict(state)))
             if isinstance(term, (ir.FallOff, ir.Return)) or term is None:
                 end = meet(end, state)
             for succ in ir.successors(term):
@@ -371,6 +403,24 @@ class Resolver:
         if span is not None:
             self.diags.add("X142", span, f"{why}: mcc keeps this G as X150 text, so it compiles to X150 only; "
                                          "set the mode (MN/MC, MPA/MPI) and D on every path before G")
+
+
+def identical(a: State | None, b: State | None) -> bool:
+    """The same state to the last detail (the spans and the number types of the constants too):
+    what a reused walk needs, where `states_equal` compares meanings."""
+    if a is None or b is None:
+        return a is b
+    if a.keys() != b.keys():
+        return False
+    for key, value in a.items():
+        other = b[key]
+        if value is other:
+            continue
+        if type(value) is not type(other) or value != other:
+            return False
+        if isinstance(value, ir.Const) and type(value.value) is not type(other.value):
+            return False
+    return True
 
 
 def states_equal(a: State | None, b: State | None) -> bool:

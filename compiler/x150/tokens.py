@@ -139,12 +139,23 @@ class CommandReader:
     # -- the token -------------------------------------------------------------------------------
     def read(self, piece: Piece, spans: LineSpans) -> st.Command:
         text = piece.text
-        span = spans.at(piece.start, piece.end_offset(len(text)))
-        cmd = st.Command(text=text, span=span)
+        size = len(text)
+        at = spans.at
+        if piece.gap >= size:  # the common case, a token without a re-joined space: offsets by addition
+            base = piece.start
 
-        def sub(begin: int, end: int) -> Span:
-            start = piece.offset(begin) if begin < len(text) else piece.end_offset(len(text))
-            return spans.at(start, piece.end_offset(end) if end > begin else start)
+            def sub(begin: int, end: int) -> Span:
+                start = base + (begin if begin < size else size)
+                return at(start, base + (end if end < size else size) if end > begin else start)
+
+            span = at(base, base + size)
+        else:
+            def sub(begin: int, end: int) -> Span:
+                start = piece.offset(begin) if begin < size else piece.end_offset(size)
+                return at(start, piece.end_offset(end) if end > begin else start)
+
+            span = at(piece.start, piece.end_offset(size))
+        cmd = st.Command(text=text, span=span)
 
         if text.startswith("!"):
             return self.read_host(cmd, text, sub)
