@@ -9,6 +9,7 @@ catalog names ("VARn=FUN", "RSIN") are not tokens.
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from functools import cached_property, lru_cache
 from typing import Any
@@ -151,6 +152,7 @@ class X150Catalog:
     statements: dict[str, Command]  # variable-statement sources: "FUN" -> the VARn=FUN entry, ...
     longest: int
     data: generic.Catalog
+    name_run: re.Pattern  # a run of the characters some mnemonic is made of (no mnemonic goes past it)
 
     def lookup(self, name: str) -> Command | None:
         return self.commands.get(name.upper())
@@ -159,7 +161,7 @@ class X150Catalog:
         """The longest mnemonic that `text[start:]` begins with (case-insensitive)."""
         upper = text[start:start + self.longest].upper()
         commands = self.commands
-        for length in range(len(upper), 0, -1):
+        for length in range(self.name_run.match(upper).end(), 0, -1):
             found = commands.get(upper[:length])
             if found is not None:
                 return found
@@ -211,4 +213,6 @@ def load() -> X150Catalog:
         elif entry.kind not in ("comment", "edit"):
             commands[entry.name.upper()] = command
     longest = max(len(name) for name in commands)
-    return X150Catalog(commands, statements, longest, data)
+    characters = "".join(sorted({ch for name in commands for ch in name}))
+    name_run = re.compile(f"[{re.escape(characters)}]*")
+    return X150Catalog(commands, statements, longest, data, name_run)

@@ -49,6 +49,8 @@ class Checker:
         self.addresses = (int(low), int(high))
         self.nesting = lowering.nesting
         self.memory: dict = {}  # sequence memory, for `mcc check --format json` and the editor
+        self.case_policy = profile.get("x150.case", "warn")  # asked once, not for every command
+        self.max_variable = int(self.cat.limit("variables", "max", 50))
 
     def run(self) -> None:
         for unit in self.lowering.units:
@@ -63,26 +65,38 @@ class Checker:
         device = unit.device()
         outside = [c for c in (unit.erase, unit.start) if c is not None]
         body = unit.commands + ([unit.end] if unit.end is not None else [])
+        # Each check is called only for the commands it can concern (the tests it starts with),
+        # in the same order: a program has tens of thousands of commands.
+        case = self.case_policy != "ignore"
+        products = self.profile.product in PRODUCT_NAMES
         for command in outside + body:
-            if command.info is None and not command.host:
+            info = command.info
+            host = command.host
+            if info is None and not host:
                 continue
-            self.check_case(command)
-            self.check_address(command, device)
-            self.check_product(command)
-            self.check_values(command)
+            if case and not host:
+                self.check_case(command)
+            if not host and (command.address is not None or info.address == "D"):
+                self.check_address(command, device)
+            if products and info is not None and info.products is not None:
+                self.check_product(command)
+            if info is not None and command.arg is not None:
+                self.check_values(command)
         if not unit.is_sequence:
             return
         if unit.erase is None and unit.number is not None:
             self.missing_erase(unit)
-        for command in body:
-            if command.info is not None or command.host:
-                self.check_device(command, unit)
+        if unit.address is not None:
+            for command in body:
+                if command.info is not None and not command.host:
+                    self.check_device(command, unit)
         for command in unit.commands:
-            if command.info is not None or command.host:
+            if command.host or (command.info is not None and not command.buffered
+                                and command.info.policy != "allow"):
                 self.check_policy(command, unit)
 
     def check_case(self, command: st.Command) -> None:
-        policy = self.profile.get("x150.case", "warn")
+        policy = self.case_policy
         if policy == "ignore" or command.host:
             return
         fixed = canonical_case(command)
@@ -155,7 +169,7 @@ class Checker:
         elif isinstance(arg, st.Condition):
             self.check_condition(arg)
         for var in variables(arg):
-            limit = int(self.cat.limit("variables", "max", 50))
+            limit = self.max_variable
             if not 1 <= var.number <= limit:
                 self.diags.add("X130", var.span, f"VAR{var.number} does not exist: the variables are VAR1-VAR{limit} "
                                                  "(L4573)")
@@ -451,6 +465,8 @@ def canonical_case(command: st.Command) -> str:
 
 
 def upper_outside_quotes(text: str) -> str:
+    if '"' not in text:  # most commands: nothing quoted
+        return text.upper()
     out = []
     last = 0
     for match in QUOTED.finditer(text):

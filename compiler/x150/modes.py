@@ -33,8 +33,10 @@ DIALECT = "x150"
 DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
+MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
 DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN"}  # L2608, L2520
 
+NOTHING: frozenset[str] = frozenset()
 State = dict  # ("pos"|"move"|"D", axis) -> "MPA"/"MPI", "MN"/"MC"/"MQ", or an ir.Const
 
 
@@ -219,7 +221,10 @@ class Resolver:
         the state as it is)."""
         found = self.relevant.get(id(block))
         if found is None:
-            found = [op for op in block.ops if isinstance(op, (ir.Native, ir.Assign, ir.Call, ir.Move))]
+            found = [op for op in block.ops
+                     if (isinstance(op, ir.Native) and op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS)
+                     or (isinstance(op, ir.Assign) and is_distance(op.target.name)) or isinstance(op, ir.Call)
+                     or (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL)]
             self.relevant[id(block)] = found
         return found
 
@@ -261,17 +266,26 @@ class Resolver:
 
     # -- rewriting ---------------------------------------------------------------------------------
     def rewrite(self) -> None:
+        modal = ir.MoveMode.MODAL
+        kept_go = False
         for routine in self.module.routines:
             for block in routine.blocks:
+                if not any(isinstance(op, ir.Move) and op.mode is modal for op in block.ops):
+                    kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in block.ops)
+                    continue
                 out: list = []
                 for op in block.ops:
-                    out += self.rewrite_op(op, block.ops, out)
+                    if isinstance(op, ir.Move) and op.mode is modal:
+                        out += self.rewrite_op(op, block.ops, out)
+                    else:
+                        out.append(op)
                 block.ops = out
-        kept_go = any(isinstance(op, ir.Native) and op.mnemonic == "G" for _, b in self.module.blocks() for op in b.ops)
+                kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in out)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
             for _, block in self.module.blocks():
-                block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
-                                                            and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
+                if any(isinstance(op, ir.Native) for op in block.ops):
+                    block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
+                                                                and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
         self.drop_unread_distances()
 
     def rewrite_op(self, op, ops: list, done: list) -> list:
@@ -341,16 +355,16 @@ class Resolver:
             del self.module.variables[name]
 
     @staticmethod
-    def op_reads(op) -> set[str]:
+    def op_reads(op) -> frozenset[str] | set[str]:
         """The registers an operation reads: only moves, a G kept as text and H/H+/H- (the lowering
-        puts %D nowhere else)."""
+        puts %D nowhere else). Not to be changed by the caller (most operations share NOTHING)."""
         if isinstance(op, ir.Native):
-            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else set()
+            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else NOTHING
         if isinstance(op, ir.Move):
             return {e.name for _, e in op.targets if isinstance(e, ir.Var) and is_distance(e.name)}
         if isinstance(op, ir.Assign) and is_distance(op.target.name) and not isinstance(op.value, ir.Const):
             return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
-        return set()
+        return NOTHING
 
     def distance_reads(self) -> set[str]:
         return {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
@@ -386,13 +400,31 @@ class Resolver:
                 block.ops = kept[::-1]
             return live
 
+        def summary(block) -> tuple[set[str], set[str]]:
+            """`through(block, live, False)` is `(live - kill) | gen`: the block's operations composed
+            once, so that each round of the fixed point costs a set operation per block."""
+            kill: set[str] = set()
+            gen: set[str] = set()
+            for op in reversed(block.ops):
+                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                    gen.discard(op.target.name)
+                    kill.add(op.target.name)
+                    gen |= self.op_reads(op)
+                elif isinstance(op, ir.Call):
+                    gen |= read
+                else:
+                    gen |= self.op_reads(op)
+            return kill, gen
+
+        summaries = {id(block): summary(block) for block in routine.blocks}
         changed = True
         rounds = 0
         while changed and rounds < 4 * len(blocks) + 4:
             changed = False
             rounds += 1
             for block in reversed(routine.blocks):
-                new = through(block, live_out(block), False)
+                kill, gen = summaries[id(block)]
+                new = (live_out(block) - kill) | gen
                 if new != live_in[block.label]:
                     live_in[block.label] = new
                     changed = True

@@ -103,6 +103,8 @@ def whole(digits: str) -> int:
     """int() of a digit string of any length: Python refuses more than 4300 digits, and no
     controller value has more than a handful, so a longer one is read as HUGE (still reported as
     out of range by the checks, never an internal error)."""
+    if len(digits) <= 18:  # the common case: int() takes it as it is
+        return int(digits)
     significant = digits.lstrip("+-").lstrip("0")
     if len(significant) > 18:
         return -HUGE if digits.startswith("-") else HUGE
@@ -143,12 +145,16 @@ class CommandReader:
         at = spans.at
         if piece.gap >= size:  # the common case, a token without a re-joined space: offsets by addition
             base = piece.start
+            path = spans.path
+            line = spans.line
+            column = base - spans.line_start + 1  # of the token's first character
 
             def sub(begin: int, end: int) -> Span:
-                start = base + (begin if begin < size else size)
-                return at(start, base + (end if end < size else size) if end > begin else start)
+                start = begin if begin < size else size
+                stop = (end if end < size else size) if end > begin else start
+                return Span(path, line, column + start, line, column + stop, base + start, base + stop)
 
-            span = at(base, base + size)
+            span = Span(path, line, column, line, column + size, base, base + size)
         else:
             def sub(begin: int, end: int) -> Span:
                 start = piece.offset(begin) if begin < size else piece.end_offset(size)
