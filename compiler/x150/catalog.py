@@ -10,7 +10,7 @@ catalog names ("VARn=FUN", "RSIN") are not tokens.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 from typing import Any
 
@@ -21,6 +21,7 @@ DIALECT = "x150"
 # Argument classes whose value may be omitted to ask for a report (L128); the others need one.
 REQUIRED_ARG = frozenset({"string", "condition"})
 PRODUCT_KEYS = ("bdhxe", "pdhxe", "blhx", "pdhx", "x150ds")
+MATCHES_KEPT = 20_000  # longest-match answers remembered (a long-running editor session stays bounded)
 
 
 @dataclass(frozen=True)
@@ -153,6 +154,7 @@ class X150Catalog:
     longest: int
     data: generic.Catalog
     name_run: re.Pattern  # a run of the characters some mnemonic is made of (no mnemonic goes past it)
+    matches: dict[str, Command | None] = field(default_factory=dict, compare=False, repr=False)  # see `match`
 
     def lookup(self, name: str) -> Command | None:
         return self.commands.get(name.upper())
@@ -160,12 +162,18 @@ class X150Catalog:
     def match(self, text: str, start: int = 0) -> Command | None:
         """The longest mnemonic that `text[start:]` begins with (case-insensitive)."""
         upper = text[start:start + self.longest].upper()
+        matches = self.matches  # the answer depends on these few characters only: asked once each
+        if upper in matches:
+            return matches[upper]
         commands = self.commands
+        found = None
         for length in range(self.name_run.match(upper).end(), 0, -1):
             found = commands.get(upper[:length])
             if found is not None:
-                return found
-        return None
+                break
+        if len(matches) < MATCHES_KEPT:
+            matches[upper] = found
+        return found
 
     def limit(self, key: str, field: str = "value", default: Any = None) -> Any:
         raw = self.data.table("limits").get(key)

@@ -241,8 +241,11 @@ class Resolver:
             label = work.pop()
             visits[label] = visits.get(label, 0) + 1
             block = blocks[label]
-            state = dict(entry[label] or {})
-            for op in self.ops_of(block):
+            state = entry[label] or {}
+            ops = self.ops_of(block)
+            if ops:  # else the state passes through unchanged, and nothing below changes it
+                state = dict(state)
+            for op in ops:
                 if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
                     self.before[id(op)] = dict(state)
                 if isinstance(op, ir.Call):
@@ -268,24 +271,25 @@ class Resolver:
     def rewrite(self) -> None:
         modal = ir.MoveMode.MODAL
         kept_go = False
+        with_modes: list[ir.Block] = []  # the blocks holding a mode command (MPA MPI MN MC MQ)
         for routine in self.module.routines:
             for block in routine.blocks:
-                if not any(isinstance(op, ir.Move) and op.mode is modal for op in block.ops):
-                    kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in block.ops)
-                    continue
-                out: list = []
-                for op in block.ops:
-                    if isinstance(op, ir.Move) and op.mode is modal:
-                        out += self.rewrite_op(op, block.ops, out)
-                    else:
-                        out.append(op)
-                block.ops = out
-                kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in out)
+                relevant = self.ops_of(block)
+                if any(isinstance(op, ir.Move) and op.mode is modal for op in relevant):
+                    out: list = []
+                    for op in block.ops:
+                        if isinstance(op, ir.Move) and op.mode is modal:
+                            out += self.rewrite_op(op, block.ops, out)
+                        else:
+                            out.append(op)
+                    block.ops = out
+                kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in block.ops)
+                if any(isinstance(op, ir.Native) for op in relevant):
+                    with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
-            for _, block in self.module.blocks():
-                if any(isinstance(op, ir.Native) for op in block.ops):
-                    block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
-                                                                and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
+            for block in with_modes:
+                block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
+                                                            and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
         self.drop_unread_distances()
 
     def rewrite_op(self, op, ops: list, done: list) -> list:
@@ -348,9 +352,12 @@ class Resolver:
             read = {n for n in self.module.variables if is_distance(n)}
         for routine in self.module.routines:
             self.drop_dead_in(routine, read)
-        used = {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
-        used |= {op.target.name for _, block in self.module.blocks() for op in block.ops
-                 if isinstance(op, ir.Assign) and is_distance(op.target.name)}
+        used: set[str] = set()
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                used |= self.op_reads(op)
+                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                    used.add(op.target.name)
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
 
@@ -370,18 +377,20 @@ class Resolver:
         return {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
 
     def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
-        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name) for b in routine.blocks for op in b.ops):
+        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name)
+                   for b in routine.blocks for op in self.ops_of(b)):  # ops_of holds every %D assignment
             return
         blocks = {b.label: b for b in routine.blocks}
         live_in: dict[str, set[str]] = {label: set() for label in blocks}
 
-        def live_out(block) -> set[str]:
+        def live_out(block) -> set[str] | frozenset[str]:
+            """Not to be changed by the caller (it may be `read` itself)."""
             term = block.terminator
             if isinstance(term, (ir.FallOff, ir.Return, ir.GotoRoutine, ir.End)) or term is None:
-                return set(read) if not isinstance(term, ir.End) else set()
+                return read if not isinstance(term, ir.End) else NOTHING
             out: set[str] = set()
             for succ in ir.successors(term):
-                out |= live_in.get(succ, set(read))
+                out |= live_in[succ] if succ in live_in else read
             return out
 
         def through(block, live: set[str], drop: bool) -> set[str]:
@@ -429,7 +438,8 @@ class Resolver:
                     live_in[block.label] = new
                     changed = True
         for block in routine.blocks:
-            through(block, live_out(block), True)
+            if summaries[id(block)][0]:  # a block that assigns no %D keeps its operations
+                through(block, live_out(block), True)
 
     def report(self, span, why: str) -> None:
         if span is not None:
