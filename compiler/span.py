@@ -12,8 +12,13 @@ import bisect
 from dataclasses import dataclass
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Span:
+    """A range of the source. A value: never changed once made (it is shared by the syntax tree,
+    the IR and the diagnostics). It is not declared `frozen` only because a frozen dataclass sets
+    each field through `object.__setattr__`, which made creating one six times as slow, and a
+    parse creates one for every token it reads (docs/PERFORMANCE.md)."""
+
     file: str
     line: int
     column: int

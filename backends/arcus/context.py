@@ -42,9 +42,23 @@ class Context:
     def in_force_before(self, op: ir.Op) -> in_force.State:
         """The motion settings in force just before `op` (constants known by data flow)."""
         if self._in_force is None:
-            analysis = in_force.InForce(self.module)
-            self._in_force = {id(o): state for r in self.module.routines for _, _, o, state in analysis.walk(r)}
-        return self._in_force.get(id(op), {})
+            self._analysis = in_force.InForce(self.module)
+            self._in_force = {}
+            self._block_of = {id(o): block for _, block in self.module.blocks() for o in block.ops}
+        found = self._in_force.get(id(op))
+        if found is None:
+            # The states of a block's operations, replayed once, when one of them is first asked
+            # for: the legalizer asks for a few operations only (ramps, speeds, moves).
+            block = self._block_of.get(id(op))
+            if block is None:
+                return {}
+            state = self._analysis.at_entry(block.label)
+            for o in block.ops:
+                self._in_force[id(o)] = state
+                state = dict(state)
+                in_force.transfer(state, o, self._analysis.clobbers)
+            found = self._in_force[id(op)]
+        return found
 
     # diagnostics ------------------------------------------------------------------------------
     def file_span(self) -> Span:

@@ -148,6 +148,8 @@ def _axes_used(module: ir.Module) -> list[str]:
             elif getattr(op, "axis", ""):
                 add(op.axis)
             for expr in ir.op_exprs(op):
+                if isinstance(expr, (ir.Const, ir.Var)):
+                    continue  # a leaf, and not a reading: most values are
                 for node in ir.walk_expr(expr):
                     if isinstance(node, ir.Status) and node.axis:
                         add(node.axis)

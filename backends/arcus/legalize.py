@@ -33,6 +33,7 @@ SPEED_PARAMS = (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED)
 MOTION_NAMES = {ir.MotionParam.MAX_SPEED: "HSPD", ir.MotionParam.INITIAL_SPEED: "LSPD"}
 SPEED_NAMES = ("HSPD", "LSPD", "SSPD")
 RAMP_TOLERANCE_MS = 1  # two ramp times this close are the same ACC (Arcus writes whole ms)
+HANDLERS: dict[type, str] = {}  # operation class -> the name of its Legalizer method (op_<class>)
 
 
 class Skip(Exception):
@@ -77,7 +78,11 @@ class Legalizer:
         temps = ctx.temps
         base = temps.live
         try:
-            handler = getattr(self, "op_" + type(op).__name__.lower(), None)
+            kind = type(op)
+            name = HANDLERS.get(kind)
+            if name is None:
+                name = HANDLERS[kind] = "op_" + kind.__name__.lower()
+            handler = getattr(self, name, None)
             if handler is None:
                 ctx.unsupported(op, f"{describe(op)} has no Arcus statement")
             else:

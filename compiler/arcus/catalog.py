@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 from typing import Any
 
 from mcc.compiler import catalog as generic
@@ -53,7 +53,9 @@ def _stem(pattern: str) -> str:
 
 @dataclass(frozen=True, eq=False)
 class Keyword:
-    """One catalog entry, with typed access to the Arcus keys (see the catalog's header)."""
+    """One catalog entry, with typed access to the Arcus keys (see the catalog's header). Each
+    accessor is computed once per keyword (the entry never changes): the resolver, the lowering
+    and the backend ask them for every statement of a program."""
 
     entry: generic.Entry
     regex: re.Pattern
@@ -62,69 +64,69 @@ class Keyword:
     def get(self, key: str, default: Any = None) -> Any:
         return self.entry.get(key, default)
 
-    @property
+    @cached_property
     def id(self) -> str:
         return self.entry.get("id", self.entry.name)
 
-    @property
+    @cached_property
     def name(self) -> str:
         return self.entry.name
 
-    @property
+    @cached_property
     def kind(self) -> str:
         return self.entry.kind
 
-    @property
+    @cached_property
     def form(self) -> str:
         return self.entry.get("form", "")
 
-    @property
+    @cached_property
     def axis(self) -> str:
         return self.entry.get("axis", "none")
 
-    @property
+    @cached_property
     def ir(self) -> str:
         return self.entry.get("ir", "")
 
-    @property
+    @cached_property
     def readable(self) -> bool:
         return bool(self.entry.get("read", False))
 
-    @property
+    @cached_property
     def writable(self) -> bool:
         return bool(self.entry.get("write", False))
 
-    @property
+    @cached_property
     def in_condition(self) -> bool:
         return bool(self.entry.get("condition", False))
 
-    @property
+    @cached_property
     def in_operation(self) -> bool:
         return bool(self.entry.get("operand", False))
 
-    @property
+    @cached_property
     def literal_only(self) -> bool:
         return bool(self.entry.get("literal_only", False))
 
-    @property
+    @cached_property
     def index_range(self) -> tuple[int, int] | None:
         rng = self.entry.get("bit") or self.entry.get("index")
         return (int(rng[0]), int(rng[1])) if isinstance(rng, list) and len(rng) == 2 else None
 
-    @property
+    @cached_property
     def range(self) -> tuple[int, int] | None:
         return self.entry.range
 
-    @property
+    @cached_property
     def unit(self) -> str:
         return self.entry.unit
 
-    @property
+    @cached_property
     def example(self) -> str:
         examples = self.entry.get("examples") or []
         return examples[0] if examples else (self.entry.syntax[0] if self.entry.syntax else self.name)
 
-    @property
+    @cached_property
     def usage(self) -> str:
         return "; ".join(self.entry.syntax[:3])
 

@@ -79,6 +79,16 @@ class _Flow:
         self.exit: dict[str, State] = {r.name: NONE for r in module.routines}
         self.blocks: dict[str, State] = {}
         self.final = False  # set once the exits are known: see `after`
+        self.relevant: dict[int, list[ir.Op]] = {}  # id(block) -> its switches and calls
+
+    def ops_of(self, block: ir.Block) -> list[ir.Op]:
+        """The operations of `block` that `after` does not pass through unchanged (ABS, INC and
+        calls): the fixpoint walks each block several times, and most operations are neither."""
+        found = self.relevant.get(id(block))
+        if found is None:
+            found = [op for op in block.ops if isinstance(op, ir.Call) or switch(op) is not None]
+            self.relevant[id(block)] = found
+        return found
 
     def after(self, op: ir.Op, state: State, calls: dict[str, State] | None) -> State:
         if not state:
@@ -110,7 +120,7 @@ class _Flow:
         while work:
             label = work.pop()
             state = states[label]
-            for op in blocks[label].ops:
+            for op in self.ops_of(blocks[label]):
                 state = self.after(op, state, None)
             for succ in ir.successors(blocks[label].terminator):
                 if succ in states and not state <= states[succ]:
@@ -118,7 +128,7 @@ class _Flow:
                     work.append(succ)
         for block in routine.blocks:
             state = states[block.label]
-            for op in block.ops:
+            for op in self.ops_of(block):
                 state = self.after(op, state, calls)
             if isinstance(block.terminator, (ir.Return, ir.FallOff)):
                 returns |= state

@@ -9,8 +9,9 @@ catalog names ("VARn=FUN", "RSIN") are not tokens.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from functools import lru_cache
+import re
+from dataclasses import dataclass, field
+from functools import cached_property, lru_cache
 from typing import Any
 
 from mcc.compiler import catalog as generic
@@ -20,6 +21,7 @@ DIALECT = "x150"
 # Argument classes whose value may be omitted to ask for a report (L128); the others need one.
 REQUIRED_ARG = frozenset({"string", "condition"})
 PRODUCT_KEYS = ("bdhxe", "pdhxe", "blhx", "pdhx", "x150ds")
+MATCHES_KEPT = 20_000  # longest-match answers remembered (a long-running editor session stays bounded)
 
 
 @dataclass(frozen=True)
@@ -34,7 +36,9 @@ class Field:
 
 @dataclass(frozen=True, eq=False)
 class Command:
-    """One mnemonic and what the catalog says about it."""
+    """One mnemonic and what the catalog says about it. The accessors are computed once per
+    command (the entry never changes): the tokeniser, the lowering and the checks ask them for
+    every command of a program."""
 
     name: str
     entry: generic.Entry
@@ -42,39 +46,39 @@ class Command:
     def _get(self, key: str, default: Any = "") -> Any:
         return self.entry.get(key, default)
 
-    @property
+    @cached_property
     def exec(self) -> str:
         return self._get("exec", "?")
 
-    @property
+    @cached_property
     def address(self) -> str:
         return self._get("address", "?")
 
-    @property
+    @cached_property
     def policy(self) -> str:
         return self._get("policy", "allow")
 
-    @property
+    @cached_property
     def arg(self) -> str:
         return self._get("arg", "none")
 
-    @property
+    @cached_property
     def ir(self) -> str:
         return self._get("ir", "")
 
-    @property
+    @cached_property
     def var_subst(self) -> bool:
         return bool(self._get("var_subst", False))
 
-    @property
+    @cached_property
     def b_prefixable(self) -> bool:
         return self.exec == "I*"
 
-    @property
+    @cached_property
     def range(self) -> tuple[Any, Any] | None:
         return self.entry.range
 
-    @property
+    @cached_property
     def intervals(self) -> tuple[tuple[Any, Any], ...] | None:
         """The allowed values as closed intervals: `ranges` when the catalog gives a union (a range
         with a hole, "0, or 0.060 up"), else the one `range`."""
@@ -83,42 +87,42 @@ class Command:
             return tuple((low, high) for low, high in union)
         return (tuple(self.range),) if self.range is not None else None
 
-    @property
+    @cached_property
     def values(self) -> tuple[Any, ...] | None:
         vals = self._get("values", None)
         return tuple(vals) if isinstance(vals, list) else None
 
-    @property
+    @cached_property
     def special(self) -> tuple[Any, ...]:
         return tuple(self._get("special", ()))
 
-    @property
+    @cached_property
     def products(self) -> dict[str, str] | None:
         prods = self.entry.products
         return prods if isinstance(prods, dict) else None
 
-    @property
+    @cached_property
     def fields(self) -> tuple[Field, ...]:
         return _fields(self.entry)
 
-    @property
+    @cached_property
     def separator(self) -> str:
         return self._get("separator", ",")
 
-    @property
+    @cached_property
     def counts(self) -> tuple[int, ...]:
         counts = self._get("counts", None)
         return tuple(counts) if isinstance(counts, list) else (len(self.fields),)
 
-    @property
+    @cached_property
     def tail(self) -> str:
         return self._get("tail", "")
 
-    @property
+    @cached_property
     def value_required(self) -> bool:
         return self.arg in REQUIRED_ARG
 
-    @property
+    @cached_property
     def manual(self) -> str:
         return self.entry.manual
 
@@ -149,6 +153,8 @@ class X150Catalog:
     statements: dict[str, Command]  # variable-statement sources: "FUN" -> the VARn=FUN entry, ...
     longest: int
     data: generic.Catalog
+    name_run: re.Pattern  # a run of the characters some mnemonic is made of (no mnemonic goes past it)
+    matches: dict[str, Command | None] = field(default_factory=dict, compare=False, repr=False)  # see `match`
 
     def lookup(self, name: str) -> Command | None:
         return self.commands.get(name.upper())
@@ -156,12 +162,18 @@ class X150Catalog:
     def match(self, text: str, start: int = 0) -> Command | None:
         """The longest mnemonic that `text[start:]` begins with (case-insensitive)."""
         upper = text[start:start + self.longest].upper()
+        matches = self.matches  # the answer depends on these few characters only: asked once each
+        if upper in matches:
+            return matches[upper]
         commands = self.commands
-        for length in range(len(upper), 0, -1):
+        found = None
+        for length in range(self.name_run.match(upper).end(), 0, -1):
             found = commands.get(upper[:length])
             if found is not None:
-                return found
-        return None
+                break
+        if len(matches) < MATCHES_KEPT:
+            matches[upper] = found
+        return found
 
     def limit(self, key: str, field: str = "value", default: Any = None) -> Any:
         raw = self.data.table("limits").get(key)
@@ -209,4 +221,6 @@ def load() -> X150Catalog:
         elif entry.kind not in ("comment", "edit"):
             commands[entry.name.upper()] = command
     longest = max(len(name) for name in commands)
-    return X150Catalog(commands, statements, longest, data)
+    characters = "".join(sorted({ch for name in commands for ch in name}))
+    name_run = re.compile(f"[{re.escape(characters)}]*")
+    return X150Catalog(commands, statements, longest, data, name_run)

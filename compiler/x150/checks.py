@@ -49,6 +49,9 @@ class Checker:
         self.addresses = (int(low), int(high))
         self.nesting = lowering.nesting
         self.memory: dict = {}  # sequence memory, for `mcc check --format json` and the editor
+        self.case_policy = profile.get("x150.case", "warn")  # asked once, not for every command
+        self.max_variable = int(self.cat.limit("variables", "max", 50))
+        self.product_notes: dict[cat.Command, str | None] = {}  # see check_product
 
     def run(self) -> None:
         for unit in self.lowering.units:
@@ -63,26 +66,38 @@ class Checker:
         device = unit.device()
         outside = [c for c in (unit.erase, unit.start) if c is not None]
         body = unit.commands + ([unit.end] if unit.end is not None else [])
+        # Each check is called only for the commands it can concern (the tests it starts with),
+        # in the same order: a program has tens of thousands of commands.
+        case = self.case_policy != "ignore"
+        products = self.profile.product in PRODUCT_NAMES
         for command in outside + body:
-            if command.info is None and not command.host:
+            info = command.info
+            host = command.host
+            if info is None and not host:
                 continue
-            self.check_case(command)
-            self.check_address(command, device)
-            self.check_product(command)
-            self.check_values(command)
+            if case and not host:
+                self.check_case(command)
+            if not host and (command.address is not None or info.address == "D"):
+                self.check_address(command, device)
+            if products and info is not None and info.products is not None:
+                self.check_product(command)
+            if info is not None and command.arg is not None:
+                self.check_values(command)
         if not unit.is_sequence:
             return
         if unit.erase is None and unit.number is not None:
             self.missing_erase(unit)
-        for command in body:
-            if command.info is not None or command.host:
-                self.check_device(command, unit)
+        if unit.address is not None:
+            for command in body:
+                if command.info is not None and not command.host:
+                    self.check_device(command, unit)
         for command in unit.commands:
-            if command.info is not None or command.host:
+            if command.host or (command.info is not None and not command.buffered
+                                and command.info.policy != "allow"):
                 self.check_policy(command, unit)
 
     def check_case(self, command: st.Command) -> None:
-        policy = self.profile.get("x150.case", "warn")
+        policy = self.case_policy
         if policy == "ignore" or command.host:
             return
         fixed = canonical_case(command)
@@ -123,18 +138,26 @@ class Checker:
         info = command.info
         if info is None:
             return
+        if info not in self.product_notes:  # the same answer for every use of a command: found once
+            self.product_notes[info] = self.product_note(info)
+        message = self.product_notes[info]
+        if message is not None:
+            self.diags.add("X121", command.mnemonic_span or command.span, message)
+
+    def product_note(self, info: cat.Command) -> str | None:
+        """Why the target product or its software lacks the command, or None."""
         products = info.products
         key = self.profile.product
         if products is None or key not in PRODUCT_NAMES:
-            return
-        span = command.mnemonic_span or command.span
+            return None
         if key not in products:
             have = ", ".join(f"{PRODUCT_NAMES[k]} v{v}" for k, v in products.items())
-            self.diags.add("X121", span, f"{info.name} is not available on the {PRODUCT_NAMES[key]} (the manual lists it "
-                                         f"for {have}); remove it or select another profile")
-        elif self.profile.firmware and version(products[key]) > version(self.profile.firmware):
-            self.diags.add("X121", span, f"{info.name} needs software v{products[key]} on the {PRODUCT_NAMES[key]}; the "
-                                         f"profile targets v{self.profile.firmware}")
+            return (f"{info.name} is not available on the {PRODUCT_NAMES[key]} (the manual lists it "
+                    f"for {have}); remove it or select another profile")
+        if self.profile.firmware and version(products[key]) > version(self.profile.firmware):
+            return (f"{info.name} needs software v{products[key]} on the {PRODUCT_NAMES[key]}; the "
+                    f"profile targets v{self.profile.firmware}")
+        return None
 
     def check_values(self, command: st.Command) -> None:
         info = command.info
@@ -154,8 +177,8 @@ class Checker:
             self.check_text(command, arg)
         elif isinstance(arg, st.Condition):
             self.check_condition(arg)
-        for var in variables(arg):
-            limit = int(self.cat.limit("variables", "max", 50))
+        for var in variables(arg) if isinstance(arg, NAMING_VARIABLES) else ():
+            limit = self.max_variable
             if not 1 <= var.number <= limit:
                 self.diags.add("X130", var.span, f"VAR{var.number} does not exist: the variables are VAR1-VAR{limit} "
                                                  "(L4573)")
@@ -436,6 +459,7 @@ class Checker:
                                    "count assumes 1 byte per character and delimiter (L241)")
 
 
+NAMING_VARIABLES = (st.VarRef, st.VarStatement, st.Chain, st.Condition)  # the arguments `variables` reads
 KEEP_CASE_ARGS = ("raw",)  # TX's free text (catalog argument class): sent to the display as written
 
 
@@ -443,14 +467,22 @@ def canonical_case(command: st.Command) -> str:
     """The command in upper case, except its text: quoted text (`DTXT"..."`, `"..."`) and the
     free text of TX are data the device shows as written (`1TX7,1,0,gap=` shows `gap=`). One
     definition for X102 and its fix and for `mcc fmt`, so that neither changes what is shown."""
-    text = command.text
-    if command.info is not None and command.info.arg in KEEP_CASE_ARGS:
-        end = text.upper().find(command.mnemonic) + len(command.mnemonic)
-        return text[:end].upper() + text[end:] if end >= len(command.mnemonic) else text
+    info = command.info
+    return _canonical_case(command.text, info.arg if info is not None else "", command.mnemonic)
+
+
+@lru_cache(maxsize=4096)
+def _canonical_case(text: str, arg: str, mnemonic: str) -> str:
+    """`canonical_case` of what it depends on (a program repeats its commands: found once each)."""
+    if arg in KEEP_CASE_ARGS:
+        end = text.upper().find(mnemonic) + len(mnemonic)
+        return text[:end].upper() + text[end:] if end >= len(mnemonic) else text
     return upper_outside_quotes(text)
 
 
 def upper_outside_quotes(text: str) -> str:
+    if '"' not in text:  # most commands: nothing quoted
+        return text.upper()
     out = []
     last = 0
     for match in QUOTED.finditer(text):

@@ -112,6 +112,7 @@ class Lowering:
     # -- driver ----------------------------------------------------------------------------------
     def run(self) -> ir.Module:
         self.cur: dict[str, int] = {}  # user steps per revolution of each device (CUR)
+        self.factors: dict[int, Fraction] = {}  # CUR -> IR steps per user step (see `distance`)
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
         self.name_units()
@@ -129,7 +130,7 @@ class Lowering:
         after it are in other steps than mcc converts with."""
         found: int | None = None
         for command in self.tree.commands():
-            if command.info is None or not command.ok or command.mnemonic != "CUR" or command.arg is None:
+            if command.mnemonic != "CUR" or command.info is None or not command.ok or command.arg is None:
                 continue
             arg = command.arg
             device = str(command.address) if command.address is not None else ir.ALL_AXES
@@ -149,7 +150,9 @@ class Lowering:
     def distance(self, arg, axis: str):
         """A distance in user steps of its device (CUR) as IR steps (the module's first CUR)."""
         cur = self.cur.get(axis, self.cur.get(ir.ALL_AXES, self.profile.steps_per_rev or self.module.steps_per_rev))
-        factor = Fraction(self.module.steps_per_rev, cur) if cur else Fraction(1)
+        factor = self.factors.get(cur)
+        if factor is None:  # a Fraction is slow to make and to compare: once per resolution
+            factor = self.factors[cur] = Fraction(self.module.steps_per_rev, cur) if cur else Fraction(1)
         if factor == 1:
             return self.value(arg, None, ir.Unit.STEPS)
         if isinstance(arg, st.Number):
@@ -182,11 +185,13 @@ class Lowering:
             device = unit.address if unit.is_sequence else None
             for command in unit.commands:
                 info = command.info
-                if info is None or not command.ok:
+                if info is None:
                     continue
                 kind = ROLE_KINDS.get(info.ir)
+                if kind is None or not command.ok:
+                    continue
                 number = sequence_number(command)
-                if kind is None or not number:
+                if not number:
                     continue
                 for name in self.resolve(number, command.address if command.address is not None else device):
                     if KIND_RANK[kind] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:

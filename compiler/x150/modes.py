@@ -33,8 +33,10 @@ DIALECT = "x150"
 DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
+MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
 DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN"}  # L2608, L2520
 
+NOTHING: frozenset[str] = frozenset()
 State = dict  # ("pos"|"move"|"D", axis) -> "MPA"/"MPI", "MN"/"MC"/"MQ", or an ir.Const
 
 
@@ -136,6 +138,10 @@ class Resolver:
         self.entries: dict[str, State | None] = {}
         self.exits: dict[str, State | None] = {}
         self.before: dict[int, State] = {}  # id(op) -> the state just before it
+        # id(routine) -> (start, exits of what it calls, end, its call sites' states): the walk of a
+        # routine is a function of these, so a later round whose inputs did not change reuses it
+        self.memo: dict[int, tuple] = {}
+        self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
 
     def touching(self) -> dict[str, bool]:
         """Routines that may change a mode or D, themselves or through what they call."""
@@ -176,7 +182,7 @@ class Resolver:
                     start = self.entries.get(routine.name) or {}
                 else:
                     start = dict(DEFAULTS)  # run by the host, at power-up or by an event: assumed defaults
-                end = self.routine(routine, start, sites)
+                end = self.walk(routine, start, sites)
                 if routine.kind is ir.RoutineKind.IMMEDIATE and end is not None:
                     carried = end
                 if not states_equal(self.exits.get(routine.name), end):
@@ -191,7 +197,38 @@ class Resolver:
             if not changed:
                 break
 
-    def routine(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
+    def walk(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
+        """`routine` walked from `start`, its call sites' states met into `sites` (in the order the
+        walk reaches them); the walk of an earlier round when its inputs are exactly the same."""
+        called = [self.exits.get(op.routine) for op in self.calls(routine)]
+        memo = self.memo.get(id(routine))
+        if memo is not None and identical(memo[0], start) and len(memo[1]) == len(called) \
+                and all(identical(a, b) for a, b in zip(memo[1], called)):
+            end, reached = memo[2], memo[3]
+        else:
+            reached = []
+            end = self.routine(routine, start, reached)
+            self.memo[id(routine)] = (dict(start), called, end, reached)
+        for name, state in reached:
+            sites[name] = meet(sites.get(name), state)
+        return end
+
+    def calls(self, routine: ir.Routine) -> list:
+        return [op for block in routine.blocks for op in self.ops_of(block) if isinstance(op, ir.Call)]
+
+    def ops_of(self, block: ir.Block) -> list:
+        """The operations of `block` that `transfer` or the rewriting look at (the others leave
+        the state as it is)."""
+        found = self.relevant.get(id(block))
+        if found is None:
+            found = [op for op in block.ops
+                     if (isinstance(op, ir.Native) and op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS)
+                     or (isinstance(op, ir.Assign) and is_distance(op.target.name)) or isinstance(op, ir.Call)
+                     or (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL)]
+            self.relevant[id(block)] = found
+        return found
+
+    def routine(self, routine: ir.Routine, start: State, reached: list) -> State | None:
         if not routine.blocks:
             return None
         blocks = {b.label: b for b in routine.blocks}
@@ -204,16 +241,19 @@ class Resolver:
             label = work.pop()
             visits[label] = visits.get(label, 0) + 1
             block = blocks[label]
-            state = dict(entry[label] or {})
-            for op in block.ops:
+            state = entry[label] or {}
+            ops = self.ops_of(block)
+            if ops:  # else the state passes through unchanged, and nothing below changes it
+                state = dict(state)
+            for op in ops:
                 if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
                     self.before[id(op)] = dict(state)
                 if isinstance(op, ir.Call):
-                    sites[op.routine] = meet(sites.get(op.routine), state)
+                    reached.append((op.routine, dict(state)))
                 state = transfer(state, op, self.touched, self.exits)
             term = block.terminator
             if isinstance(term, ir.GotoRoutine):
-                sites[term.routine] = meet(sites.get(term.routine), state)
+                reached.append((term.routine, dict(state)))
             if isinstance(term, (ir.FallOff, ir.Return)) or term is None:
                 end = meet(end, state)
             for succ in ir.successors(term):
@@ -229,15 +269,25 @@ class Resolver:
 
     # -- rewriting ---------------------------------------------------------------------------------
     def rewrite(self) -> None:
+        modal = ir.MoveMode.MODAL
+        kept_go = False
+        with_modes: list[ir.Block] = []  # the blocks holding a mode command (MPA MPI MN MC MQ)
         for routine in self.module.routines:
             for block in routine.blocks:
-                out: list = []
-                for op in block.ops:
-                    out += self.rewrite_op(op, block.ops, out)
-                block.ops = out
-        kept_go = any(isinstance(op, ir.Native) and op.mnemonic == "G" for _, b in self.module.blocks() for op in b.ops)
+                relevant = self.ops_of(block)
+                if any(isinstance(op, ir.Move) and op.mode is modal for op in relevant):
+                    out: list = []
+                    for op in block.ops:
+                        if isinstance(op, ir.Move) and op.mode is modal:
+                            out += self.rewrite_op(op, block.ops, out)
+                        else:
+                            out.append(op)
+                    block.ops = out
+                kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in block.ops)
+                if any(isinstance(op, ir.Native) for op in relevant):
+                    with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
-            for _, block in self.module.blocks():
+            for block in with_modes:
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
                                                             and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
         self.drop_unread_distances()
@@ -302,40 +352,45 @@ class Resolver:
             read = {n for n in self.module.variables if is_distance(n)}
         for routine in self.module.routines:
             self.drop_dead_in(routine, read)
-        used = {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
-        used |= {op.target.name for _, block in self.module.blocks() for op in block.ops
-                 if isinstance(op, ir.Assign) and is_distance(op.target.name)}
+        used: set[str] = set()
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                used |= self.op_reads(op)
+                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                    used.add(op.target.name)
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
 
     @staticmethod
-    def op_reads(op) -> set[str]:
+    def op_reads(op) -> frozenset[str] | set[str]:
         """The registers an operation reads: only moves, a G kept as text and H/H+/H- (the lowering
-        puts %D nowhere else)."""
+        puts %D nowhere else). Not to be changed by the caller (most operations share NOTHING)."""
         if isinstance(op, ir.Native):
-            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else set()
+            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else NOTHING
         if isinstance(op, ir.Move):
             return {e.name for _, e in op.targets if isinstance(e, ir.Var) and is_distance(e.name)}
         if isinstance(op, ir.Assign) and is_distance(op.target.name) and not isinstance(op.value, ir.Const):
             return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
-        return set()
+        return NOTHING
 
     def distance_reads(self) -> set[str]:
         return {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
 
     def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
-        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name) for b in routine.blocks for op in b.ops):
+        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name)
+                   for b in routine.blocks for op in self.ops_of(b)):  # ops_of holds every %D assignment
             return
         blocks = {b.label: b for b in routine.blocks}
         live_in: dict[str, set[str]] = {label: set() for label in blocks}
 
-        def live_out(block) -> set[str]:
+        def live_out(block) -> set[str] | frozenset[str]:
+            """Not to be changed by the caller (it may be `read` itself)."""
             term = block.terminator
             if isinstance(term, (ir.FallOff, ir.Return, ir.GotoRoutine, ir.End)) or term is None:
-                return set(read) if not isinstance(term, ir.End) else set()
+                return read if not isinstance(term, ir.End) else NOTHING
             out: set[str] = set()
             for succ in ir.successors(term):
-                out |= live_in.get(succ, set(read))
+                out |= live_in[succ] if succ in live_in else read
             return out
 
         def through(block, live: set[str], drop: bool) -> set[str]:
@@ -354,23 +409,60 @@ class Resolver:
                 block.ops = kept[::-1]
             return live
 
+        def summary(block) -> tuple[set[str], set[str]]:
+            """`through(block, live, False)` is `(live - kill) | gen`: the block's operations composed
+            once, so that each round of the fixed point costs a set operation per block."""
+            kill: set[str] = set()
+            gen: set[str] = set()
+            for op in reversed(block.ops):
+                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                    gen.discard(op.target.name)
+                    kill.add(op.target.name)
+                    gen |= self.op_reads(op)
+                elif isinstance(op, ir.Call):
+                    gen |= read
+                else:
+                    gen |= self.op_reads(op)
+            return kill, gen
+
+        summaries = {id(block): summary(block) for block in routine.blocks}
         changed = True
         rounds = 0
         while changed and rounds < 4 * len(blocks) + 4:
             changed = False
             rounds += 1
             for block in reversed(routine.blocks):
-                new = through(block, live_out(block), False)
+                kill, gen = summaries[id(block)]
+                new = (live_out(block) - kill) | gen
                 if new != live_in[block.label]:
                     live_in[block.label] = new
                     changed = True
         for block in routine.blocks:
-            through(block, live_out(block), True)
+            if summaries[id(block)][0]:  # a block that assigns no %D keeps its operations
+                through(block, live_out(block), True)
 
     def report(self, span, why: str) -> None:
         if span is not None:
             self.diags.add("X142", span, f"{why}: mcc keeps this G as X150 text, so it compiles to X150 only; "
                                          "set the mode (MN/MC, MPA/MPI) and D on every path before G")
+
+
+def identical(a: State | None, b: State | None) -> bool:
+    """The same state to the last detail (the spans and the number types of the constants too):
+    what a reused walk needs, where `states_equal` compares meanings."""
+    if a is None or b is None:
+        return a is b
+    if a.keys() != b.keys():
+        return False
+    for key, value in a.items():
+        other = b[key]
+        if value is other:
+            continue
+        if type(value) is not type(other) or value != other:
+            return False
+        if isinstance(value, ir.Const) and type(value.value) is not type(other.value):
+            return False
+    return True
 
 
 def states_equal(a: State | None, b: State | None) -> bool:

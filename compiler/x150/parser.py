@@ -19,7 +19,7 @@ import unicodedata
 from functools import lru_cache
 from pathlib import Path
 
-from lark import Lark, Token, Transformer
+from lark import Lark, Transformer
 from lark.exceptions import LarkError, UnexpectedInput
 
 from mcc.compiler import limits, recovery
@@ -67,6 +67,55 @@ def bare_parser() -> Lark:
 
 
 @lru_cache(maxsize=1)
+def _scanner() -> re.Pattern:
+    """One regular expression of the grammar's own terminals (CMD, COMMENT, NL and the ignored
+    blanks), taken from the Lark parser so that grammars/x150.lark stays their one definition.
+
+    The grammar is regular (a line is command tokens, then an optional comment, then its end), so
+    a text in which this expression matches every character, one terminal after the other, is a
+    text the LALR parser accepts with the same tokens: the common case is read with one `finditer`,
+    and Lark's parser runs only for a text it would reject (to report the bad line and recover)."""
+    parser, _ = _parser()
+    alternatives = []
+    for terminal in parser.terminals:
+        if terminal.pattern.flags:  # pragma: no cover - the grammar has no flagged terminal
+            raise ValueError(f"x150 terminal {terminal.name} has flags")
+        name = terminal.name if terminal.name in ("CMD", "COMMENT", "NL") else "IGNORE"
+        if name == "IGNORE" and terminal.name not in parser.ignore_tokens:  # pragma: no cover
+            raise ValueError(f"unexpected x150 terminal {terminal.name}")
+        alternatives.append(f"(?P<{name}>{terminal.pattern.to_regexp()})")
+    return re.compile("|".join(alternatives))
+
+
+def _scan(text: str) -> list | None:
+    """The lines of `text` (which ends with a line end) as (number, [(token, offset)], comment)
+    with comment (text, start, end) or None; None when a character matches no terminal."""
+    out: list = []
+    tokens: list[tuple[str, int]] = []
+    comment = None
+    number = 1
+    done = 0
+    for match in _scanner().finditer(text):
+        start = match.start()
+        if start != done:
+            return None
+        done = match.end()
+        kind = match.lastgroup
+        if kind == "CMD":
+            tokens.append((match.group(), start))
+        elif kind == "NL":
+            out.append((number, tokens, comment))
+            number += 1
+            tokens = []
+            comment = None
+        elif kind == "COMMENT":
+            comment = (match.group(), start, done)
+    if done != len(text):
+        return None
+    return out
+
+
+@lru_cache(maxsize=1)
 def _reader() -> CommandReader:
     return CommandReader(cat.load())
 
@@ -90,24 +139,25 @@ def parse(original: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
     text = source.text if source.text.endswith("\n") or not source.text else source.text + "\n"
     collector.line_delta = 0
     tree = st.SyntaxTree(source.path)
-    try:
-        raw_lines = parser.parse(text, start="start")
-    except LarkError:
-        raw_lines = None
+    raw_lines = _scan(text)
     if raw_lines is None:
         raw_lines = _parse_by_line(source, parser, collector, diags)
     starts = source.line_starts
     reader = _reader()
+    path = source.path
+    lines = tree.lines
     for number, tokens, comment in raw_lines:
         if isinstance(tokens, st.Line):  # a line that failed, already built
-            tree.lines.append(tokens)
+            lines.append(tokens)
             continue
-        spans = LineSpans(source.path, number, starts[number - 1])
         line = st.Line(number)
-        line.commands = read_commands(reader, spans, [(str(t), t.start_pos) for t in tokens], diags)
-        if comment is not None:
-            line.comment = st.Comment(str(comment), spans.at(comment.start_pos, comment.end_pos))
-        tree.lines.append(line)
+        if tokens or comment is not None:
+            spans = LineSpans(path, number, starts[number - 1])
+            if tokens:
+                line.commands = read_commands(reader, spans, tokens, diags)
+            if comment is not None:
+                line.comment = st.Comment(comment[0], spans.at(comment[1], comment[2]))
+        lines.append(line)
     limits.refuse_deep(original, tree.lines, refused, diags, bounded=(st.Condition,))
     return tree
 
@@ -132,28 +182,11 @@ def _parse_by_line(source: SourceFile, parser: Lark, collector: Collector, diags
             out.append((number, st.Line(number, error=True), None))
             continue
         shift = starts[number - 1]
-        out.append((number, [_shifted(t, shift) for t in tokens],
-                    _shifted(comment, shift) if comment is not None else None))
+        out.append((number, [(str(t), t.start_pos + shift) for t in tokens],
+                    (str(comment), comment.start_pos + shift, comment.end_pos + shift) if comment is not None
+                    else None))
     collector.line_delta = 0
     return out
-
-
-class _Shifted:
-    """A token moved from line-relative to file offsets (recovery mode parses one line at a time)."""
-
-    __slots__ = ("text", "start_pos", "end_pos")
-
-    def __init__(self, token: Token, shift: int):
-        self.text = str(token)
-        self.start_pos = token.start_pos + shift
-        self.end_pos = token.end_pos + shift
-
-    def __str__(self) -> str:
-        return self.text
-
-
-def _shifted(token: Token, shift: int) -> _Shifted:
-    return _Shifted(token, shift)
 
 
 def _bad_line(source: SourceFile, reader: CommandReader, number: int, text: str, column: int,

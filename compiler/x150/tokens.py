@@ -103,6 +103,8 @@ def whole(digits: str) -> int:
     """int() of a digit string of any length: Python refuses more than 4300 digits, and no
     controller value has more than a handful, so a longer one is read as HUGE (still reported as
     out of range by the checks, never an internal error)."""
+    if len(digits) <= 18:  # the common case: int() takes it as it is
+        return int(digits)
     significant = digits.lstrip("+-").lstrip("0")
     if len(significant) > 18:
         return -HUGE if digits.startswith("-") else HUGE
@@ -139,12 +141,27 @@ class CommandReader:
     # -- the token -------------------------------------------------------------------------------
     def read(self, piece: Piece, spans: LineSpans) -> st.Command:
         text = piece.text
-        span = spans.at(piece.start, piece.end_offset(len(text)))
-        cmd = st.Command(text=text, span=span)
+        size = len(text)
+        at = spans.at
+        if piece.gap >= size:  # the common case, a token without a re-joined space: offsets by addition
+            base = piece.start
+            path = spans.path
+            line = spans.line
+            column = base - spans.line_start + 1  # of the token's first character
 
-        def sub(begin: int, end: int) -> Span:
-            start = piece.offset(begin) if begin < len(text) else piece.end_offset(len(text))
-            return spans.at(start, piece.end_offset(end) if end > begin else start)
+            def sub(begin: int, end: int) -> Span:
+                start = begin if begin < size else size
+                stop = (end if end < size else size) if end > begin else start
+                return Span(path, line, column + start, line, column + stop, base + start, base + stop)
+
+            span = Span(path, line, column, line, column + size, base, base + size)
+        else:
+            def sub(begin: int, end: int) -> Span:
+                start = piece.offset(begin) if begin < size else piece.end_offset(size)
+                return at(start, piece.end_offset(end) if end > begin else start)
+
+            span = at(piece.start, piece.end_offset(size))
+        cmd = st.Command(text=text, span=span)
 
         if text.startswith("!"):
             return self.read_host(cmd, text, sub)
