@@ -112,6 +112,7 @@ class Writer:
         self.in_force = InForce(module)
         self.numbers = self.sequence_numbers()
         self.variables = self.variable_numbers()
+        self.read_counters: set[str] = set()  # per routine: hidden L counters written as variables
         self.entries = {r.blocks[0].label: r.name for r in module.routines if r.blocks}
         self.touches = self.mode_touching()
         self.routine: ir.Routine | None = None
@@ -206,7 +207,25 @@ class Writer:
         return numbers
 
     def var_number(self, name: str) -> int:
-        return self.variables.get(name) or variable_number(name)
+        number = self.variables.get(name) or variable_number(name)
+        if not number and name.startswith(LOOP_PREFIX):
+            number = self.counter_variable(name)
+        return number
+
+    def counter_variable(self, name: str) -> int:
+        """An L loop's hidden counter that the structure leaves as a variable (the loop leaves from
+        its middle, so it is not written as `Ln .. N`): it is kept in the highest free VARn."""
+        if not self.free_vars:
+            return 0
+        number = self.variables[name] = self.free_vars.pop()
+        declared = self.module.variables.get(name)
+        span = (declared.span if declared else None) or self.fallback_span()
+        if span is not None:
+            self.out.diagnostics.add("X215", span, f"this L loop leaves from its middle, so it is written as a "
+                                                   f"loop counting down VAR{number}, which nothing else in the "
+                                                   f"program uses: make sure the host and other sequences do not "
+                                                   f"use VAR{number} either")
+        return number
 
     def number_of(self, name: str) -> int:
         if name in self.numbers:
@@ -314,6 +333,7 @@ class Writer:
             if self.in_sequence:
                 self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
             return
+        self.read_counters = counters_read(done.body)
         self.nodes(done.body)
         if self.in_sequence:
             self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
@@ -392,13 +412,12 @@ class Writer:
         return (isinstance(op, ir.Assign) and op.target.name.startswith(LOOP_PREFIX) and index + 1 < len(nodes)
                 and isinstance(nodes[index + 1], RepeatNode) and counted(nodes[index + 1]) == op.target.name)
 
-    @staticmethod
-    def dead_count(node: Simple) -> bool:
+    def dead_count(self, node: Simple) -> bool:
         """The count of an X150 L loop that never comes back to its N (its body always leaves by XRT
         or XG): the loop runs once, and its hidden counter is never read."""
         op = node.op
         return isinstance(op, ir.Assign) and op.target.name.startswith(LOOP_PREFIX) \
-            and not isinstance(op.value, ir.BinOp)
+            and not isinstance(op.value, ir.BinOp) and op.target.name not in self.read_counters
 
     def if_node(self, arms: list, orelse: list, spans: list, else_span, end_span) -> None:
         cond, body = arms[0]
@@ -930,6 +949,38 @@ def ends_with(nodes: list, kind=STOPS) -> bool:
 def is_true(cond) -> bool:
     return isinstance(cond, ir.Compare) and cond.op == "=" and isinstance(cond.left, ir.Const) \
         and isinstance(cond.right, ir.Const) and cond.left.value == cond.right.value
+
+
+def counters_read(nodes: list) -> set[str]:
+    """The hidden L-loop counters a structured routine reads other than as `Ln .. N` (such a counter
+    is written as a variable, and its count must be written too)."""
+    found: set[str] = set()
+
+    def reads(*exprs) -> None:
+        for expr in exprs:
+            found.update(e.name for e in ir.walk_expr(expr) if isinstance(e, ir.Var) and e.name.startswith(LOOP_PREFIX))
+
+    def visit(items: list) -> None:
+        for node in items:
+            if isinstance(node, Simple):
+                reads(*ir.op_exprs(node.op))
+            elif isinstance(node, IfNode):
+                for cond, body in node.arms:
+                    reads(cond)
+                    visit(body)
+                visit(node.orelse)
+            elif isinstance(node, WhileNode):
+                reads(node.cond)
+                visit(node.body)
+            elif isinstance(node, RepeatNode):
+                if counted(node):
+                    visit(unnested(node.body)[:-1])
+                else:
+                    reads(node.until)
+                    visit(node.body)
+
+    visit(nodes)
+    return found
 
 
 def unnested(body: list) -> list:

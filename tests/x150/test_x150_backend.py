@@ -179,3 +179,17 @@ def test_a_counted_loop_whose_body_returns_early_keeps_its_count():
     N (the hidden counter's decrement) must still be found after it, not written as a variable."""
     text = "XE1\nXD1\nL(VAR2)\nWHILE(IN_1)\nXRT\nNWHILE\nIF(VAR1>5)\nXRT\nNIF\nN\nXT\n"
     assert output(text) == ["XE1", "XD1", "L(VAR2)", "IF(IN_1)", "XRT", "NIF", "IF(VAR1>5)", "XRT", "NIF", "N", "XT"]
+
+
+def test_a_counted_loop_left_from_its_middle_counts_in_a_free_variable():
+    """The structure makes this L loop a WHILE that leaves by XRT; its hidden counter becomes the
+    highest free VARn, with its count, and the program behaves as its source (simulated)."""
+    from mcc.sim.verify import check_translation
+
+    text = ("XE1\nXD1\nVAR1=6\nIF(VAR1>5)\nL3\nIF(VAR2>1)\nREPEAT\nUNTIL(VAR3>2)\nXRT\nNIF\n1D100\n1G\nN\n"
+            "XRT\nNIF\nXT\nXR1\n")
+    result = compile_(text)
+    assert [d.code for d in result.diagnostics if d.severity.value != "note"].count("X215") == 1
+    lines = output(text)
+    assert "VAR50=3" in lines and "VAR50=VAR50-1" in lines and not result.has_errors
+    assert not check_translation("t.x150", "x150", text, result.listing.text)
