@@ -102,6 +102,10 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("enable_outputs"),  # every drive-enable output as a bit mask, the first axis in bit 0
     Reading("countdown", Unit.S),  # time left on the countdown timer (it counts down to 0)
     Reading("compare_state"),  # the position-compare output: 0 off, 1 armed, 2 fired
+    Reading("aux_input"),  # 1 while the drive's auxiliary (dedicated) input is active (X150 AUX_IN)
+    Reading("stop_input"),  # 1 while the dedicated stop input is active
+    Reading("enable_input"),  # 1 while the dedicated drive-enable (energise) input is active
+    Reading("index_input"),  # 1 while the encoder's index (marker) input is active
 )}
 
 # SetHandler events: what makes the handler run.

@@ -23,12 +23,13 @@ What the writer converts (docs/CROSS.md, "into x150"):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
-from mcc.compiler.x150 import naming
+from mcc.compiler.x150 import naming, neutral
 from mcc.compiler import ir, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
@@ -120,6 +121,7 @@ class Writer:
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
         self.reported: set[tuple[int, str]] = set()
+        self.awaited: set[int] = set()  # moves the next operation waits for (written in MN, the others MQ)
 
     # -- the target's step and axes -----------------------------------------------------------------
     def device_resolutions(self) -> dict[str, int]:
@@ -245,6 +247,11 @@ class Writer:
             self.out.header = self.header()
         for _, _, op, state in self.each_op():
             self.forces[id(op)] = state
+        for _, block in self.module.blocks():
+            for op, after in zip(block.ops, block.ops[1:]):
+                if isinstance(op, ir.Move) and isinstance(after, ir.WaitMotion) \
+                        and after.axis in (ir.ALL_AXES, *(axis for axis, _ in op.targets)):
+                    self.awaited.add(id(op))
         selected = set()
         for routine in self.module.routines:
             for block in routine.blocks:
@@ -314,7 +321,7 @@ class Writer:
             if self.in_sequence:
                 self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
             return
-        self.nodes(done.body)
+        self.nodes(lift_gotos(done.body))
         if self.in_sequence:
             self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
 
@@ -403,13 +410,6 @@ class Writer:
     def if_node(self, arms: list, orelse: list, spans: list, else_span, end_span) -> None:
         cond, body = arms[0]
         span = spans[0] if spans else None
-        hoisted = None
-        if not arms[1:] and body and orelse and ends_with(orelse) and ends_with(body, ir.GotoRoutine):
-            # IF(c) .. XGn ELSE .. (never falls through) NIF: XG after NIF, so no IF is left open (X112)
-            hoisted, body = body[-1], body[:-1]
-            arms = [(cond, body)]
-        elif not arms[1:] and body and orelse and ends_with(body) and ends_with(orelse, ir.GotoRoutine):
-            hoisted, orelse = orelse[-1], orelse[:-1]
         if isinstance(cond, ir.Not) and not self.writable(cond):
             # X150 has no NOT: `if not c: A elif ...: B else: C` is IF(c) <elif ... else C> ELSE A NIF
             rest_body = [IfNode(arms[1:], orelse, spans[1:], else_span, end_span)] if arms[1:] else orelse
@@ -432,8 +432,6 @@ class Writer:
                 self.nodes(orelse)
         self.state = meet(after, self.state)
         self.emit(f"{self.address()}NIF", end_span or span)
-        if hoisted is not None:
-            self.write_term(hoisted.term, hoisted.span)
 
     def writable(self, cond) -> bool:
         try:
@@ -585,11 +583,12 @@ class Writer:
         param, span = op.param, op.span
         prefix = self.address(op.axis)
         if param is ir.MotionParam.MAX_SPEED:
-            self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
+            self.emit(prefix + "V" + self.ranged("V", self.rate(op.value, "speed"), "speed", "rev/s"), span)
         elif param is ir.MotionParam.ACCEL:
-            self.emit(prefix + "A" + self.rate(op.value, "acceleration"), span)
+            self.emit(prefix + "A" + self.ranged("A", self.rate(op.value, "acceleration"), "acceleration",
+                                                 "rev/s^2"), span)
         elif param is ir.MotionParam.ACCEL_TIME:
-            self.emit(prefix + "A" + self.ramp(op), span)
+            self.emit(prefix + "A" + self.ranged("A", self.ramp(op), "acceleration", "rev/s^2"), span)
         elif param in (ir.MotionParam.DECEL, ir.MotionParam.DECEL_TIME):
             self.same_as_accel(op)
         elif param is ir.MotionParam.RESOLUTION:
@@ -608,6 +607,20 @@ class Writer:
                 raise CannotWrite("X150 ramps are trapezoidal only; an S-curve profile has no equivalent", "G003")
         else:
             raise CannotWrite(f"X150 has no command for the {param.value.replace('_', ' ')}", "G003")
+
+    def ranged(self, mnemonic: str, text: str, what: str, unit: str) -> str:
+        """`text` when the catalog's range for `mnemonic` takes it (a (VARn) is checked on the device)."""
+        try:
+            value = float(text)
+        except ValueError:
+            return text
+        info = self.cat.lookup(mnemonic)
+        if info is not None and not info.in_range(value):
+            allowed = ", ".join(f"{number(lo)}" if lo == hi else f"{number(lo)} to {number(hi)}"
+                                for lo, hi in info.intervals or ())
+            raise CannotWrite(f"the {what} {text} {unit} is outside what X150 {mnemonic} accepts ({allowed} {unit}, "
+                              f"{info.manual}); the source's value has no X150 equivalent", "X207")
+        return text
 
     def ramp(self, op: ir.SetMotion) -> str:
         """A ramp time as X150's acceleration: (max speed - initial speed) / time, with the speeds in
@@ -650,7 +663,8 @@ class Writer:
         first, last = ends(op.span)
         register = isinstance(target, ir.Var) and target.name.startswith(DISTANCE)
         distance = "" if register else self.position(target, axis)
-        self.set_mode("move", key, "MN", prefix, first)
+        # MN: the next command waits for the move's end; MQ: it runs during the move (L2622-L2656)
+        self.set_mode("move", key, "MN" if id(op) in self.awaited else "MQ", prefix, first)
         self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
         if not register and self.state.get(("D", key)) != distance:
             self.emit(prefix + "D" + distance, first)
@@ -779,13 +793,12 @@ class Writer:
                           "no equivalent", "G003")
 
     def wait(self, cond) -> str:
-        if isinstance(cond, ir.InputMatch):
-            return "TRE" + cond.pattern.bits
-        if isinstance(cond, ir.Not) and isinstance(cond.cond, ir.InputMatch):
-            return "TRN" + cond.cond.pattern.bits
-        bits = input_bit(cond)
+        """TRE (until the inputs match) or TRN (until they do not) with one X150 pattern."""
+        bits = neutral.from_cond(cond)
         if bits is not None:
             return "TRE" + bits
+        if isinstance(cond, ir.Not) and (bits := neutral.from_cond(cond.cond)) is not None:
+            return "TRN" + bits
         raise CannotWrite("X150 waits only for an input pattern (TRE/TRN)", "G003")
 
     def print_text(self, op: ir.Print) -> str:
@@ -854,14 +867,12 @@ class Writer:
         return out
 
     def terms(self, cond, terms: list[str], joins: list[str]) -> None:
-        if isinstance(cond, ir.Logic):
+        if (bits := neutral.from_cond(cond)) is not None:  # input levels joined by and: one pattern
+            terms.append("IN" + bits)
+        elif isinstance(cond, ir.Logic):
             self.terms(cond.left, terms, joins)
             joins.append(cond.op.upper())
             self.terms(cond.right, terms, joins)
-        elif isinstance(cond, ir.InputMatch):
-            terms.append("IN" + cond.pattern.bits)
-        elif (bits := input_bit(cond)) is not None:
-            terms.append("IN" + bits)
         elif isinstance(cond, ir.Compare) and cond.op in self.cat.relational:
             terms.append(self.operand(cond.left) + cond.op + self.operand(cond.right))
         else:
@@ -917,6 +928,56 @@ def ends_with(nodes: list, kind=STOPS) -> bool:
     return bool(nodes) and isinstance(nodes[-1], EndNode) and isinstance(nodes[-1].term, kind)
 
 
+def lift_gotos(nodes: list) -> list:
+    """The tree with no XG written inside an IF where it can be avoided: an XG out of an IF leaves
+    the IF open, and the target sequence must then begin with NIF (L1794, X112). An IF arm that ends
+    in `XGn` loses it to after the NIF when the other path never reaches that point: the other arm
+    ends in a stop (HALT, XRT, XG), or, with no ELSE, the rest of the list does (it becomes the
+    ELSE). Bottom-up, so an XG lifted out of an inner IF can be lifted out of the outer one."""
+    out: list = []
+    nodes = [_lift_children(node) for node in nodes]
+    index = 0
+    while index < len(nodes):
+        node = nodes[index]
+        index += 1
+        if not (isinstance(node, IfNode) and len(node.arms) == 1):
+            out.append(node)
+            continue
+        cond, body = node.arms[0]
+        orelse = node.orelse
+        rest = nodes[index:]
+        goto = None
+        if ends_with(body, ir.GotoRoutine) and not orelse and rest and ends_with(rest):
+            orelse, index = rest, len(nodes)  # the rest runs only when c is false: the ELSE
+        if ends_with(body, ir.GotoRoutine) and orelse and (ends_with(orelse) and not same_goto(body, orelse)):
+            goto, body = body[-1], body[:-1]
+        elif ends_with(orelse, ir.GotoRoutine) and body and ends_with(body) and not same_goto(body, orelse):
+            goto, orelse = orelse[-1], orelse[:-1]
+        elif ends_with(body, ir.GotoRoutine) and same_goto(body, orelse):  # both arms go to one sequence
+            goto, body, orelse = body[-1], body[:-1], orelse[:-1]
+        if goto is None:
+            out.append(IfNode([(cond, body)], orelse, node.spans, node.else_span, node.end_span) if orelse
+                       is not node.orelse else node)
+            continue
+        if body or orelse:  # an IF left empty tests a condition for nothing (X150 conditions only read)
+            out.append(IfNode([(cond, body)], orelse, node.spans, node.else_span, node.end_span))
+        out.append(goto)
+    return out
+
+
+def _lift_children(node):
+    if isinstance(node, IfNode):
+        return IfNode([(c, lift_gotos(b)) for c, b in node.arms], lift_gotos(node.orelse), node.spans,
+                      node.else_span, node.end_span)
+    if isinstance(node, (WhileNode, RepeatNode)):
+        return dataclasses.replace(node, body=lift_gotos(node.body))
+    return node
+
+
+def same_goto(a: list, b: list) -> bool:
+    return ends_with(a, ir.GotoRoutine) and ends_with(b, ir.GotoRoutine) and a[-1].term.routine == b[-1].term.routine
+
+
 def is_true(cond) -> bool:
     return isinstance(cond, ir.Compare) and cond.op == "=" and isinstance(cond.left, ir.Const) \
         and isinstance(cond.right, ir.Const) and cond.left.value == cond.right.value
@@ -936,16 +997,6 @@ def counted(node: RepeatNode) -> str | None:
             and isinstance(last.op.value.left, ir.Var) and last.op.value.left.name == name:
         return name
     return None
-
-
-def input_bit(cond) -> str | None:
-    """`input n = 1` (or `!= 0`, `= 0`) as an X150 user-input pattern `_XX1`."""
-    if not (isinstance(cond, ir.Compare) and isinstance(cond.left, ir.Status) and cond.left.meaning == "input"
-            and cond.left.index and isinstance(cond.right, ir.Const) and cond.op in ("=", "!=")
-            and cond.right.value in (0, 1) and 1 <= cond.left.index <= 10):
-        return None
-    on = (cond.right.value == 1) == (cond.op == "=")
-    return "_" + "X" * (cond.left.index - 1) + ("1" if on else "0")
 
 
 def op_axes(op) -> tuple[str, ...]:
@@ -979,14 +1030,14 @@ def expand(cond):
         if isinstance(inner, ir.Not):
             return expand(inner.cond)
         if isinstance(inner, ir.Compare) and inner.op in NEGATED:
-            if input_bit(inner) is not None:
+            if neutral.level(inner) is not None:
                 return ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span)
             return expand(ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span))
         if isinstance(inner, ir.Logic):  # De Morgan
             flipped = "or" if inner.op == "and" else "and"
             return ir.Logic(flipped, expand(ir.Not(inner.left)), expand(ir.Not(inner.right)), inner.span)
         return cond
-    if isinstance(cond, ir.Compare) and cond.op in SPLIT and input_bit(cond) is None:
+    if isinstance(cond, ir.Compare) and cond.op in SPLIT and neutral.level(cond) is None:
         first, second = SPLIT[cond.op]
         return ir.Logic("or", ir.Compare(first, cond.left, cond.right, cond.span),
                         ir.Compare(second, cond.left, cond.right, cond.span), cond.span)

@@ -37,7 +37,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler import units
-from mcc.compiler.x150 import modes, naming
+from mcc.compiler.x150 import modes, naming, neutral
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.structure import Unit, sequence_number, split_units
 
@@ -327,7 +327,7 @@ class Lowering:
         elif role == "delay" and arg is not None and fits:
             self.emit(ir.Delay(self.value(arg, info), span))
         elif role == "wait_input" and isinstance(arg, st.Pattern) and fits:
-            cond: ir.Cond = ir.InputMatch(ir.Pattern(arg.bits, arg.span), arg.span)
+            cond: ir.Cond = neutral.to_cond(arg.bits, axis, arg.span)
             if info.entry.get("negated", False):
                 cond = ir.Not(cond, arg.span)
             self.emit(ir.WaitInput(cond, span))
@@ -577,7 +577,7 @@ class Lowering:
         result = None
         for join, term in zip([""] + arg.joins, arg.terms):
             if isinstance(term, st.InputTerm):
-                lowered = ir.InputMatch(ir.Pattern(term.pattern.bits, term.pattern.span), term.span)
+                lowered = neutral.to_cond(term.pattern.bits, axis, term.pattern.span)
             else:
                 lowered = ir.Compare(term.op, self.operand(term.left, axis), self.operand(term.right, axis), term.span)
             result = lowered if result is None else ir.Logic(join.lower(), result, lowered, arg.span)

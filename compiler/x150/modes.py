@@ -20,7 +20,8 @@ and rewrites each G:
 - anything not known statically (two paths with different modes, MC with an unknown direction): the
   `G` stays Native and X140 says why, so no backend but X150's own writes it.
 
-The mode commands themselves disappear (their effect is in the moves), MQ excepted; assignments to
+The mode commands themselves disappear (their effect is in the moves: an MQ move is a `Move` without
+the `WaitMotion`, which the backend writes in MQ); assignments to
 `%D` that nothing reads any more disappear too.
 """
 
@@ -239,7 +240,7 @@ class Resolver:
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
             for _, block in self.module.blocks():
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
-                                                            and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
+                                                            and op.mnemonic in (*POSITION_MODES, *MOVE_MODES))]
         self.drop_unread_distances()
 
     def rewrite_op(self, op, ops: list, done: list) -> list:

@@ -78,7 +78,7 @@ def test_if_else_while_repeat_shapes():
     blocks = mod.routines[0].blocks
     branch = blocks[0].terminator
     assert isinstance(branch, ir.Branch) and isinstance(branch.cond, ir.Logic) and branch.cond.op == "and"
-    assert isinstance(branch.cond.right, ir.InputMatch) and branch.cond.right.pattern.bits == "_XX1"
+    assert isinstance(branch.cond.right, ir.InputMatch) and branch.cond.right.pattern.bits == "XX1"  # user input 3
     then, other = mod.routines[0].block(branch.then), mod.routines[0].block(branch.otherwise)
     assert isinstance(then.ops[0], ir.Call) and isinstance(other.ops[0], ir.Call)
     assert then.terminator.target == other.terminator.target  # both reach the join
@@ -224,3 +224,18 @@ def test_conditionals_and_loops_of_the_immediate_stream_keep_their_meaning():
     assert [op.routine for op in then.ops] == ["SEQ1@1"] and [op.routine for op in other.ops] == ["SEQ2@1"]
     body = stream.block(test_while.terminator.then)
     assert isinstance(body.ops[0], ir.Assign) and body.terminator.target == test_while.label  # back to the test
+
+
+def test_input_patterns_are_neutral_user_inputs_and_dedicated_readings():
+    """`IN_X1` tests user input 2: the IR's pattern is `X1` (input n is the n-th character); the
+    dedicated group (LMT+ LMT- HOME ..., L3778) becomes readings of their neutral meaning."""
+    mod = module("1TRE_X1\n1TRNX1\n1IF(IN1_1X)\n1T1\n1NIF\n")
+    waits = [op for b in mod.routines[0].blocks for op in b.ops if isinstance(op, ir.WaitInput)]
+    assert isinstance(waits[0].cond, ir.InputMatch) and waits[0].cond.pattern.bits == "X1"
+    negated = waits[1].cond
+    assert isinstance(negated, ir.Not) and negated.cond == ir.Compare(
+        "=", ir.Status("limit_minus", "1", None, negated.cond.left.span), ir.Const(1), negated.cond.span)
+    branch = next(b.terminator for b in mod.routines[0].blocks if isinstance(b.terminator, ir.Branch))
+    assert isinstance(branch.cond, ir.Logic) and branch.cond.op == "and"
+    assert branch.cond.left.left.meaning == "limit_plus" and branch.cond.right.pattern.bits == "1"
+    assert_well_formed(mod)
