@@ -30,7 +30,7 @@ from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
 from mcc.compiler.x150 import naming, neutral
-from mcc.compiler import ir, units
+from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
 from mcc.compiler.profiles import Profile
@@ -375,9 +375,21 @@ class Writer:
 
     # -- the structured tree -------------------------------------------------------------------------
     def nodes(self, nodes: list) -> None:
+        merged = 0
         for index, node in enumerate(nodes):
+            if merged:
+                merged -= 1
+                continue
             if isinstance(node, Simple):
                 if self.is_loop_count(node, nodes, index) or self.dead_count(node):
+                    continue
+                group = level_run(nodes, index)
+                if len(group) > 1:  # several input/output levels: one INL/OUTL pattern, as written
+                    merged = len(group) - 1
+                    try:
+                        self.emit(self.levels(group), *(op.span for op in group))
+                    except CannotWrite as exc:
+                        self.refuse(exc, node.op.span)
                     continue
                 try:
                     self.write_op(node.op)
@@ -532,10 +544,10 @@ class Writer:
         elif isinstance(op, ir.Slew):
             self.slew(op)
         elif isinstance(op, ir.Stop):
-            if not self.in_sequence:
-                self.emit(self.address(op.axis) + ("S" if op.ramp else "K"), span)
-            elif op.ramp:  # S is immediate; SB is its buffered form (catalog)
+            if op.ramp:  # SB stops in its turn, like the IR's Stop; S acts on receipt and clears the buffer
                 self.emit(self.address(op.axis) + "SB", span)
+            elif not self.in_sequence:
+                self.emit(self.address(op.axis) + "K", span)
             else:
                 raise CannotWrite("X150 cannot store a kill in a sequence (K is never saved); stop with a "
                                   "ramp, or send K from the host", "G003")
@@ -552,8 +564,9 @@ class Writer:
             self.emit(self.address() + "O" + self.outputs(op), span)
         elif isinstance(op, ir.DriveEnable):
             if not isinstance(op.on, ir.Const):
-                raise CannotWrite("X150 energises (ON) or de-energises (OFF) the drive with a constant only")
-            self.emit(self.address(op.axis) + ("ON" if op.on.value else "OFF"), span)
+                raise CannotWrite("X150 enables (ST0) or shuts down (ST1) the drive with a constant only")
+            # ST is buffered and only enables/disables; OFF would also kill and dump the buffer (L2789)
+            self.emit(self.address(op.axis) + ("ST0" if op.on.value else "ST1"), span)
         elif isinstance(op, ir.SetPosition):
             if not (isinstance(op.value, ir.Const) and op.value.value == 0):
                 raise CannotWrite("X150 sets the position counter to zero only (PZ); setting it to another value "
@@ -575,7 +588,10 @@ class Writer:
         elif isinstance(op, ir.SetHandler):
             self.handler(op)
         elif isinstance(op, ir.Print):
-            self.emit(self.address() + self.print_text(op), span)
+            prefix = "" if is_position_report(op) else self.address(op.axis) if op.axis else self.address()
+            self.emit(prefix + self.print_text(op), span)
+        elif isinstance(op, ir.Setting):
+            self.emit(self.setting(op), span)
         else:
             raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
 
@@ -722,6 +738,50 @@ class Writer:
         self.emit(prefix + mode, span)
         self.state[(kind, key)] = mode
 
+    def setting(self, op: ir.Setting) -> str:
+        """A neutral setting in its X150 command (the B prefix inside a sequence where the command
+        takes one); a setting X150 has no command for is refused by name."""
+        prefix = self.address(op.axis)
+        name = op.name
+        if name in neutral.SETTING_COMMANDS:
+            mnemonic = neutral.SETTING_COMMANDS[name]
+            info = self.cat.lookup(mnemonic)
+            if self.in_sequence and info.exec == "I":
+                raise CannotWrite(f"X150 {mnemonic} ({name.replace('_', ' ')}) is an immediate command that a "
+                                  "sequence cannot store; send it from the host", "G003")
+            if name == "speed_change":
+                value = self.ranged(mnemonic, self.rate(op.value, "speed"), "speed", "rev/s")
+            else:
+                value = self.value(op.value)
+                self.ranged(mnemonic, value, name.replace("_", " "), "")
+            return prefix + ("B" if self.in_sequence and info.b_prefixable else "") + mnemonic + value
+        index = op.index or 0
+        if name in ("input_function", "output_function"):
+            letters = neutral.INPUT_LETTERS if name == "input_function" else neutral.OUTPUT_LETTERS
+            function = op.value.value if isinstance(op.value, ir.Text) else None
+            top = neutral.USER_INPUTS if name == "input_function" else neutral.OUTPUTS
+            if function not in letters or not 1 <= index <= top:
+                raise CannotWrite(f"X150 has no {'input' if name == 'input_function' else 'output'} function "
+                                  f"'{function}' for line {index} (IN/OUT letters, L2058, L2974)", "G003")
+            return prefix + ("IN" if name == "input_function" else "OUT") + str(index) + letters[function]
+        if name in ("input_active_high", "output_active_high"):
+            top = neutral.USER_INPUTS if name == "input_active_high" else neutral.OUTPUTS
+            if not (isinstance(op.value, ir.Const) and op.value.value in (0, 1) and 1 <= index <= top):
+                raise CannotWrite(f"X150 sets the active level of inputs 1-10 and outputs 1-6 to a constant 0 or 1 "
+                                  f"(INL/OUTL); this {name.replace('_', ' ')} has no equivalent", "G003")
+            bits = "X" * (index - 1) + str(int(op.value.value))
+            return prefix + ("INL_" + bits if name == "input_active_high" else "OUTL" + bits)
+        raise CannotWrite(f"the setting '{name}' ({describe_setting(name)}) has no X150 command", "G003")
+
+    def levels(self, group: list) -> str:
+        """Active levels of several inputs (or outputs) of one device as one INL/OUTL pattern."""
+        bits = ["X"] * (neutral.USER_INPUTS if group[0].name == "input_active_high" else neutral.OUTPUTS)
+        for op in group:
+            text = self.setting(op)
+            bits[op.index - 1] = text[-1]
+        head = self.address(group[0].axis)
+        return head + ("INL_" if group[0].name == "input_active_high" else "OUTL") + "".join(bits).rstrip("X")
+
     def handler(self, op: ir.SetHandler) -> None:
         command = HANDLER_COMMANDS.get(op.event)
         if command is None:
@@ -804,6 +864,11 @@ class Writer:
     def print_text(self, op: ir.Print) -> str:
         """The quote command sends ASCII 33-126 as written, '_' as a space (L5589), no line end."""
         item = op.items[0] if len(op.items) == 1 else None
+        if is_position_report(op):
+            if self.factor_of(item.axis or ir.ALL_AXES) != 1:
+                raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
+                                  f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
+            return self.address(op.axis or item.axis or ir.ALL_AXES) + "PR"  # the counter as *<value> (L3115)
         text = item.value if isinstance(item, ir.Text) else ""
         if text and not op.newline and len(text) <= 50 and all(c == " " or 33 <= ord(c) <= 126 for c in text) \
                 and '"' not in text and "_" not in text:
@@ -1062,6 +1127,35 @@ def describe(expr) -> str:
     if isinstance(expr, ir.Not):
         return "this negated condition"
     return f"this {type(expr).__name__.lower()}"
+
+
+LEVELS = ("input_active_high", "output_active_high")
+
+
+def level_run(nodes: list, index: int) -> list:
+    """The level settings of one kind and device that follow each other from `index`, each line once."""
+    first = nodes[index].op
+    if not (isinstance(first, ir.Setting) and first.name in LEVELS):
+        return [first]
+    group = [first]
+    for node in nodes[index + 1:]:
+        op = node.op if isinstance(node, Simple) else None
+        if not (isinstance(op, ir.Setting) and op.name == first.name and op.axis == first.axis
+                and op.index not in {o.index for o in group}):
+            break
+        group.append(op)
+    return group
+
+
+def is_position_report(op: ir.Print) -> bool:
+    """A line with the position alone: X150's PR."""
+    return len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].meaning == "position" \
+        and op.items[0].index is None and op.newline
+
+
+def describe_setting(name: str) -> str:
+    info = ir_names.SETTINGS.get(name)
+    return info.meaning if info is not None else "not a neutral setting"
 
 
 def describe_op(op) -> str:

@@ -137,6 +137,7 @@ class Resolver:
         self.entries: dict[str, State | None] = {}
         self.exits: dict[str, State | None] = {}
         self.before: dict[int, State] = {}  # id(op) -> the state just before it
+        self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
 
     def touching(self) -> dict[str, bool]:
         """Routines that may change a mode or D, themselves or through what they call."""
@@ -166,7 +167,8 @@ class Resolver:
 
     def solve(self) -> None:
         routines = self.module.routines
-        for _ in range(len(routines) + 3):
+        for _ in range(2 * len(routines) + 3):
+            self.before.clear()  # each round sees every reachable G again: nothing stale is kept
             sites: dict[str, State | None] = {}
             carried: State = dict(DEFAULTS)
             changed = False
@@ -174,10 +176,13 @@ class Resolver:
                 if routine.kind is ir.RoutineKind.IMMEDIATE:
                     start = carried
                 elif routine.kind is ir.RoutineKind.SUBROUTINE:
-                    start = self.entries.get(routine.name) or {}
+                    start = self.entries.get(routine.name)
+                    if start is None:  # no call reaches it yet: analysed once one does (optimistic)
+                        continue
                 else:
                     start = dict(DEFAULTS)  # run by the host, at power-up or by an event: assumed defaults
                 end = self.routine(routine, start, sites)
+                self.analysed.add(routine.name)
                 if routine.kind is ir.RoutineKind.IMMEDIATE and end is not None:
                     carried = end
                 if not states_equal(self.exits.get(routine.name), end):
@@ -185,8 +190,10 @@ class Resolver:
                     changed = True
             for routine in routines:
                 if routine.kind is ir.RoutineKind.SUBROUTINE:
-                    new = sites.get(routine.name) or {}
-                    if not states_equal(self.entries.get(routine.name), new):
+                    new = sites.get(routine.name)
+                    if new is None and routine.name in self.entries:
+                        new = {}  # its calls became unreachable: nothing known
+                    if new is not None and not states_equal(self.entries.get(routine.name), new):
                         self.entries[routine.name] = new
                         changed = True
             if not changed:
@@ -206,12 +213,19 @@ class Resolver:
             visits[label] = visits.get(label, 0) + 1
             block = blocks[label]
             state = dict(entry[label] or {})
+            waiting = False
             for op in block.ops:
                 if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
                     self.before[id(op)] = dict(state)
                 if isinstance(op, ir.Call):
                     sites[op.routine] = meet(sites.get(op.routine), state)
+                    if self.touched.get(op.routine, True) and self.module.routine(op.routine) is not None \
+                            and op.routine not in self.analysed:
+                        waiting = True  # what it leaves is not known yet: the next round goes on from here
+                        break
                 state = transfer(state, op, self.touched, self.exits)
+            if waiting:
+                continue
             term = block.terminator
             if isinstance(term, ir.GotoRoutine):
                 sites[term.routine] = meet(sites.get(term.routine), state)

@@ -95,3 +95,27 @@ def level(cond) -> tuple[tuple[str, int], str] | None:
     if status.meaning in DEDICATED and status.index is None:
         return ("dedicated", DEDICATED.index(status.meaning)), bit
     return None
+
+
+# Settings: X150 command -> the neutral setting it writes (ir_names.SETTINGS); each takes a plain
+# number, written back as the command with that number. `speed_change` (IV, rev/s) is converted.
+SETTINGS = {
+    "LD": "limits_disabled",  # L2388: 0 both limits enabled, 1 + disabled, 2 - disabled, 3 both
+    "FSC": "position_maintenance",  # L1603
+    "FSD": "stop_on_stall",  # L1630
+    "CER": "encoder_resolution",  # L419
+    "CMR": "motor_resolution",  # L596
+    "DW": "position_deadband",  # L1347
+    "FSB": "encoder_step_mode",  # L1595
+    "SSH": "keep_buffer_on_stop",  # L3960
+    "IV": "speed_change",  # L2192: the speed of the move in progress (immediate only)
+}
+SETTING_COMMANDS = {name: mnemonic for mnemonic, name in SETTINGS.items()}
+
+# Input and output functions (IN<n><letter>, OUT<n><letter>, L2058-L2114, L2974-L3013): the letters
+# with a neutral meaning (ir_names.INPUT_FUNCTIONS / OUTPUT_FUNCTIONS); the others stay Native.
+INPUT_FUNCTIONS = {"A": "general", "C": "kill", "F": "pause", "J": "jog_plus", "K": "jog_minus", "R": "reset"}
+OUTPUT_FUNCTIONS = {"A": "general", "B": "moving"}
+INPUT_LETTERS = {name: letter for letter, name in INPUT_FUNCTIONS.items()}
+OUTPUT_LETTERS = {name: letter for letter, name in OUTPUT_FUNCTIONS.items()}
+OUTPUTS = 6

@@ -169,11 +169,11 @@ def test_assignments_are_left_to_right():
 
 
 def test_natives_keep_mnemonic_args_form_and_axis():
-    mod = module("1XE1\n1XD1\n1BCPG50\n1OUT3B\n1DPC208\n1TX1,0,3,A=\n1XT\n")
+    mod = module("1XE1\n1XD1\n1BCPG50\n1OUT3C\n1DPC208\n1TX1,0,3,A=\n1XT\n")  # C: no neutral output function
     natives = ops(mod.routines[0])
     assert [(n.mnemonic, n.form, n.axis) for n in natives] == [
         ("CPG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1"), ("TX", "", "1")]
-    assert [a.value for a in natives[1].args] == [3, "B"]
+    assert [a.value for a in natives[1].args] == [3, "C"]
     assert [a.value for a in natives[3].args] == [1, 0, 3, "A="]
 
 
@@ -239,3 +239,12 @@ def test_input_patterns_are_neutral_user_inputs_and_dedicated_readings():
     assert isinstance(branch.cond, ir.Logic) and branch.cond.op == "and"
     assert branch.cond.left.left.meaning == "limit_plus" and branch.cond.right.pattern.bits == "1"
     assert_well_formed(mod)
+
+
+def test_modes_reach_a_sequence_called_in_a_loop_of_a_sequence_defined_later():
+    """The modes data flow is optimistic: a sequence not yet reached by any call is analysed once one
+    does, so a loop around the call does not lose the modes the stream set (samples/x150/03)."""
+    result = check("3XE31\n3XD31\n3D100\n3G\n3XT\n3XE30\n3XD30\n3L3\n3GOSUB31\n3N\n3XT\n3MN\n3MPA\n3XR30\n")
+    assert "X142" not in {d.code for d in result.diagnostics}
+    moves = [op for _, b in result.analysis.module.blocks() for op in b.ops if isinstance(op, ir.Move)]
+    assert [m.mode for m in moves] == [ir.MoveMode.ABSOLUTE]
