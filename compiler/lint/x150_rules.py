@@ -300,8 +300,8 @@ def stops(item) -> bool:
 def continuous_move_never_stopped(ctx: Context) -> None:
     if any(stops(op) for _, _, op in flow.ops(ctx.module)):
         return
-    for _, _, op in flow.ops(ctx.module, ir.Native):
-        if native(op, "G"):
+    for _, _, op in flow.ops(ctx.module):
+        if isinstance(op, ir.Slew) or native(op, "G"):  # a G in MC: a Slew, or Native when D's sign is unknown
             ctx.report(op.span, "in continuous mode this G runs until S, SB, LS, K or V0 (L2498), and the program "
                                 "has none of them")
             return

@@ -10,7 +10,8 @@ The lowering writes placeholders in source order: each mode command as a Native 
 each `D`/`H`/`H+`/`H-` as an assignment to a hidden per-device variable `%D<device>`, each `G` as a
 `Move(MODAL, %D<device>)`. `resolve` then follows the modes and the register forward through every
 routine's graph (a sequence starts with what holds at every one of its calls, an immediate stretch
-with what the stretch before it left, and what nothing in the file runs with the factory defaults)
+with what the stretch before it left, and what nothing in the file runs with the factory defaults:
+MN, MPI and a positive D)
 and rewrites each G:
 
 - MN (or MQ) with a known position mode: `Move(ABSOLUTE|RELATIVE, D)`, D a constant when the
@@ -34,7 +35,9 @@ DIALECT = "x150"
 DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
-DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN"}  # L2608, L2520
+# The factory defaults (L2608, L2520; D4000, L810): MPI, MN, and a positive distance register, so a
+# G in MC before any D runs forward. Assumed where the file shows nothing else (see resolve).
+DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN", ("sign", ir.ALL_AXES): 1}
 
 State = dict  # ("pos"|"move"|"D", axis) -> "MPA"/"MPI", "MN"/"MC"/"MQ", or an ir.Const
 

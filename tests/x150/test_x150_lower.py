@@ -248,3 +248,12 @@ def test_modes_reach_a_sequence_called_in_a_loop_of_a_sequence_defined_later():
     assert "X142" not in {d.code for d in result.diagnostics}
     moves = [op for _, b in result.analysis.module.blocks() for op in b.ops if isinstance(op, ir.Move)]
     assert [m.mode for m in moves] == [ir.MoveMode.ABSOLUTE]
+
+
+def test_g_in_mc_before_any_d_runs_forward_from_the_factory_d():
+    """D's factory default is 4000 (L810): `MC G` at the start of a stream is a forward slew."""
+    result = check("MC\nA10\nV10\nG\nSB\n")
+    assert "X142" not in {d.code for d in result.diagnostics}
+    ops = [op for _, b in result.analysis.module.blocks() for op in b.ops]
+    slews = [op for op in ops if isinstance(op, ir.Slew)]
+    assert [s.direction for s in slews] == [1] and any(isinstance(op, ir.Stop) and op.ramp for op in ops)
