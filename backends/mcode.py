@@ -619,7 +619,12 @@ class Writer:
         function = op.value.value if isinstance(op.value, ir.Text) else None
         if function not in table:
             raise Unsupported(f"an {op.name} of {function}")
-        active = pair.value if isinstance(pair, ir.Setting) and pair.index == op.index else ir.Const(0)
+        paired = isinstance(pair, ir.Setting) and pair.index == op.index \
+            and pair.name == op.name.replace("function", "active_high")
+        if not paired:  # IS/OS set the active level too: writing one the source did not set changes it
+            raise Unsupported(f"an {op.name} without its active level (MCode's IS/OS set both; the source sets "
+                              "only the function)")
+        active = pair.value
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
 
     def wait_input(self, op: ir.WaitInput) -> list[str]:

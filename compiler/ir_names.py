@@ -102,6 +102,10 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("enable_outputs"),  # every drive-enable output as a bit mask, the first axis in bit 0
     Reading("countdown", Unit.S),  # time left on the countdown timer (it counts down to 0)
     Reading("compare_state"),  # the position-compare output: 0 off, 1 armed, 2 fired
+    Reading("aux_input"),  # 1 while the drive's auxiliary (dedicated) input is active (X150 AUX_IN)
+    Reading("stop_input"),  # 1 while the dedicated stop input is active
+    Reading("enable_input"),  # 1 while the dedicated drive-enable (energise) input is active
+    Reading("index_input"),  # 1 while the encoder's index (marker) input is active
 )}
 
 # SetHandler events: what makes the handler run.
@@ -161,11 +165,27 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
                 ("arcus",)),
     SettingInfo("compare_output", Unit.NONE, "1 arms the position-compare output, 0 turns it off (its digital "
                 "output is then the program's again)", ("arcus",)),
+    SettingInfo("limits_disabled", Unit.NONE, "limit switches ignored, a bit mask: 1 the + limit, 2 the - limit "
+                "(0: both active)", ("x150",)),
+    SettingInfo("position_maintenance", Unit.NONE, "1: a stepper is servoed back to its encoder position at rest, "
+                "0: off", ("x150",)),
+    SettingInfo("stop_on_stall", Unit.NONE, "1: a move stops (at its deceleration) when a stall is detected, 0: "
+                "it goes on", ("x150",)),
+    SettingInfo("encoder_resolution", Unit.NONE, "encoder counts per motor revolution (after quadrature)",
+                ("x150",)),
+    SettingInfo("motor_resolution", Unit.NONE, "motor steps per revolution of the drive (not the IR's step)",
+                ("x150",)),
+    SettingInfo("position_deadband", Unit.NONE, "position error, in motor steps, that position maintenance "
+                "leaves uncorrected", ("x150",)),
+    SettingInfo("encoder_step_mode", Unit.NONE, "1: distances count encoder steps, 0: motor steps", ("x150",)),
+    SettingInfo("keep_buffer_on_stop", Unit.NONE, "1: a stop keeps the commands waiting in the buffer, 0: clears "
+                "them", ("x150",)),
 )}
 
 # The values of the input_function and output_function settings (an `ir.Text`).
 INPUT_FUNCTIONS = ("general", "home", "limit_plus", "limit_minus", "run_program", "soft_stop", "pause",
-                   "jog_plus", "jog_minus", "reset", "capture", "step_direction", "encoder_ab", "step_up_down")
+                   "jog_plus", "jog_minus", "reset", "capture", "step_direction", "encoder_ab", "step_up_down",
+                   "kill")  # kill: stop at once without a ramp and end the program
 OUTPUT_FUNCTIONS = ("general", "moving", "error", "stall", "velocity_changing", "locked_rotor",
                     "moving_to_position", "hmt_active", "make_up_active", "encoder_a", "encoder_b", "trip",
                     "attention")

@@ -95,7 +95,8 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
         target = f" -> {op.routine}" if op.routine else " off"
         return f"on {op.event}({args}){target}"
     if isinstance(op, ir.Setting):
-        return f"setting {op.name} {op.axis} = {expr_text(op.value)}"
+        line = f"[{op.index}]" if op.index is not None else ""  # the input or output the setting is for
+        return f"setting {op.name}{line} {op.axis} = {expr_text(op.value)}"
     if isinstance(op, ir.Save):
         return "save"
     if isinstance(op, ir.Native):

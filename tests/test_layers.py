@@ -2,7 +2,7 @@
 in test form, so it needs nothing installed):
 
 - backends depend on the IR and its vocabulary, the profiles, diagnostics and spans, and their own
-  modules; each backend may read its own dialect's command catalog and routine naming (pure data). They never
+  modules; each backend may read its own dialect's command catalog, routine naming and neutral-name tables (pure data). They never
   import a frontend's parser, syntax tree, lowering or checks, nor the driver.
 - frontends (compiler/<dialect>/) never import the driver, the CLI or a backend.
 - the compiler never imports the CLI.
@@ -54,9 +54,11 @@ def is_module(name: str) -> bool:
 
 
 def own_tables(dialect: str) -> set[str]:
-    """A backend may read its own dialect's tables: the command catalog (spellings) and the routine
-    naming convention (pure data, no syntax tree): one definition for both sides."""
-    return {f"mcc.compiler.{dialect}.catalog", f"mcc.compiler.{dialect}.naming"}
+    """A backend may read its own dialect's tables: the command catalog (spellings), the routine
+    naming convention and the spellings of neutral names (`neutral`: input patterns, settings)
+    (pure data, no syntax tree): one definition for both sides."""
+    return {f"mcc.compiler.{dialect}.catalog", f"mcc.compiler.{dialect}.naming",
+            f"mcc.compiler.{dialect}.neutral"}
 
 
 def backend_violations(path: Path) -> list[str]:

@@ -23,13 +23,14 @@ What the writer converts (docs/CROSS.md, "into x150"):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
-from mcc.compiler.x150 import naming
-from mcc.compiler import ir, units
+from mcc.compiler.x150 import naming, neutral
+from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
 from mcc.compiler.profiles import Profile
@@ -121,6 +122,7 @@ class Writer:
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
         self.reported: set[tuple[int, str]] = set()
+        self.awaited: set[int] = set()  # moves the next operation waits for (written in MN, the others MQ)
 
     # -- the target's step and axes -----------------------------------------------------------------
     def device_resolutions(self) -> dict[str, int]:
@@ -264,6 +266,11 @@ class Writer:
             self.out.header = self.header()
         for _, _, op, state in self.each_op():
             self.forces[id(op)] = state
+        for _, block in self.module.blocks():
+            for op, after in zip(block.ops, block.ops[1:]):
+                if isinstance(op, ir.Move) and isinstance(after, ir.WaitMotion) \
+                        and after.axis in (ir.ALL_AXES, *(axis for axis, _ in op.targets)):
+                    self.awaited.add(id(op))
         selected = set()
         for routine in self.module.routines:
             for block in routine.blocks:
@@ -333,8 +340,9 @@ class Writer:
             if self.in_sequence:
                 self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
             return
-        self.read_counters = counters_read(done.body)
-        self.nodes(done.body)
+        body = lift_gotos(done.body)
+        self.read_counters = counters_read(body)
+        self.nodes(body)
         if self.in_sequence:
             self.emit(f"{prefix}XT", self.closing_span(routine, done.exit_span))
 
@@ -388,9 +396,21 @@ class Writer:
 
     # -- the structured tree -------------------------------------------------------------------------
     def nodes(self, nodes: list) -> None:
+        merged = 0
         for index, node in enumerate(nodes):
+            if merged:
+                merged -= 1
+                continue
             if isinstance(node, Simple):
                 if self.is_loop_count(node, nodes, index) or self.dead_count(node):
+                    continue
+                group = level_run(nodes, index)
+                if len(group) > 1:  # several input/output levels: one INL/OUTL pattern, as written
+                    merged = len(group) - 1
+                    try:
+                        self.emit(self.levels(group), *(op.span for op in group))
+                    except CannotWrite as exc:
+                        self.refuse(exc, node.op.span)
                     continue
                 try:
                     self.write_op(node.op)
@@ -422,13 +442,6 @@ class Writer:
     def if_node(self, arms: list, orelse: list, spans: list, else_span, end_span) -> None:
         cond, body = arms[0]
         span = spans[0] if spans else None
-        hoisted = None
-        if not arms[1:] and body and orelse and ends_with(orelse) and ends_with(body, ir.GotoRoutine):
-            # IF(c) .. XGn ELSE .. (never falls through) NIF: XG after NIF, so no IF is left open (X112)
-            hoisted, body = body[-1], body[:-1]
-            arms = [(cond, body)]
-        elif not arms[1:] and body and orelse and ends_with(body) and ends_with(orelse, ir.GotoRoutine):
-            hoisted, orelse = orelse[-1], orelse[:-1]
         if isinstance(cond, ir.Not) and not self.writable(cond):
             # X150 has no NOT: `if not c: A elif ...: B else: C` is IF(c) <elif ... else C> ELSE A NIF
             rest_body = [IfNode(arms[1:], orelse, spans[1:], else_span, end_span)] if arms[1:] else orelse
@@ -451,8 +464,6 @@ class Writer:
                 self.nodes(orelse)
         self.state = meet(after, self.state)
         self.emit(f"{self.address()}NIF", end_span or span)
-        if hoisted is not None:
-            self.write_term(hoisted.term, hoisted.span)
 
     def writable(self, cond) -> bool:
         try:
@@ -553,10 +564,10 @@ class Writer:
         elif isinstance(op, ir.Slew):
             self.slew(op)
         elif isinstance(op, ir.Stop):
-            if not self.in_sequence:
-                self.emit(self.address(op.axis) + ("S" if op.ramp else "K"), span)
-            elif op.ramp:  # S is immediate; SB is its buffered form (catalog)
+            if op.ramp:  # SB stops in its turn, like the IR's Stop; S acts on receipt and clears the buffer
                 self.emit(self.address(op.axis) + "SB", span)
+            elif not self.in_sequence:
+                self.emit(self.address(op.axis) + "K", span)
             else:
                 raise CannotWrite("X150 cannot store a kill in a sequence (K is never saved); stop with a "
                                   "ramp, or send K from the host", "G003")
@@ -573,8 +584,9 @@ class Writer:
             self.emit(self.address() + "O" + self.outputs(op), span)
         elif isinstance(op, ir.DriveEnable):
             if not isinstance(op.on, ir.Const):
-                raise CannotWrite("X150 energises (ON) or de-energises (OFF) the drive with a constant only")
-            self.emit(self.address(op.axis) + ("ON" if op.on.value else "OFF"), span)
+                raise CannotWrite("X150 enables (ST0) or shuts down (ST1) the drive with a constant only")
+            # ST is buffered and only enables/disables; OFF would also kill and dump the buffer (L2789)
+            self.emit(self.address(op.axis) + ("ST0" if op.on.value else "ST1"), span)
         elif isinstance(op, ir.SetPosition):
             if not (isinstance(op.value, ir.Const) and op.value.value == 0):
                 raise CannotWrite("X150 sets the position counter to zero only (PZ); setting it to another value "
@@ -596,7 +608,10 @@ class Writer:
         elif isinstance(op, ir.SetHandler):
             self.handler(op)
         elif isinstance(op, ir.Print):
-            self.emit(self.address() + self.print_text(op), span)
+            prefix = "" if is_position_report(op) else self.address(op.axis) if op.axis else self.address()
+            self.emit(prefix + self.print_text(op), span)
+        elif isinstance(op, ir.Setting):
+            self.emit(self.setting(op), span)
         else:
             raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
 
@@ -604,11 +619,12 @@ class Writer:
         param, span = op.param, op.span
         prefix = self.address(op.axis)
         if param is ir.MotionParam.MAX_SPEED:
-            self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
+            self.emit(prefix + "V" + self.ranged("V", self.rate(op.value, "speed"), "speed", "rev/s"), span)
         elif param is ir.MotionParam.ACCEL:
-            self.emit(prefix + "A" + self.rate(op.value, "acceleration"), span)
+            self.emit(prefix + "A" + self.ranged("A", self.rate(op.value, "acceleration"), "acceleration",
+                                                 "rev/s^2"), span)
         elif param is ir.MotionParam.ACCEL_TIME:
-            self.emit(prefix + "A" + self.ramp(op), span)
+            self.emit(prefix + "A" + self.ranged("A", self.ramp(op), "acceleration", "rev/s^2"), span)
         elif param in (ir.MotionParam.DECEL, ir.MotionParam.DECEL_TIME):
             self.same_as_accel(op)
         elif param is ir.MotionParam.RESOLUTION:
@@ -627,6 +643,20 @@ class Writer:
                 raise CannotWrite("X150 ramps are trapezoidal only; an S-curve profile has no equivalent", "G003")
         else:
             raise CannotWrite(f"X150 has no command for the {param.value.replace('_', ' ')}", "G003")
+
+    def ranged(self, mnemonic: str, text: str, what: str, unit: str) -> str:
+        """`text` when the catalog's range for `mnemonic` takes it (a (VARn) is checked on the device)."""
+        try:
+            value = float(text)
+        except ValueError:
+            return text
+        info = self.cat.lookup(mnemonic)
+        if info is not None and not info.in_range(value):
+            allowed = ", ".join(f"{number(lo)}" if lo == hi else f"{number(lo)} to {number(hi)}"
+                                for lo, hi in info.intervals or ())
+            raise CannotWrite(f"the {what} {text} {unit} is outside what X150 {mnemonic} accepts ({allowed} {unit}, "
+                              f"{info.manual}); the source's value has no X150 equivalent", "X207")
+        return text
 
     def ramp(self, op: ir.SetMotion) -> str:
         """A ramp time as X150's acceleration: (max speed - initial speed) / time, with the speeds in
@@ -675,7 +705,8 @@ class Writer:
         computed = not isinstance(target, ir.Const)
         if computed and not register:
             self.distance(prefix, key, distance, first)
-        self.set_mode("move", key, "MN", prefix, first)
+        # MN: the next command waits for the move's end; MQ: it runs during the move (L2622-L2656)
+        self.set_mode("move", key, "MN" if id(op) in self.awaited else "MQ", prefix, first)
         self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
         if not computed:
             self.distance(prefix, key, distance, first)
@@ -736,6 +767,50 @@ class Writer:
             return
         self.emit(prefix + mode, span)
         self.state[(kind, key)] = mode
+
+    def setting(self, op: ir.Setting) -> str:
+        """A neutral setting in its X150 command (the B prefix inside a sequence where the command
+        takes one); a setting X150 has no command for is refused by name."""
+        prefix = self.address(op.axis)
+        name = op.name
+        if name in neutral.SETTING_COMMANDS:
+            mnemonic = neutral.SETTING_COMMANDS[name]
+            info = self.cat.lookup(mnemonic)
+            if self.in_sequence and info.exec == "I":
+                raise CannotWrite(f"X150 {mnemonic} ({name.replace('_', ' ')}) is an immediate command that a "
+                                  "sequence cannot store; send it from the host", "G003")
+            if name == "speed_change":
+                value = self.ranged(mnemonic, self.rate(op.value, "speed"), "speed", "rev/s")
+            else:
+                value = self.value(op.value)
+                self.ranged(mnemonic, value, name.replace("_", " "), "")
+            return prefix + ("B" if self.in_sequence and info.b_prefixable else "") + mnemonic + value
+        index = op.index or 0
+        if name in ("input_function", "output_function"):
+            letters = neutral.INPUT_LETTERS if name == "input_function" else neutral.OUTPUT_LETTERS
+            function = op.value.value if isinstance(op.value, ir.Text) else None
+            top = neutral.USER_INPUTS if name == "input_function" else neutral.OUTPUTS
+            if function not in letters or not 1 <= index <= top:
+                raise CannotWrite(f"X150 has no {'input' if name == 'input_function' else 'output'} function "
+                                  f"'{function}' for line {index} (IN/OUT letters, L2058, L2974)", "G003")
+            return prefix + ("IN" if name == "input_function" else "OUT") + str(index) + letters[function]
+        if name in ("input_active_high", "output_active_high"):
+            top = neutral.USER_INPUTS if name == "input_active_high" else neutral.OUTPUTS
+            if not (isinstance(op.value, ir.Const) and op.value.value in (0, 1) and 1 <= index <= top):
+                raise CannotWrite(f"X150 sets the active level of inputs 1-10 and outputs 1-6 to a constant 0 or 1 "
+                                  f"(INL/OUTL); this {name.replace('_', ' ')} has no equivalent", "G003")
+            bits = "X" * (index - 1) + str(int(op.value.value))
+            return prefix + ("INL_" + bits if name == "input_active_high" else "OUTL" + bits)
+        raise CannotWrite(f"the setting '{name}' ({describe_setting(name)}) has no X150 command", "G003")
+
+    def levels(self, group: list) -> str:
+        """Active levels of several inputs (or outputs) of one device as one INL/OUTL pattern."""
+        bits = ["X"] * (neutral.USER_INPUTS if group[0].name == "input_active_high" else neutral.OUTPUTS)
+        for op in group:
+            text = self.setting(op)
+            bits[op.index - 1] = text[-1]
+        head = self.address(group[0].axis)
+        return head + ("INL_" if group[0].name == "input_active_high" else "OUTL") + "".join(bits).rstrip("X")
 
     def handler(self, op: ir.SetHandler) -> None:
         command = HANDLER_COMMANDS.get(op.event)
@@ -808,18 +883,22 @@ class Writer:
                           "no equivalent", "G003")
 
     def wait(self, cond) -> str:
-        if isinstance(cond, ir.InputMatch):
-            return "TRE" + cond.pattern.bits
-        if isinstance(cond, ir.Not) and isinstance(cond.cond, ir.InputMatch):
-            return "TRN" + cond.cond.pattern.bits
-        bits = input_bit(cond)
+        """TRE (until the inputs match) or TRN (until they do not) with one X150 pattern."""
+        bits = neutral.from_cond(cond)
         if bits is not None:
             return "TRE" + bits
+        if isinstance(cond, ir.Not) and (bits := neutral.from_cond(cond.cond)) is not None:
+            return "TRN" + bits
         raise CannotWrite("X150 waits only for an input pattern (TRE/TRN)", "G003")
 
     def print_text(self, op: ir.Print) -> str:
         """The quote command sends ASCII 33-126 as written, '_' as a space (L5589), no line end."""
         item = op.items[0] if len(op.items) == 1 else None
+        if is_position_report(op):
+            if self.factor_of(item.axis or ir.ALL_AXES) != 1:
+                raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
+                                  f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
+            return self.address(op.axis or item.axis or ir.ALL_AXES) + "PR"  # the counter as *<value> (L3115)
         text = item.value if isinstance(item, ir.Text) else ""
         if text and not op.newline and len(text) <= 50 and all(c == " " or 33 <= ord(c) <= 126 for c in text) \
                 and '"' not in text and "_" not in text:
@@ -883,14 +962,12 @@ class Writer:
         return out
 
     def terms(self, cond, terms: list[str], joins: list[str]) -> None:
-        if isinstance(cond, ir.Logic):
+        if (bits := neutral.from_cond(cond)) is not None:  # input levels joined by and: one pattern
+            terms.append("IN" + bits)
+        elif isinstance(cond, ir.Logic):
             self.terms(cond.left, terms, joins)
             joins.append(cond.op.upper())
             self.terms(cond.right, terms, joins)
-        elif isinstance(cond, ir.InputMatch):
-            terms.append("IN" + cond.pattern.bits)
-        elif (bits := input_bit(cond)) is not None:
-            terms.append("IN" + bits)
         elif isinstance(cond, ir.Compare) and cond.op in self.cat.relational:
             terms.append(self.operand(cond.left) + cond.op + self.operand(cond.right))
         else:
@@ -944,6 +1021,56 @@ class Writer:
 def ends_with(nodes: list, kind=STOPS) -> bool:
     """The list never falls through: it ends in a stop (of `kind`)."""
     return bool(nodes) and isinstance(nodes[-1], EndNode) and isinstance(nodes[-1].term, kind)
+
+
+def lift_gotos(nodes: list) -> list:
+    """The tree with no XG written inside an IF where it can be avoided: an XG out of an IF leaves
+    the IF open, and the target sequence must then begin with NIF (L1794, X112). An IF arm that ends
+    in `XGn` loses it to after the NIF when the other path never reaches that point: the other arm
+    ends in a stop (HALT, XRT, XG), or, with no ELSE, the rest of the list does (it becomes the
+    ELSE). Bottom-up, so an XG lifted out of an inner IF can be lifted out of the outer one."""
+    out: list = []
+    nodes = [_lift_children(node) for node in nodes]
+    index = 0
+    while index < len(nodes):
+        node = nodes[index]
+        index += 1
+        if not (isinstance(node, IfNode) and len(node.arms) == 1):
+            out.append(node)
+            continue
+        cond, body = node.arms[0]
+        orelse = node.orelse
+        rest = nodes[index:]
+        goto = None
+        if ends_with(body, ir.GotoRoutine) and not orelse and rest and ends_with(rest):
+            orelse, index = rest, len(nodes)  # the rest runs only when c is false: the ELSE
+        if ends_with(body, ir.GotoRoutine) and orelse and (ends_with(orelse) and not same_goto(body, orelse)):
+            goto, body = body[-1], body[:-1]
+        elif ends_with(orelse, ir.GotoRoutine) and body and ends_with(body) and not same_goto(body, orelse):
+            goto, orelse = orelse[-1], orelse[:-1]
+        elif ends_with(body, ir.GotoRoutine) and same_goto(body, orelse):  # both arms go to one sequence
+            goto, body, orelse = body[-1], body[:-1], orelse[:-1]
+        if goto is None:
+            out.append(IfNode([(cond, body)], orelse, node.spans, node.else_span, node.end_span) if orelse
+                       is not node.orelse else node)
+            continue
+        if body or orelse:  # an IF left empty tests a condition for nothing (X150 conditions only read)
+            out.append(IfNode([(cond, body)], orelse, node.spans, node.else_span, node.end_span))
+        out.append(goto)
+    return out
+
+
+def _lift_children(node):
+    if isinstance(node, IfNode):
+        return IfNode([(c, lift_gotos(b)) for c, b in node.arms], lift_gotos(node.orelse), node.spans,
+                      node.else_span, node.end_span)
+    if isinstance(node, (WhileNode, RepeatNode)):
+        return dataclasses.replace(node, body=lift_gotos(node.body))
+    return node
+
+
+def same_goto(a: list, b: list) -> bool:
+    return ends_with(a, ir.GotoRoutine) and ends_with(b, ir.GotoRoutine) and a[-1].term.routine == b[-1].term.routine
 
 
 def is_true(cond) -> bool:
@@ -1010,16 +1137,6 @@ def counted(node: RepeatNode) -> str | None:
     return None
 
 
-def input_bit(cond) -> str | None:
-    """`input n = 1` (or `!= 0`, `= 0`) as an X150 user-input pattern `_XX1`."""
-    if not (isinstance(cond, ir.Compare) and isinstance(cond.left, ir.Status) and cond.left.meaning == "input"
-            and cond.left.index and isinstance(cond.right, ir.Const) and cond.op in ("=", "!=")
-            and cond.right.value in (0, 1) and 1 <= cond.left.index <= 10):
-        return None
-    on = (cond.right.value == 1) == (cond.op == "=")
-    return "_" + "X" * (cond.left.index - 1) + ("1" if on else "0")
-
-
 def op_axes(op) -> tuple[str, ...]:
     if isinstance(op, ir.Move):
         return tuple(axis for axis, _ in op.targets)
@@ -1051,14 +1168,14 @@ def expand(cond):
         if isinstance(inner, ir.Not):
             return expand(inner.cond)
         if isinstance(inner, ir.Compare) and inner.op in NEGATED:
-            if input_bit(inner) is not None:
+            if neutral.level(inner) is not None:
                 return ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span)
             return expand(ir.Compare(NEGATED[inner.op], inner.left, inner.right, inner.span))
         if isinstance(inner, ir.Logic):  # De Morgan
             flipped = "or" if inner.op == "and" else "and"
             return ir.Logic(flipped, expand(ir.Not(inner.left)), expand(ir.Not(inner.right)), inner.span)
         return cond
-    if isinstance(cond, ir.Compare) and cond.op in SPLIT and input_bit(cond) is None:
+    if isinstance(cond, ir.Compare) and cond.op in SPLIT and neutral.level(cond) is None:
         first, second = SPLIT[cond.op]
         return ir.Logic("or", ir.Compare(first, cond.left, cond.right, cond.span),
                         ir.Compare(second, cond.left, cond.right, cond.span), cond.span)
@@ -1083,6 +1200,35 @@ def describe(expr) -> str:
     if isinstance(expr, ir.Not):
         return "this negated condition"
     return f"this {type(expr).__name__.lower()}"
+
+
+LEVELS = ("input_active_high", "output_active_high")
+
+
+def level_run(nodes: list, index: int) -> list:
+    """The level settings of one kind and device that follow each other from `index`, each line once."""
+    first = nodes[index].op
+    if not (isinstance(first, ir.Setting) and first.name in LEVELS):
+        return [first]
+    group = [first]
+    for node in nodes[index + 1:]:
+        op = node.op if isinstance(node, Simple) else None
+        if not (isinstance(op, ir.Setting) and op.name == first.name and op.axis == first.axis
+                and op.index not in {o.index for o in group}):
+            break
+        group.append(op)
+    return group
+
+
+def is_position_report(op: ir.Print) -> bool:
+    """A line with the position alone: X150's PR."""
+    return len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].meaning == "position" \
+        and op.items[0].index is None and op.newline
+
+
+def describe_setting(name: str) -> str:
+    info = ir_names.SETTINGS.get(name)
+    return info.meaning if info is not None else "not a neutral setting"
 
 
 def describe_op(op) -> str:

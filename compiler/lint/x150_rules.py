@@ -225,6 +225,8 @@ def when_without_sequence(ctx: Context) -> None:
 # X307 motion-never-stopped (written once in ir_rules): what stops an axis ---------------------
 
 def stops(item) -> bool:
+    if isinstance(item, ir.Stop):  # SB (the lowering's neutral stop)
+        return True
     if isinstance(item, ir.Native) and item.dialect == X150:
         return meaning(item.mnemonic) in STOPPING_IRS or item.mnemonic in ("HALT", "OFF")
     return isinstance(item, ir.SetMotion) and item.param is ir.MotionParam.MAX_SPEED and const(item.value) == 0
@@ -254,6 +256,9 @@ def left_to_right_arithmetic(ctx: Context) -> None:
 @rule("X310", X150)
 def move_while_disabled(ctx: Context) -> None:
     def transfer(off: frozenset, item) -> frozenset:
+        if isinstance(item, ir.DriveEnable):  # ST0 / ST1 (the lowering's neutral form)
+            on = const(item.on)
+            return off | {(item.axis, "ST1")} if on != 1 else frozenset(f for f in off if f[1] != "ST1")
         if native(item, "ST"):
             value = const(item.args[0]) if item.args else None
             return off | {(item.axis, "ST1")} if value != 0 else frozenset(f for f in off if f[1] != "ST1")

@@ -37,7 +37,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler import units
-from mcc.compiler.x150 import modes, naming
+from mcc.compiler.x150 import modes, naming, neutral
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.structure import Unit, sequence_number, split_units
 
@@ -113,6 +113,7 @@ class Lowering:
     def run(self) -> ir.Module:
         self.cur: dict[str, int] = {}  # user steps per revolution of each device (CUR)
         self.factors: dict[int, Fraction] = {}  # CUR -> IR steps per user step (see `distance`)
+        self.addresses = {c.address for c in self.tree.commands() if c.address is not None}
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
         self.name_units()
@@ -268,8 +269,15 @@ class Lowering:
 
     def fits(self, command: st.Command) -> bool:
         """True when the routine's device says the command's address (so an address-less IR
-        operation loses nothing)."""
-        return self.device is not None or command.address is None
+        operation loses nothing), or the address is the one device the profile drives (a command
+        addressed to the device itself)."""
+        if self.device is not None or command.address is None:
+            return True
+        return self.addresses == {command.address} and [str(command.address)] == [str(a) for a in self.profile.axes]
+
+    def sender(self, command: st.Command) -> str:
+        """The device a report comes from (`Print.axis`): empty when the routine's device says it."""
+        return "" if self.fits(command) else str(command.address)
 
     def lower_command(self, command: st.Command) -> None:
         info = command.info
@@ -332,7 +340,7 @@ class Lowering:
         elif role == "delay" and arg is not None and fits:
             self.emit(ir.Delay(self.value(arg, info), span))
         elif role == "wait_input" and isinstance(arg, st.Pattern) and fits:
-            cond: ir.Cond = ir.InputMatch(ir.Pattern(arg.bits, arg.span), arg.span)
+            cond: ir.Cond = neutral.to_cond(arg.bits, axis, arg.span)
             if info.entry.get("negated", False):
                 cond = ir.Not(cond, arg.span)
             self.emit(ir.WaitInput(cond, span))
@@ -342,8 +350,29 @@ class Lowering:
             self.emit(ir.Assign(ir.Var(arg.var.name, arg.var.span), self.chain(arg.value, axis), span))
         elif role == "save" and fits:
             self.emit(ir.Save(span))
-        elif name == '"' and isinstance(arg, st.Text) and fits:  # '_' is sent as a space (L5589)
-            self.emit(ir.Print((ir.Text(arg.text.replace("_", " "), arg.span),), False, span))
+        elif name == '"' and isinstance(arg, st.Text) and not command.buffered:  # '_' is sent as a space (L5589)
+            self.emit(ir.Print((ir.Text(arg.text.replace("_", " "), arg.span),), False, span, self.sender(command)))
+        elif name == "PR" and arg is None and not command.buffered:  # the position counter, e.g. *-25600 (L3115)
+            self.emit(ir.Print((ir.Status("position", axis, None, span),), True, span, self.sender(command)))
+        elif name == "SB" and arg is None and axis_ok:  # a stop in its turn in the buffer (L3694)
+            self.emit(ir.Stop(axis, True, span))
+        elif name == "ST" and isinstance(arg, st.Number) and arg.value in (0, 1) and axis_ok:  # ST1 shuts down
+            self.emit(ir.DriveEnable(axis, ir.Const(1 - int(arg.value), ir.Unit.NONE, arg.span), span))
+        elif name in neutral.SETTINGS and isinstance(arg, (st.Number, st.VarRef)) and self.settable(command):
+            value = self.value(arg, info) if name == "IV" else self.expr(arg)  # IV: rev/s -> steps/s
+            self.emit(ir.Setting(neutral.SETTINGS[name], axis, value, span))
+        elif name in ("IN", "OUT") and isinstance(arg, st.IoFunction) and self.settable(command) \
+                and arg.function.upper() in (neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS):
+            table = neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS
+            setting = "input_function" if name == "IN" else "output_function"
+            self.emit(ir.Setting(setting, axis, ir.Text(table[arg.function.upper()], arg.span), span, arg.index))
+        elif name in ("INL", "OUTL") and isinstance(arg, st.Pattern) and self.settable(command) \
+                and (name == "OUTL" or not neutral.split(arg.bits)[0]):
+            bits = arg.bits if name == "OUTL" else neutral.split(arg.bits)[1]
+            setting = "input_active_high" if name == "INL" else "output_active_high"
+            for index, bit in enumerate(bits.upper(), 1):  # X leaves a level as it is: one setting per level set
+                if bit in "01":
+                    self.emit(ir.Setting(setting, axis, ir.Const(int(bit), ir.Unit.NONE, arg.span), span, index))
         elif name == "HALT" and arg is None and fits:
             self.terminate(ir.End(span))  # stops execution and clears the buffer (L1883)
         elif role == "return" and fits:
@@ -353,6 +382,11 @@ class Lowering:
         else:
             op = self.native(command)
             self.emit(op)
+
+    def settable(self, command: st.Command) -> bool:
+        """A setting command whose B prefix the backend writes back by itself: none, or the one every
+        B-prefixable command takes inside a sequence."""
+        return not command.buffered or (self.unit.is_sequence and command.info.b_prefixable)
 
     def outputs(self, pattern: st.Pattern, span) -> ir.SetOutput:
         """`O` with one output set (the others X) is that output; any other pattern stays a pattern."""
@@ -582,7 +616,7 @@ class Lowering:
         result = None
         for join, term in zip([""] + arg.joins, arg.terms):
             if isinstance(term, st.InputTerm):
-                lowered = ir.InputMatch(ir.Pattern(term.pattern.bits, term.pattern.span), term.span)
+                lowered = neutral.to_cond(term.pattern.bits, axis, term.pattern.span)
             else:
                 lowered = ir.Compare(term.op, self.operand(term.left, axis), self.operand(term.right, axis), term.span)
             result = lowered if result is None else ir.Logic(join.lower(), result, lowered, arg.span)

@@ -10,7 +10,8 @@ The lowering writes placeholders in source order: each mode command as a Native 
 each `D`/`H`/`H+`/`H-` as an assignment to a hidden per-device variable `%D<device>`, each `G` as a
 `Move(MODAL, %D<device>)`. `resolve` then follows the modes and the register forward through every
 routine's graph (a sequence starts with what holds at every one of its calls, an immediate stretch
-with what the stretch before it left, and what nothing in the file runs with the factory defaults)
+with what the stretch before it left, and what nothing in the file runs with the factory defaults:
+MN, MPI and a positive D)
 and rewrites each G:
 
 - MN (or MQ) with a known position mode: `Move(ABSOLUTE|RELATIVE, D)`, D a constant when the
@@ -20,7 +21,8 @@ and rewrites each G:
 - anything not known statically (two paths with different modes, MC with an unknown direction): the
   `G` stays Native and X140 says why, so no backend but X150's own writes it.
 
-The mode commands themselves disappear (their effect is in the moves), MQ excepted; assignments to
+The mode commands themselves disappear (their effect is in the moves: an MQ move is a `Move` without
+the `WaitMotion`, which the backend writes in MQ); assignments to
 `%D` that nothing reads any more disappear too.
 """
 
@@ -34,7 +36,9 @@ DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
 MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
-DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN"}  # L2608, L2520
+# The factory defaults (L2608, L2520; D4000, L810): MPI, MN, and a positive distance register, so a
+# G in MC before any D runs forward. Assumed where the file shows nothing else (see resolve).
+DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN", ("sign", ir.ALL_AXES): 1}
 
 NOTHING: frozenset[str] = frozenset()
 State = dict  # ("pos"|"move"|"D", axis) -> "MPA"/"MPI", "MN"/"MC"/"MQ", or an ir.Const
@@ -48,19 +52,29 @@ def is_distance(name: str) -> bool:
     return name.startswith(DISTANCE)
 
 
+UNKNOWN = "unknown"  # a device's setting not known statically: hides what every device ("*") has
+
+
 def set_key(state: State, kind: str, axis: str, value) -> None:
-    """A setting for every device ("*") replaces the per-device ones."""
+    """A setting for every device ("*") replaces the per-device ones; a device's setting that is
+    not known statically is recorded as UNKNOWN, so the all-devices value (a factory default)
+    does not show through it."""
     if axis == ir.ALL_AXES:
         for key in [k for k in state if k[0] == kind]:
             del state[key]
     if value is None:
-        state.pop((kind, axis), None)
+        if axis == ir.ALL_AXES:
+            state.pop((kind, axis), None)
+        else:
+            state[(kind, axis)] = UNKNOWN
     else:
         state[(kind, axis)] = value
 
 
 def get_key(state: State, kind: str, axis: str):
     found = state.get((kind, axis))
+    if found is UNKNOWN:
+        return None
     return found if found is not None else state.get((kind, ir.ALL_AXES))
 
 
@@ -142,6 +156,7 @@ class Resolver:
         # routine is a function of these, so a later round whose inputs did not change reuses it
         self.memo: dict[int, tuple] = {}
         self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
+        self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
 
     def touching(self) -> dict[str, bool]:
         """Routines that may change a mode or D, themselves or through what they call."""
@@ -171,7 +186,7 @@ class Resolver:
 
     def solve(self) -> None:
         routines = self.module.routines
-        for _ in range(len(routines) + 3):
+        for _ in range(2 * len(routines) + 3):
             sites: dict[str, State | None] = {}
             carried: State = dict(DEFAULTS)
             changed = False
@@ -179,10 +194,13 @@ class Resolver:
                 if routine.kind is ir.RoutineKind.IMMEDIATE:
                     start = carried
                 elif routine.kind is ir.RoutineKind.SUBROUTINE:
-                    start = self.entries.get(routine.name) or {}
+                    start = self.entries.get(routine.name)
+                    if start is None:  # no call reaches it yet: analysed once one does (optimistic)
+                        continue
                 else:
                     start = dict(DEFAULTS)  # run by the host, at power-up or by an event: assumed defaults
                 end = self.walk(routine, start, sites)
+                self.analysed.add(routine.name)
                 if routine.kind is ir.RoutineKind.IMMEDIATE and end is not None:
                     carried = end
                 if not states_equal(self.exits.get(routine.name), end):
@@ -190,8 +208,10 @@ class Resolver:
                     changed = True
             for routine in routines:
                 if routine.kind is ir.RoutineKind.SUBROUTINE:
-                    new = sites.get(routine.name) or {}
-                    if not states_equal(self.entries.get(routine.name), new):
+                    new = sites.get(routine.name)
+                    if new is None and routine.name in self.entries:
+                        new = {}  # its calls became unreachable: nothing known
+                    if new is not None and not states_equal(self.entries.get(routine.name), new):
                         self.entries[routine.name] = new
                         changed = True
             if not changed:
@@ -200,15 +220,20 @@ class Resolver:
     def walk(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
         """`routine` walked from `start`, its call sites' states met into `sites` (in the order the
         walk reaches them); the walk of an earlier round when its inputs are exactly the same."""
-        called = [self.exits.get(op.routine) for op in self.calls(routine)]
+        calls = self.calls(routine)
+        called = [self.exits.get(op.routine) for op in calls]
+        known = [op.routine in self.analysed for op in calls]  # a call to an unanalysed routine waits
         memo = self.memo.get(id(routine))
         if memo is not None and identical(memo[0], start) and len(memo[1]) == len(called) \
-                and all(identical(a, b) for a, b in zip(memo[1], called)):
+                and all(identical(a, b) for a, b in zip(memo[1], called)) and memo[4] == known:
             end, reached = memo[2], memo[3]
         else:
+            for block in routine.blocks:  # a new walk: the states it no longer reaches are not kept
+                for op in self.ops_of(block):
+                    self.before.pop(id(op), None)
             reached = []
             end = self.routine(routine, start, reached)
-            self.memo[id(routine)] = (dict(start), called, end, reached)
+            self.memo[id(routine)] = (dict(start), called, end, reached, known)
         for name, state in reached:
             sites[name] = meet(sites.get(name), state)
         return end
@@ -245,12 +270,19 @@ class Resolver:
             ops = self.ops_of(block)
             if ops:  # else the state passes through unchanged, and nothing below changes it
                 state = dict(state)
+            waiting = False
             for op in ops:
                 if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
                     self.before[id(op)] = dict(state)
                 if isinstance(op, ir.Call):
                     reached.append((op.routine, dict(state)))
+                    if self.touched.get(op.routine, True) and self.module.routine(op.routine) is not None \
+                            and op.routine not in self.analysed:
+                        waiting = True  # what it leaves is not known yet: the next round goes on from here
+                        break
                 state = transfer(state, op, self.touched, self.exits)
+            if waiting:
+                continue
             term = block.terminator
             if isinstance(term, ir.GotoRoutine):
                 reached.append((term.routine, dict(state)))
@@ -289,7 +321,7 @@ class Resolver:
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
             for block in with_modes:
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
-                                                            and op.mnemonic in (*POSITION_MODES, "MN", "MC"))]
+                                                            and op.mnemonic in (*POSITION_MODES, *MOVE_MODES))]
         self.drop_unread_distances()
 
     def rewrite_op(self, op, ops: list, done: list) -> list:

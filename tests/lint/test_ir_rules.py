@@ -97,7 +97,7 @@ def test_a_slew_from_a_variable_may_be_a_stop_and_is_not_reported() -> None:
 
 
 def test_x150_reports_a_g_kept_as_text_once_but_every_known_continuous_move() -> None:
-    one = "1XE1\n1XD1\n1MC\n1G\n1G\n1XT\n"
+    one = "1XE1\n1XD1\n1D(VAR1)\n1MC\n1G\n1G\n1XT\n"  # the sign of D is known at run time only
     assert codes(one, "p.x150").count("X307") == 1
     known = "1MC\n1H-\n1A10\n1V10\n1G\n2MC\n2H+\n2A10\n2V10\n2G\n"
     assert codes(known, "p.x150").count("X307") == 2

@@ -27,7 +27,7 @@ def test_each_dialect_has_the_three_golden_programs():
 # Found by these traces and not yet fixed (issue 8 closing note): the X150 frontend keeps the `_`
 # that separates dedicated from user inputs inside the IR's input pattern (`IN_X1` becomes the
 # pattern `_X1`), so the loop waits on the wrong input and never ends.
-KNOWN_WRONG = {"input_loop.x150": "X150 input patterns keep the dedicated/user '_' in the IR"}
+KNOWN_WRONG: dict[str, str] = {}
 
 
 @pytest.mark.parametrize("dialect, path", CASES, ids=[f"{d}/{p.name}" for d, p in CASES])

@@ -95,8 +95,9 @@ def test_foreign_routines_get_free_sequence_numbers_and_modes():
     sub = ir.Routine("sub", ir.RoutineKind.SUBROUTINE, [block("b", [ir.Save(SPAN)])], SPAN, number=64)
     listing = backend.emit(module(main, sub, dialect="mcode"), PROFILE)
     assert not listing.diagnostics.items
+    # no WaitMotion after the move: the delay runs during it, which is X150's MQ (MN would wait, L2631)
     assert [t for t in listing.text.splitlines() if not t.startswith(";")] == [
-        "XE1", "XD1", "1MN", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT", "XE64", "XD64", "SV", "XT"]
+        "XE1", "XD1", "1MQ", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT", "XE64", "XD64", "SV", "XT"]
 
 
 def test_irreducible_flow_is_x201():
@@ -193,3 +194,38 @@ def test_a_counted_loop_left_from_its_middle_counts_in_a_free_variable():
     lines = output(text)
     assert "VAR50=3" in lines and "VAR50=VAR50-1" in lines and not result.has_errors
     assert not check_translation("t.x150", "x150", text, result.listing.text)
+
+
+def test_input_conditions_are_written_as_one_x150_pattern():
+    # dedicated and user levels joined by AND are one pattern; the `_` is always written (X131)
+    assert output("1TRE_X1\n1TRNX1\n1IF(IN1_1X AND VAR1>2)\n1T1\n1NIF\n") == [
+        "1TRE_X1", "1TRNX1_", "1IF(IN1_1 AND VAR1>2)", "1T1", "1NIF"]
+    # input levels of another dialect's IR: input 3 on and the home switch off
+    cond = ir.Logic("and", ir.Compare("=", ir.Status("input", "", 3), ir.Const(1)),
+                    ir.Compare("=", ir.Status("home_switch", ""), ir.Const(0)))
+    routine = ir.Routine("main", ir.RoutineKind.MAIN, [block("a", [ir.WaitInput(cond, SPAN)])], SPAN)
+    assert "TREXX0_XX1" in backend.emit(module(routine, dialect="mcode"), PROFILE).text.splitlines()
+    # one input at two levels is no pattern: refused, not written as something else
+    both = ir.Logic("and", ir.InputMatch(ir.Pattern("1")), ir.InputMatch(ir.Pattern("0")))
+    routine = ir.Routine("main", ir.RoutineKind.MAIN, [block("a", [ir.WaitInput(both, SPAN)])], SPAN)
+    assert [d.code for d in backend.emit(module(routine, dialect="mcode"), PROFILE).diagnostics] == ["G003"]
+
+
+def test_an_xg_inside_an_if_is_written_after_its_nif():
+    """An XG out of an IF leaves the IF open (L1794, X112): the backend lifts it after the NIF when
+    the other path never gets there, so the output checks clean."""
+    text = "1XE2\n1XD2\n1NIF\n1T2\n1XT\n1XE1\n1XD1\n1IF(IN_1)\n1T1\n1XG2\n1NIF\n1T3\n1XRT\n1XT\n1XR1\n"
+    written = output(text)
+    assert written[written.index("1XD1") + 1:written.index("1XT", written.index("1XD1"))] == [
+        "1IF(IN_1)", "1T1", "1ELSE", "1T3", "1XRT", "1NIF", "1XG2"]
+    again = driver.check_file("out.x150", "x150", text="\n".join(written) + "\n")
+    assert not [d.code for d in again.diagnostics if d.code == "X112"]
+
+
+def test_a_continuous_g_after_a_computed_distance_keeps_its_unknown_direction():
+    """MC G runs in D's direction: after D(VAR1) that is known only at run time, so the factory
+    default (a positive D, L810) must not show through as a forward slew."""
+    module = compile_("1XE1\n1XD1\n1D(VAR1)\n1MC\n1G\n1XT\n").analysis.module
+    ops = [op for _, block in module.blocks() for op in block.ops]
+    assert not any(isinstance(op, ir.Slew) for op in ops)
+    assert any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in ops)

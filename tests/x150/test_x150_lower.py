@@ -78,7 +78,7 @@ def test_if_else_while_repeat_shapes():
     blocks = mod.routines[0].blocks
     branch = blocks[0].terminator
     assert isinstance(branch, ir.Branch) and isinstance(branch.cond, ir.Logic) and branch.cond.op == "and"
-    assert isinstance(branch.cond.right, ir.InputMatch) and branch.cond.right.pattern.bits == "_XX1"
+    assert isinstance(branch.cond.right, ir.InputMatch) and branch.cond.right.pattern.bits == "XX1"  # user input 3
     then, other = mod.routines[0].block(branch.then), mod.routines[0].block(branch.otherwise)
     assert isinstance(then.ops[0], ir.Call) and isinstance(other.ops[0], ir.Call)
     assert then.terminator.target == other.terminator.target  # both reach the join
@@ -169,11 +169,11 @@ def test_assignments_are_left_to_right():
 
 
 def test_natives_keep_mnemonic_args_form_and_axis():
-    mod = module("1XE1\n1XD1\n1BCPG50\n1OUT3B\n1DPC208\n1TX1,0,3,A=\n1XT\n")
+    mod = module("1XE1\n1XD1\n1BCPG50\n1OUT3C\n1DPC208\n1TX1,0,3,A=\n1XT\n")  # C: no neutral output function
     natives = ops(mod.routines[0])
     assert [(n.mnemonic, n.form, n.axis) for n in natives] == [
         ("CPG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1"), ("TX", "", "1")]
-    assert [a.value for a in natives[1].args] == [3, "B"]
+    assert [a.value for a in natives[1].args] == [3, "C"]
     assert [a.value for a in natives[3].args] == [1, 0, 3, "A="]
 
 
@@ -224,3 +224,36 @@ def test_conditionals_and_loops_of_the_immediate_stream_keep_their_meaning():
     assert [op.routine for op in then.ops] == ["SEQ1@1"] and [op.routine for op in other.ops] == ["SEQ2@1"]
     body = stream.block(test_while.terminator.then)
     assert isinstance(body.ops[0], ir.Assign) and body.terminator.target == test_while.label  # back to the test
+
+
+def test_input_patterns_are_neutral_user_inputs_and_dedicated_readings():
+    """`IN_X1` tests user input 2: the IR's pattern is `X1` (input n is the n-th character); the
+    dedicated group (LMT+ LMT- HOME ..., L3778) becomes readings of their neutral meaning."""
+    mod = module("1TRE_X1\n1TRNX1\n1IF(IN1_1X)\n1T1\n1NIF\n")
+    waits = [op for b in mod.routines[0].blocks for op in b.ops if isinstance(op, ir.WaitInput)]
+    assert isinstance(waits[0].cond, ir.InputMatch) and waits[0].cond.pattern.bits == "X1"
+    negated = waits[1].cond
+    assert isinstance(negated, ir.Not) and negated.cond == ir.Compare(
+        "=", ir.Status("limit_minus", "1", None, negated.cond.left.span), ir.Const(1), negated.cond.span)
+    branch = next(b.terminator for b in mod.routines[0].blocks if isinstance(b.terminator, ir.Branch))
+    assert isinstance(branch.cond, ir.Logic) and branch.cond.op == "and"
+    assert branch.cond.left.left.meaning == "limit_plus" and branch.cond.right.pattern.bits == "1"
+    assert_well_formed(mod)
+
+
+def test_modes_reach_a_sequence_called_in_a_loop_of_a_sequence_defined_later():
+    """The modes data flow is optimistic: a sequence not yet reached by any call is analysed once one
+    does, so a loop around the call does not lose the modes the stream set (samples/x150/03)."""
+    result = check("3XE31\n3XD31\n3D100\n3G\n3XT\n3XE30\n3XD30\n3L3\n3GOSUB31\n3N\n3XT\n3MN\n3MPA\n3XR30\n")
+    assert "X142" not in {d.code for d in result.diagnostics}
+    moves = [op for _, b in result.analysis.module.blocks() for op in b.ops if isinstance(op, ir.Move)]
+    assert [m.mode for m in moves] == [ir.MoveMode.ABSOLUTE]
+
+
+def test_g_in_mc_before_any_d_runs_forward_from_the_factory_d():
+    """D's factory default is 4000 (L810): `MC G` at the start of a stream is a forward slew."""
+    result = check("MC\nA10\nV10\nG\nSB\n")
+    assert "X142" not in {d.code for d in result.diagnostics}
+    ops = [op for _, b in result.analysis.module.blocks() for op in b.ops]
+    slews = [op for op in ops if isinstance(op, ir.Slew)]
+    assert [s.direction for s in slews] == [1] and any(isinstance(op, ir.Stop) and op.ramp for op in ops)
