@@ -59,6 +59,9 @@ OUTPUT_TYPES = {"general": 16, "moving": 17, "error": 18, "stall": 19, "velocity
                 "moving_to_position": 23, "hmt_active": 24, "make_up_active": 25, "encoder_a": 26, "encoder_b": 27,
                 "trip": 28, "attention": 29}
 HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+1, 0): 3}
+# operations MCode writes with a program-only statement (CL, BR loops, H): an immediate stream of
+# another dialect holding one runs as a program
+PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
 
@@ -316,12 +319,12 @@ class Writer:
             self.line(SAVE_TRAILER, *self.listing.lines[-1].sources)
 
     def as_program(self, routine: ir.Routine) -> bool:
-        """Another dialect's immediate stream that branches, loops or calls cannot run outside a
-        program in MCode (BR, CL are program statements): it becomes the program at address 1."""
+        """Another dialect's immediate stream that branches, loops, calls or waits cannot run outside
+        a program in MCode (BR, CL and H are program statements, M112): it becomes the program at
+        address 1."""
         if not self.foreign or routine.kind is not ir.RoutineKind.IMMEDIATE:
             return False
-        return len(routine.blocks) > 1 or any(isinstance(op, (ir.Call, ir.WaitInput)) for b in routine.blocks
-                                              for op in b.ops)
+        return len(routine.blocks) > 1 or any(isinstance(op, PROGRAM_ONLY) for b in routine.blocks for op in b.ops)
 
     def program_order(self) -> list[ir.Routine]:
         """Routines in source order; in a converted program the one that runs first leads the

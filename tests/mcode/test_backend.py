@@ -60,3 +60,17 @@ def test_unsupported_constructs_are_reported_not_raised():
     listing = backend.emit(module, PROFILE)
     assert [d.code for d in listing.diagnostics] == ["G003", "G003"]
     assert all(d.span.line == 3 for d in listing.diagnostics)
+
+
+def test_another_dialects_stream_that_waits_for_a_move_runs_as_a_program():
+    """H (wait for the move) is a program statement in MCode (M112): an X150 stream that moves and
+    waits becomes the program at address 1, run by EX 1, and it behaves as its source."""
+    from mcc.sim.verify import check_translation
+
+    source = "MN\nA10\nV10\nD-100000\nG\nT0.5\n1O1\n"
+    result = driver.compile_file("s.x150", "x150", target="mcode", text=source)
+    assert not result.has_errors, [d.message for d in result.diagnostics]
+    lines = [line for line in result.listing.text.splitlines() if not line.startswith("'")]
+    assert lines[0] == "PG 1" and "H" in lines and lines[-2:] == ["PG", "EX 1"]
+    assert not driver.check_file("o.mxt", "mcode", text=result.listing.text).has_errors
+    assert not check_translation("s.x150", "x150", source, result.listing.text, "mcode")
