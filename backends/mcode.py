@@ -405,9 +405,10 @@ class Writer:
             self.line(f"BR {target},{self.cond(cond)}", span)
 
     def unsupported(self, span, what: str) -> None:
-        span = span or self.fallback_span()
-        if span is not None:
-            self.diags.add("G003", span, f"{what} cannot be written in MCode")
+        # never dropped: an IR built without spans (a program generated in memory) is reported on
+        # the file, since a silently missing line changes what the program does
+        span = span or self.fallback_span() or Span(self.module.path or "<ir>", 1, 1, 1, 1, 0, 0)
+        self.diags.add("G003", span, f"{what} cannot be written in MCode")
 
     def fallback_span(self):
         for _, block in self.module.blocks():
@@ -528,7 +529,27 @@ class Writer:
             return f"{self.prefix(op.axis)}MS={self.resolution(op.value)}"
         if op.param is ir.MotionParam.MAX_SPEED and self.foreign:
             self.check_initial_speed(op)
-        return f"{self.prefix(op.axis)}{PARAM_NAMES[op.param]}={self.rate(op.value)}"
+        name = PARAM_NAMES[op.param]
+        return f"{self.prefix(op.axis)}{name}={self.ranged(name, self.rate(op.value), op)}"
+
+    def ranged(self, name: str, text: str, op: ir.SetMotion) -> str:
+        """A constant setting inside the catalog's range for `name`: a speed just under the minimum
+        (an initial speed of 0 where VI starts at 1 step/s) is written as the minimum with warning
+        G005 (it changes a move's time by about 1/acceleration); anything else outside is refused."""
+        command = self.cat.lookup(name)
+        bounds = command.entry.range if command is not None else None
+        try:
+            value = float(text)
+        except ValueError:
+            return text  # computed at run time: the drive checks it
+        if bounds is None or bounds[0] <= value <= bounds[1]:
+            return text
+        low, high = bounds
+        if op.param in (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED) and 0 <= value < low:
+            self.diags.add("G005", op.span or self.fallback_span() or Span(self.module.path or "<ir>", 1, 1, 1, 1, 0, 0),
+                           f"the speed {text} is below MCode's minimum {name} of {low:g} steps/s: written as {low:g}")
+            return format_number(low)
+        raise Unsupported(f"{name}={text}, outside what MCode accepts ({low:g} to {high:g})")
 
     def check_initial_speed(self, op: ir.SetMotion) -> None:
         """MCode refuses VM not above VI (Error 22/23). A converted program that never set the initial

@@ -19,12 +19,13 @@ The first difference is returned as a `Divergence` naming its time, source line 
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
 
 from mcc.compiler import ir, units
 from mcc.sim.interpreter import Options, simulate
-from mcc.sim.scenario import InputEvent, Scenario
+from mcc.sim.scenario import AxisSwitches, InputEvent, Scenario
 from mcc.sim.trace import Event, Trace
 
 TIME_ABS = 0.01  # seconds
@@ -87,15 +88,49 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     """The first divergence between `source` and `output` on the scenarios, or None.
 
     Both modules must keep the IR contract (`interpreter.ContractError` otherwise)."""
+    source, output = _stated_steps(source, output), _stated_steps(output, source)
     for scenario in scenarios or default_scenarios(source):
         opts = options or Options(until=scenario.until or VERIFY_UNTIL, max_steps=VERIFY_STEPS)
         opts.samples = False
+        ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
         a = simulate(source, scenario, _copy(opts), source_profile)
         b = simulate(output, scenario, _copy(opts), output_profile)
-        found = compare_traces(a, b, units.ratio(source.steps_per_rev, output.steps_per_rev), scenario.name)
+        moved = _translated(scenario, _axis_map(a, b), ratio)
+        if moved is not scenario:  # the switches and positions of the output's axes, in its steps
+            b = simulate(output, moved, _copy(opts), output_profile)
+        found = compare_traces(a, b, ratio, scenario.name)
         if found is not None:
             return found
     return None
+
+
+def _translated(scenario: Scenario, axis_map: dict[str, str], ratio: Fraction) -> Scenario:
+    """The scenario as the output sees it: the source's axis names and steps turned into the
+    output's (a home switch on MCode axis 1 is on Arcus axis X), or the scenario itself."""
+    if all(axis_map.get(a, a) == a for a in scenario.axes) and ratio == 1 and \
+            all(axis_map.get(e.axis, e.axis) == e.axis for e in scenario.events if e.axis):
+        return scenario
+    scale = float(ratio)
+
+    def at(value):
+        return None if value is None else value * scale
+
+    axes = {axis_map.get(name, name): AxisSwitches(sw.home * scale, at(sw.limit_plus), at(sw.limit_minus))
+            for name, sw in scenario.axes.items()}
+    events = [dataclasses.replace(e, axis=axis_map.get(e.axis, e.axis), passes=e.passes * scale) if e.axis else e
+              for e in scenario.events]
+    return dataclasses.replace(scenario, axes=axes, events=events)
+
+
+def _stated_steps(module: ir.Module, other: ir.Module) -> ir.Module:
+    """`module`, with the other side's steps per revolution when it does not state its own.
+
+    A program that does not say how many steps a revolution has (an Arcus profile without
+    `steps_per_rev`) is written one step per source step (`units.ratio` is 1), so its machine is
+    the other side's: the simulator's default speeds, which are in revolutions, must be too."""
+    if module.steps_per_rev or not other.steps_per_rev:
+        return module
+    return dataclasses.replace(module, steps_per_rev=other.steps_per_rev)
 
 
 def _copy(options: Options) -> Options:

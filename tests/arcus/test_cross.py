@@ -78,7 +78,9 @@ def test_an_acceleration_set_before_the_speeds_is_written_when_they_are_known() 
 def test_a_ramp_that_cannot_be_computed_is_refused_at_the_move() -> None:
     listing = backend.emit(module("mcode", setm(ir.MotionParam.ACCEL, 10000, SPS2),
                                   move(ir.MoveMode.ABSOLUTE, ("1", 10))), PROFILE)
-    assert len(errors(listing)) == 1 and "speeds that are not known" in errors(listing)[0]
+    # reported where the acceleration is set (nothing follows that would make it a ramp time) and at the move
+    assert len(errors(listing)) == 2
+    assert all("speeds that are not known" in e for e in errors(listing))
 
 
 def test_a_deceleration_other_than_the_acceleration_is_refused() -> None:
@@ -298,7 +300,8 @@ def test_an_acceleration_becomes_the_ramp_time_of_the_speeds_in_force(initial: i
     listing = backend.emit(module("x150", setm(ir.MotionParam.INITIAL_SPEED, initial, SPS),
                                   setm(ir.MotionParam.MAX_SPEED, initial + span, SPS),
                                   setm(ir.MotionParam.ACCEL, accel, SPS2)), PROFILE)
-    ramp = max(1, round(span / accel * 1000))
+    lspd = max(initial, 1)  # the LSPD written: the PMX-4EX-SA's minimum is 1 pulse/s (G005 below it)
+    ramp = max(1, round((initial + span - lspd) / accel * 1000))
     assert code_lines(listing)[2] == f"ACCX={ramp}"
 
 

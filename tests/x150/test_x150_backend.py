@@ -96,7 +96,7 @@ def test_foreign_routines_get_free_sequence_numbers_and_modes():
     listing = backend.emit(module(main, sub, dialect="mcode"), PROFILE)
     assert not listing.diagnostics.items
     assert [t for t in listing.text.splitlines() if not t.startswith(";")] == [
-        "XE1", "XD1", "1MN", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT", "XE64", "XD64", "SV", "XT"]
+        "XE1", "XD1", "1MQ", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT", "XE64", "XD64", "SV", "XT"]
 
 
 def test_irreducible_flow_is_x201():
