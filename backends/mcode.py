@@ -38,7 +38,7 @@ NEGATE = {"=": "!=", "!=": "=", "<": ">=", "<=": ">", ">": "<=", ">=": "<"}  # i
 FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
              "sqrt": "SQ", "tan": "TG", "atan": "T_"}
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
-         "power": "TM"}
+         "power_loss": "TM"}
 UNIT_FACTORS = {ir.Unit.S: 1000}  # delays are written in ms
 MS_TO_S = 0.001
 FULL_STEPS_PER_REV = 200
@@ -51,7 +51,7 @@ INDEXED_READINGS = {"input": ("I", range(1, 5)), "output": ("O", range(1, 4)), "
 # Neutral settings -> (MCode variable, factor from IR units to MCode units).
 SETTINGS = {"error_code": ("ER", 1), "run_current": ("RC", 1), "hold_current": ("HC", 1),
             "settle_time": ("MT", 1000), "hold_delay": ("HT", 1000), "encoder_enable": ("EE", 1),
-            "input_debounce": ("D", 1000)}
+            "input_debounce": ("D", 1000), "handler_enable": ("TE", 1)}
 INPUT_TYPES = {"general": 0, "home": 1, "limit_plus": 2, "limit_minus": 3, "run_program": 4, "soft_stop": 5,
                "pause": 6, "jog_plus": 7, "jog_minus": 8, "reset": 11, "capture": 12, "step_direction": 13,
                "encoder_ab": 14, "step_up_down": 15}

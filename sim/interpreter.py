@@ -19,7 +19,7 @@ import heapq
 import math
 from dataclasses import dataclass
 
-from mcc.compiler import ir, ir_verify
+from mcc.compiler import ir, ir_names, ir_verify
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import Span
 from mcc.sim import values
@@ -33,6 +33,16 @@ DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": i
 DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
 # Events that make a handler fire once and disarm (MCode trips are one-shot until re-armed).
 ONE_SHOT_DIALECTS = {"mcode"}
+# Dialects whose handlers fire only while their bit of the `handler_enable` setting is set (MCode TE).
+ENABLE_BITS = {event: bit for bit, event in ir_names.HANDLER_ENABLE_BITS.items()}
+GATED_DIALECTS = {"mcode"}
+# Which handlers a runtime fault may run, the first installed one wins (docs/SIMULATOR.md).
+HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("stall", "fault", "error"),
+                 "power": ("power_loss",)}
+# Dialects in which a fault handler takes over the program instead of interrupting it: X150 "program
+# control will pass to a fault sequence" (XFK, L2305).
+FAULT_TAKES_OVER = {"x150"}
+DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
@@ -151,6 +161,8 @@ class Simulator:
         self.polling = False
         self.poll_changes = 0
         self.poll_steps = 0
+        self.enable_mask = 0  # `handler_enable` (MCode TE): the events allowed to fire
+        self.capture_input = self.scenario.capture  # None: the program's, else DEFAULT_CAPTURE_INPUT
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -172,6 +184,8 @@ class Simulator:
         for n, event in enumerate(self.scenario.events):
             if event.at is not None:
                 self._schedule(event.at, "input", (event.input, event.value))
+        for incident in self.scenario.incidents:
+            self._schedule(incident.at, incident.kind, (incident.axis,))
         entry = self._entry()
         if entry is None or entry.entry is None:
             raise Stop("end", "the module has no routine to run")
@@ -281,6 +295,8 @@ class Simulator:
             elif item.kind == "timer":
                 handler = self.handlers["time"]
                 self._trigger("time", handler)
+            elif item.kind in ("stall", "fault", "power"):
+                self._incident(item.kind, item.payload[0])
         self._check_when()
 
     # -- executing the program -------------------------------------------------------------------
@@ -388,12 +404,18 @@ class Simulator:
     def _fault(self, fault: RuntimeFault, item) -> None:
         span = getattr(item, "span", None)
         self._event(item, "error", code=fault.code, message=str(fault))
-        handler = self.handlers.get("fault" if fault.kind == "fault" else "error")
-        if fault.kind == "fault" and handler is None:
-            handler = self.handlers.get("error")
-        if fault.kind != "fatal" and handler is not None and handler.armed and handler.routine:
+        handler = None
+        for event in HANDLER_CHAIN.get(fault.kind, ()):
+            found = self.handlers.get(event)
+            if found is not None and found.armed and found.routine:
+                handler = found
+                break
+        if handler is not None:
             self.diags.add(fault.code, span or _file_span(self.module.path),
                            f"{fault} (handled by '{handler.routine}')", severity=_severity("warning"))
+            if handler.event == "fault" and self.module.dialect in FAULT_TAKES_OVER:
+                self.stack.clear()  # the fault sequence replaces the program (a kill ends loops and waits)
+                self.pending = [p for p in self.pending if p[0] != "fault"]
             self._trigger(handler.event, handler)
             return
         self.diags.add(fault.code, span or _file_span(self.module.path), str(fault))
@@ -502,6 +524,17 @@ class Simulator:
 
     def _do_sethandler(self, op) -> Wait | None:
         self._set_handler(op)
+        return None
+
+    def _do_setting(self, op) -> Wait | None:
+        """The settings the model has: which handlers are enabled, which input captures."""
+        if op.name == "handler_enable":
+            mask = self._eval_quiet(op.value)
+            if mask is not None:
+                self._set_enable_mask(op, int(mask))
+        elif op.name == "input_function" and isinstance(op.value, ir.Text) and op.value.value == "capture" \
+                and self.scenario.capture is None and op.index is not None:
+            self.capture_input = op.index
         return None
 
     def _do_native(self, op) -> Wait | None:
@@ -697,6 +730,29 @@ class Simulator:
             if handler is not None and handler.armed:
                 self._trigger("position", handler)
 
+    def _incident(self, kind: str, axis_name: str) -> None:
+        """A scenario's stall, drive fault or power loss (docs/SIMULATOR.md, "Incidents")."""
+        if kind == "power":
+            for axis in list(self.machine.axes.values()):
+                self._stop_axis(axis, False, None, record=False)
+            self._event(None, "power_loss")
+            self._fault(RuntimeFault("S013", "the main power was lost", kind="power"), None)
+            return
+        names = [axis_name] if axis_name else list(self.machine.axes)
+        for name in names:
+            axis = self._axis(name)
+            op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            self._stop_axis(axis, False, None, record=False)
+            if kind == "stall":
+                axis.stalled = 1
+            axis.fault = 1
+            self._event(op, kind, axis=name, position=_round(axis.at(self.now)))
+        what = f"axis {axis_name}" if axis_name else "the drive"
+        if kind == "stall":
+            self._fault(RuntimeFault("S011", f"{what} stalled", kind="stall"), None)
+        else:
+            self._fault(RuntimeFault("S012", f"{what} reported a fault", kind="fault"), None)
+
     def _motion_end(self, axis: Axis) -> None:
         motion = axis.motion
         if motion is None:
@@ -767,6 +823,13 @@ class Simulator:
         self._event(None, "input", input=index, value=value, **where)
         if old != value:
             self.changes += 1
+            capture = self.capture_input if self.capture_input is not None else DEFAULT_CAPTURE_INPUT
+            if index == capture and value == 1:
+                self._event(None, "capture", input=index,
+                            positions={n: _round(a.at(self.now)) for n, a in self.machine.axes.items()})
+                handler = self.handlers.get("capture")
+                if handler is not None and handler.armed:
+                    self._trigger("capture", handler)
             handler = self.handlers.get("input")
             if handler is not None and handler.armed:
                 wanted = handler.args
@@ -807,7 +870,7 @@ class Simulator:
             handler.routine = op.routine
         if op.args:
             handler.args = op.args
-        handler.armed = True
+        handler.armed = self._enabled(op.event)
         handler.last = False
         self._event(op, "handler_on", event=op.event, routine=handler.routine)
         if op.event == "time" and handler.args:
@@ -820,11 +883,35 @@ class Simulator:
         elif op.event == "when":
             self._check_when()
 
+    def _enabled(self, event: str) -> bool:
+        """Whether a handler for `event` may fire: in MCode a trip fires only while its TE bit is set."""
+        if self.module.dialect not in GATED_DIALECTS or event not in ENABLE_BITS:
+            return True
+        return bool(self.enable_mask & ENABLE_BITS[event])
+
+    def _set_enable_mask(self, op, mask: int) -> None:
+        self.enable_mask = mask
+        for event, handler in self.handlers.items():
+            if event in ENABLE_BITS and handler.routine:
+                was = handler.armed
+                handler.armed = self._enabled(event)
+                if handler.armed and not was:
+                    if event == "position":
+                        axis = self.machine.axes.get(self._handler_axis())
+                        if axis is not None:
+                            self._watch(axis)
+                    elif event == "time" and handler.args:
+                        handler.fired_at = self.now
+                        self._schedule(self.now + float(self._eval(handler.args[0])), "timer", (self.now,))
+        self._event(op, "handler_enable", mask=mask)
+
     def _trigger(self, event: str, handler: Handler) -> None:
         if not handler.routine:
             return
         if self.module.dialect in ONE_SHOT_DIALECTS or event in ("time", "position"):
             handler.armed = False
+            if event in ENABLE_BITS:
+                self.enable_mask &= ~ENABLE_BITS[event]  # a fired trip clears its TE bit (L5657)
         self.pending.append((event, handler))
 
     def _fire_pending(self) -> None:
@@ -927,7 +1014,9 @@ class Simulator:
             lim = axis.limits(m.shared)
             return {"max_speed": lim.maximum, "initial_speed": lim.initial, "accel": lim.accel,
                     "decel": lim.decel}[meaning]
-        return 0  # stalled: the model never stalls
+        if meaning == "stalled":
+            return axis.stalled
+        return 0
 
     def _cond(self, cond) -> bool:
         if isinstance(cond, ir.Compare):
@@ -993,6 +1082,7 @@ OP_METHODS = {
     ir.Call: Simulator._do_call,
     ir.SetHandler: Simulator._do_sethandler,
     ir.Native: Simulator._do_native,
+    ir.Setting: Simulator._do_setting,
 }
 
 
