@@ -19,7 +19,7 @@ import heapq
 import math
 from dataclasses import dataclass
 
-from mcc.compiler import ir, ir_names, ir_verify
+from mcc.compiler import ir, ir_names, ir_print, ir_verify
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import Span
 from mcc.sim import values
@@ -44,7 +44,7 @@ HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("st
 FAULT_TAKES_OVER = {"x150"}
 DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
-QUIET_KINDS = frozenset({"call", "return", "goto"})
+QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 
 
@@ -137,6 +137,8 @@ class Simulator:
         self.nesting = int(nesting or DEFAULT_NESTING)
         self.routines = {r.name: r for r in module.routines}
         self.block_of = {b.label: b for _, b in module.blocks()}
+        self.block_index = {b.label: n for r in module.routines for n, b in enumerate(r.blocks)}
+        self.went_back = False  # the last terminator jumped back (to a block at or before its own)
         self.machine = Machine(inputs=dict(self.scenario.inputs), analog=dict(self.scenario.analog))
         self.machine.shared["defaults"] = defaults(module.steps_per_rev)
         for axis in (profile.axes if profile is not None else ()):
@@ -318,6 +320,7 @@ class Simulator:
                 frame.wait = None
                 if not retry:
                     continue
+            self.went_back = False
             self.trace.steps += 1
             if polling:
                 self.poll_steps += 1
@@ -354,7 +357,10 @@ class Simulator:
                 polling, threshold = False, self.options.spin
             else:
                 quiet += 1
-                if quiet >= threshold and self.stack:
+                # a polling loop pauses where it goes round (a jump back), never between two reads
+                # of one round: a translation that splits a condition over several statements
+                # then sees the inputs change at the same point of the loop as its source
+                if quiet >= threshold and self.stack and self.went_back:
                     self.stack[-1].wait = Wait("poll", line=self._line_now())
                     self.polling, self.poll_changes = True, self.changes
                     return
@@ -371,11 +377,14 @@ class Simulator:
 
     def _terminator(self, frame: Frame) -> None:
         term = frame.block.terminator
+        here = self.block_index.get(frame.block.label, 0)
         if isinstance(term, ir.Jump):
             frame.block, frame.index = self.block_of[term.target], 0
+            self.went_back = self.block_index.get(term.target, 0) <= here
         elif isinstance(term, ir.Branch):
             target = term.then if self._cond(term.cond) else term.otherwise
             frame.block, frame.index = self.block_of[target], 0
+            self.went_back = self.block_index.get(target, 0) <= here
         elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):
             self.stack.pop()
             if frame.routine.kind is not ir.RoutineKind.IMMEDIATE:
@@ -383,6 +392,7 @@ class Simulator:
         elif isinstance(term, ir.GotoRoutine):
             routine = self._routine(term.routine)
             frame.routine, frame.block, frame.index = routine, routine.entry, 0
+            self.went_back = True
             self._event(term, "goto", routine=routine.name)
         else:  # End, FallOff of the main program, or no terminator
             self.stack.clear()
@@ -538,6 +548,9 @@ class Simulator:
         return None
 
     def _do_native(self, op) -> Wait | None:
+        args = [values.plain(v) if (v := self._eval_quiet(a)) is not None else ir_print.expr_text(a)
+                for a in op.args]
+        self._event(op, "native", dialect=op.dialect, mnemonic=op.mnemonic, args=args, axis=op.axis)
         if op.mnemonic not in self.natives:
             self.natives.add(op.mnemonic)
             self.diags.add("S006", op.span or _file_span(self.module.path),
@@ -1023,8 +1036,12 @@ class Simulator:
             left, right = self._eval(cond.left), self._eval(cond.right)
             return values.compare(cond.op, left, right)
         if isinstance(cond, ir.Logic):
-            left, right = self._cond(cond.left), self._cond(cond.right)  # both are evaluated
-            return (left and right) if cond.op == "and" else (left or right)
+            # left to right, the right only when the left does not decide (a division by zero on
+            # the right of a false `and` does not fault): how the backends write it, nested IFs
+            left = self._cond(cond.left)
+            if left == (cond.op == "or"):
+                return left
+            return self._cond(cond.right)
         if isinstance(cond, ir.Truth):
             return self._eval(cond.expr) != 0
         if isinstance(cond, ir.InputMatch):

@@ -33,6 +33,10 @@ TIME_REL = 0.01  # share of the event's time
 POSITION_TOLERANCE = 1.0  # output steps
 OBSERVABLE = ("move", "arc", "slew", "stop", "home", "home_end", "set_position", "output", "print", "limit",
               "error", "move_end")
+# A stricter comparison for transformations that keep the program's structure of device commands
+# (the optimizer, a backend reading back its own dialect): also the native commands in order, the
+# handlers installed and removed, the drive switched on and off.
+STRICT = OBSERVABLE + ("native", "handler_on", "handler_off", "drive")
 LIMITS = ("time-limit", "step-limit")
 VERIFY_UNTIL = 30.0
 VERIFY_STEPS = 200_000
@@ -84,7 +88,8 @@ def default_scenarios(module: ir.Module) -> list[Scenario]:
 
 
 def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | None = None,
-            options: Options | None = None, source_profile=None, output_profile=None) -> Divergence | None:
+            options: Options | None = None, source_profile=None, output_profile=None,
+            kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False) -> Divergence | None:
     """The first divergence between `source` and `output` on the scenarios, or None.
 
     Both modules must keep the IR contract (`interpreter.ContractError` otherwise)."""
@@ -98,7 +103,7 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
         moved = _translated(scenario, _axis_map(a, b), ratio)
         if moved is not scenario:  # the switches and positions of the output's axes, in its steps
             b = simulate(output, moved, _copy(opts), output_profile)
-        found = compare_traces(a, b, ratio, scenario.name)
+        found = compare_traces(a, b, ratio, scenario.name, kinds, by_count)
         if found is not None:
             return found
     return None
@@ -137,17 +142,25 @@ def _copy(options: Options) -> Options:
     return Options(options.until, options.max_steps, options.nesting, options.spin, options.poll, False)
 
 
-def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "") -> Divergence | None:
-    """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps."""
+def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "",
+                   kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False) -> Divergence | None:
+    """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps.
+
+    `kinds` are the events compared (OBSERVABLE, or STRICT). A run cut by a limit is compared up to
+    the earlier cut-off time, or with `by_count` on the events both made (a loop that never waits
+    stops at the step limit at time 0, and a transformation may change the steps per round)."""
     cut = None
-    if a.stopped in LIMITS or b.stopped in LIMITS:
+    limited = a.stopped in LIMITS or b.stopped in LIMITS
+    if limited and not by_count:
         cut = min(a.time, b.time) - TIME_ABS
-    elif a.stopped != b.stopped:
+    elif not limited and a.stopped != b.stopped:
         return Divergence(scenario, min(a.time, b.time), _last_line(a),
                           f"the source stopped with '{a.stopped}' ({a.reason}), the output with '{b.stopped}' "
                           f"({b.reason})")
     axis_map = _axis_map(a, b)
-    ea, eb = _observable(a, cut), _observable(b, cut)
+    ea, eb = _observable(a, cut, kinds), _observable(b, cut, kinds)
+    if limited and by_count:
+        ea, eb = ea[:min(len(ea), len(eb))], eb[:min(len(ea), len(eb))]
     scale = float(ratio)
     for n in range(max(len(ea), len(eb))):
         if n >= len(ea):
@@ -160,7 +173,7 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
         problem = _differ(x, y, axis_map, scale)
         if problem:
             return Divergence(scenario, x.t, x.line, problem)
-    if cut is None:
+    if not limited:
         for axis, pos in a.axes.items():
             other = b.axes.get(axis_map.get(axis, axis))
             if other is not None and abs(pos * scale - other) > POSITION_TOLERANCE + 1e-6:
@@ -174,10 +187,10 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
     return None
 
 
-def _observable(trace: Trace, cut: float | None) -> list[Event]:
+def _observable(trace: Trace, cut: float | None, kinds: tuple[str, ...] = OBSERVABLE) -> list[Event]:
     out = []
     for event in trace.events:
-        if event.kind not in OBSERVABLE or (cut is not None and event.t > cut):
+        if event.kind not in kinds or (cut is not None and event.t > cut):
             continue
         if event.kind == "move" and event.data["from"] == event.data["to"]:
             continue  # a move to where the axis already is does nothing
@@ -232,7 +245,11 @@ def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float) -> str:
         if dx["text"].strip() != dy["text"].strip():
             return f"the source prints {dx['text']!r}, the output {dy['text']!r}"
         return ""
-    for key in ("output", "value", "code", "ramp", "switch"):
+    if x.kind == "native":
+        if (dx["mnemonic"], dx["args"]) != (dy["mnemonic"], dy["args"]):
+            return f"{_show(x)} in the source, {_show(y)} in the output"
+        return ""
+    for key in ("output", "value", "code", "ramp", "switch", "event", "on"):
         if key in dx and dx[key] != dy.get(key):
             return f"{_show(x)} in the source, {_show(y)} in the output"
     return ""
