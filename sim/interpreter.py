@@ -18,6 +18,7 @@ from __future__ import annotations
 import heapq
 import math
 from dataclasses import dataclass
+from decimal import Decimal
 
 from mcc.compiler import ir, ir_names, ir_print, ir_verify
 from mcc.compiler.diagnostics import Diagnostics
@@ -965,6 +966,9 @@ class Simulator:
         if isinstance(expr, ir.BinOp):
             left = self._eval(expr.left)
             right = self._eval(expr.right)
+            if self.default_type is ir.VarType.DECIMAL and expr.op in ("/", "%") \
+                    and isinstance(left, int) and isinstance(right, int):
+                left = Decimal(left)  # X150 computes in decimals: 1/3 of two literals too
             try:
                 return values.binary(expr.op, left, right)
             except values.ArithmeticFault as exc:

@@ -26,15 +26,8 @@ def same_behaviour(before: ir.Module, after: ir.Module, scenarios=None, options:
     """Assert that `after` (optimized, compiled, read back) behaves as `before` does."""
     chosen = scenarios if scenarios is not None else default_scenarios(before)[:MAX_SCENARIOS]
     found = compare(before, after, chosen, options or OPTIONS, kinds=STRICT, by_count=True)
-    assert found is None, str(found)
+    if found is not None:
+        from mcc.compiler.ir_print import to_text
 
+        raise AssertionError(f"{found}\n--- before:\n{to_text(before)}\n--- after:\n{to_text(after)}")
 
-def divides_by_zero(module: ir.Module) -> bool:
-    """Whether a run of `module` on its default scenarios stops on a division by zero (S002)."""
-    from mcc.sim import simulate
-
-    for scenario in default_scenarios(module)[:MAX_SCENARIOS]:
-        trace = simulate(module, scenario, Options(OPTIONS.until, OPTIONS.max_steps, samples=False))
-        if any(d.code == "S002" for d in trace.diagnostics):
-            return True
-    return False

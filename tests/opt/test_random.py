@@ -3,10 +3,10 @@ oracle sees the same behaviour."""
 
 from __future__ import annotations
 
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from sim_behaviour import divides_by_zero, same_behaviour
+from sim_behaviour import same_behaviour
 from random_ir import modules
 from mcc.compiler import ir, profiles
 from mcc.compiler.ir_verify import verify
@@ -20,10 +20,6 @@ CHOICES = [(level, None) for level in LEVELS] + [("Os", name) for name in PASSES
 def test_random_programs_keep_contract_and_behaviour(dialect, data):
     module = data.draw(modules(dialect))
     assert verify(module) == []
-    # Known optimizer bug the simulator found: dead-store elimination drops a store whose value
-    # divides by zero, so the runtime error (S002) disappears from the optimized program. Until
-    # dead_stores.py keeps a store that may fault, such programs are left out here.
-    assume(not divides_by_zero(module))
     profile = profiles.load(module.profile)
     for level, passes in CHOICES:
         work = ir.copy_module(module)
