@@ -753,9 +753,11 @@ class Simulator:
             self._fault(RuntimeFault("S013", "the main power was lost", kind="power"), None)
             return
         names = [axis_name] if axis_name else list(self.machine.axes)
+        running = None  # the move that was running: the diagnostic's line
         for name in names:
             axis = self._axis(name)
             op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            running = running or op
             self._stop_axis(axis, False, None, record=False)
             if kind == "stall":
                 axis.stalled = 1
@@ -763,9 +765,9 @@ class Simulator:
             self._event(op, kind, axis=name, position=_round(axis.at(self.now)))
         what = f"axis {axis_name}" if axis_name else "the drive"
         if kind == "stall":
-            self._fault(RuntimeFault("S011", f"{what} stalled", kind="stall"), None)
+            self._fault(RuntimeFault("S011", f"{what} stalled", kind="stall"), running)
         else:
-            self._fault(RuntimeFault("S012", f"{what} reported a fault", kind="fault"), None)
+            self._fault(RuntimeFault("S012", f"{what} reported a fault", kind="fault"), running)
 
     def _motion_end(self, axis: Axis) -> None:
         motion = axis.motion
