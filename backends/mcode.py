@@ -38,7 +38,7 @@ NEGATE = {"=": "!=", "!=": "=", "<": ">=", "<=": ">", ">": "<=", ">=": "<"}  # i
 FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
              "sqrt": "SQ", "tan": "TG", "atan": "T_"}
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
-         "power": "TM"}
+         "power_loss": "TM"}
 UNIT_FACTORS = {ir.Unit.S: 1000}  # delays are written in ms
 MS_TO_S = 0.001
 FULL_STEPS_PER_REV = 200
@@ -51,7 +51,7 @@ INDEXED_READINGS = {"input": ("I", range(1, 5)), "output": ("O", range(1, 4)), "
 # Neutral settings -> (MCode variable, factor from IR units to MCode units).
 SETTINGS = {"error_code": ("ER", 1), "run_current": ("RC", 1), "hold_current": ("HC", 1),
             "settle_time": ("MT", 1000), "hold_delay": ("HT", 1000), "encoder_enable": ("EE", 1),
-            "input_debounce": ("D", 1000)}
+            "input_debounce": ("D", 1000), "handler_enable": ("TE", 1)}
 INPUT_TYPES = {"general": 0, "home": 1, "limit_plus": 2, "limit_minus": 3, "run_program": 4, "soft_stop": 5,
                "pause": 6, "jog_plus": 7, "jog_minus": 8, "reset": 11, "capture": 12, "step_direction": 13,
                "encoder_ab": 14, "step_up_down": 15}
@@ -416,9 +416,10 @@ class Writer:
             self.line(f"BR {target},{self.cond(cond)}", span)
 
     def unsupported(self, span, what: str) -> None:
-        span = span or self.fallback_span()
-        if span is not None:
-            self.diags.add("G003", span, f"{what} cannot be written in MCode")
+        # never dropped: an IR built without spans (a program generated in memory) is reported on
+        # the file, since a silently missing line changes what the program does
+        span = span or self.fallback_span() or Span(self.module.path or "<ir>", 1, 1, 1, 1, 0, 0)
+        self.diags.add("G003", span, f"{what} cannot be written in MCode")
 
     def fallback_span(self):
         for _, block in self.module.blocks():
@@ -539,7 +540,27 @@ class Writer:
             return f"{self.prefix(op.axis)}MS={self.resolution(op.value)}"
         if op.param is ir.MotionParam.MAX_SPEED and self.foreign:
             self.check_initial_speed(op)
-        return f"{self.prefix(op.axis)}{PARAM_NAMES[op.param]}={self.rate(op.value)}"
+        name = PARAM_NAMES[op.param]
+        return f"{self.prefix(op.axis)}{name}={self.ranged(name, self.rate(op.value), op)}"
+
+    def ranged(self, name: str, text: str, op: ir.SetMotion) -> str:
+        """A constant setting inside the catalog's range for `name`: a speed just under the minimum
+        (an initial speed of 0 where VI starts at 1 step/s) is written as the minimum with warning
+        G005 (it changes a move's time by about 1/acceleration); anything else outside is refused."""
+        command = self.cat.lookup(name)
+        bounds = command.entry.range if command is not None else None
+        try:
+            value = float(text)
+        except ValueError:
+            return text  # computed at run time: the drive checks it
+        if bounds is None or bounds[0] <= value <= bounds[1]:
+            return text
+        low, high = bounds
+        if op.param in (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED) and 0 <= value < low:
+            self.diags.add("G005", op.span or self.fallback_span() or Span(self.module.path or "<ir>", 1, 1, 1, 1, 0, 0),
+                           f"the speed {text} is below MCode's minimum {name} of {low:g} steps/s: written as {low:g}")
+            return format_number(low)
+        raise Unsupported(f"{name}={text}, outside what MCode accepts ({low:g} to {high:g})")
 
     def check_initial_speed(self, op: ir.SetMotion) -> None:
         """MCode refuses VM not above VI (Error 22/23). A converted program that never set the initial

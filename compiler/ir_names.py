@@ -117,11 +117,16 @@ EVENTS: dict[str, str] = {
     "relative": "the axis has moved a distance since the handler was armed (args: steps)",
     "hmt": "a closed-loop (hMT) event such as a lost position",
     "power": "power-up: the handler runs when the device starts",
+    "power_loss": "the main power is lost (the logic supply stays on)",
     "error": "an error occurs while the program runs",
     "fault": "the device enters a fault state",
     "when": "a condition becomes true (args: the condition)",
     "stall": "a stall is detected",
 }
+
+# The bits of the `handler_enable` setting (MCode TE, L5657-L5696): the events they let fire.
+HANDLER_ENABLE_BITS: dict[int, str] = {1: "input", 2: "position", 4: "capture", 8: "time", 16: "relative",
+                                       32: "hmt", 64: "power_loss"}
 
 
 @dataclass(frozen=True)
@@ -143,6 +148,8 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
                 ("mcode",)),
     SettingInfo("error_code", Unit.NONE, "the device's error code: writing 0 clears the error",
                 ("mcode",)),
+    SettingInfo("handler_enable", Unit.NONE, "which installed handlers may fire: a bit mask in "
+                "HANDLER_ENABLE_BITS order; a handler that fires clears its bit (MCode TE)", ("mcode",)),
     SettingInfo("input_debounce", Unit.S, "time input `index` must hold a new level before it counts",
                 ("mcode",)),
     SettingInfo("input_function", Unit.NONE, "what input `index` does: a name of INPUT_FUNCTIONS", ("mcode",)),

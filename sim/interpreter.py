@@ -18,8 +18,9 @@ from __future__ import annotations
 import heapq
 import math
 from dataclasses import dataclass
+from decimal import Decimal
 
-from mcc.compiler import ir, ir_verify
+from mcc.compiler import ir, ir_names, ir_print, ir_verify
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import Span
 from mcc.sim import values
@@ -33,8 +34,18 @@ DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": i
 DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
 # Events that make a handler fire once and disarm (MCode trips are one-shot until re-armed).
 ONE_SHOT_DIALECTS = {"mcode"}
+# Dialects whose handlers fire only while their bit of the `handler_enable` setting is set (MCode TE).
+ENABLE_BITS = {event: bit for bit, event in ir_names.HANDLER_ENABLE_BITS.items()}
+GATED_DIALECTS = {"mcode"}
+# Which handlers a runtime fault may run, the first installed one wins (docs/SIMULATOR.md).
+HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("stall", "fault", "error"),
+                 "power": ("power_loss",)}
+# Dialects in which a fault handler takes over the program instead of interrupting it: X150 "program
+# control will pass to a fault sequence" (XFK, L2305).
+FAULT_TAKES_OVER = {"x150"}
+DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
-QUIET_KINDS = frozenset({"call", "return", "goto"})
+QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 
 
@@ -127,6 +138,8 @@ class Simulator:
         self.nesting = int(nesting or DEFAULT_NESTING)
         self.routines = {r.name: r for r in module.routines}
         self.block_of = {b.label: b for _, b in module.blocks()}
+        self.block_index = {b.label: n for r in module.routines for n, b in enumerate(r.blocks)}
+        self.went_back = False  # the last terminator jumped back (to a block at or before its own)
         self.machine = Machine(inputs=dict(self.scenario.inputs), analog=dict(self.scenario.analog))
         self.machine.shared["defaults"] = defaults(module.steps_per_rev)
         for axis in (profile.axes if profile is not None else ()):
@@ -151,6 +164,8 @@ class Simulator:
         self.polling = False
         self.poll_changes = 0
         self.poll_steps = 0
+        self.enable_mask = 0  # `handler_enable` (MCode TE): the events allowed to fire
+        self.capture_input = self.scenario.capture  # None: the program's, else DEFAULT_CAPTURE_INPUT
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -172,6 +187,8 @@ class Simulator:
         for n, event in enumerate(self.scenario.events):
             if event.at is not None:
                 self._schedule(event.at, "input", (event.input, event.value))
+        for incident in self.scenario.incidents:
+            self._schedule(incident.at, incident.kind, (incident.axis,))
         entry = self._entry()
         if entry is None or entry.entry is None:
             raise Stop("end", "the module has no routine to run")
@@ -281,6 +298,8 @@ class Simulator:
             elif item.kind == "timer":
                 handler = self.handlers["time"]
                 self._trigger("time", handler)
+            elif item.kind in ("stall", "fault", "power"):
+                self._incident(item.kind, item.payload[0])
         self._check_when()
 
     # -- executing the program -------------------------------------------------------------------
@@ -302,6 +321,7 @@ class Simulator:
                 frame.wait = None
                 if not retry:
                     continue
+            self.went_back = False
             self.trace.steps += 1
             if polling:
                 self.poll_steps += 1
@@ -338,7 +358,10 @@ class Simulator:
                 polling, threshold = False, self.options.spin
             else:
                 quiet += 1
-                if quiet >= threshold and self.stack:
+                # a polling loop pauses where it goes round (a jump back), never between two reads
+                # of one round: a translation that splits a condition over several statements
+                # then sees the inputs change at the same point of the loop as its source
+                if quiet >= threshold and self.stack and self.went_back:
                     self.stack[-1].wait = Wait("poll", line=self._line_now())
                     self.polling, self.poll_changes = True, self.changes
                     return
@@ -355,11 +378,14 @@ class Simulator:
 
     def _terminator(self, frame: Frame) -> None:
         term = frame.block.terminator
+        here = self.block_index.get(frame.block.label, 0)
         if isinstance(term, ir.Jump):
             frame.block, frame.index = self.block_of[term.target], 0
+            self.went_back = self.block_index.get(term.target, 0) <= here
         elif isinstance(term, ir.Branch):
             target = term.then if self._cond(term.cond) else term.otherwise
             frame.block, frame.index = self.block_of[target], 0
+            self.went_back = self.block_index.get(target, 0) <= here
         elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):
             self.stack.pop()
             if frame.routine.kind is not ir.RoutineKind.IMMEDIATE:
@@ -367,6 +393,7 @@ class Simulator:
         elif isinstance(term, ir.GotoRoutine):
             routine = self._routine(term.routine)
             frame.routine, frame.block, frame.index = routine, routine.entry, 0
+            self.went_back = True
             self._event(term, "goto", routine=routine.name)
         else:  # End, FallOff of the main program, or no terminator
             self.stack.clear()
@@ -388,12 +415,18 @@ class Simulator:
     def _fault(self, fault: RuntimeFault, item) -> None:
         span = getattr(item, "span", None)
         self._event(item, "error", code=fault.code, message=str(fault))
-        handler = self.handlers.get("fault" if fault.kind == "fault" else "error")
-        if fault.kind == "fault" and handler is None:
-            handler = self.handlers.get("error")
-        if fault.kind != "fatal" and handler is not None and handler.armed and handler.routine:
+        handler = None
+        for event in HANDLER_CHAIN.get(fault.kind, ()):
+            found = self.handlers.get(event)
+            if found is not None and found.armed and found.routine:
+                handler = found
+                break
+        if handler is not None:
             self.diags.add(fault.code, span or _file_span(self.module.path),
                            f"{fault} (handled by '{handler.routine}')", severity=_severity("warning"))
+            if handler.event == "fault" and self.module.dialect in FAULT_TAKES_OVER:
+                self.stack.clear()  # the fault sequence replaces the program (a kill ends loops and waits)
+                self.pending = [p for p in self.pending if p[0] != "fault"]
             self._trigger(handler.event, handler)
             return
         self.diags.add(fault.code, span or _file_span(self.module.path), str(fault))
@@ -504,7 +537,21 @@ class Simulator:
         self._set_handler(op)
         return None
 
+    def _do_setting(self, op) -> Wait | None:
+        """The settings the model has: which handlers are enabled, which input captures."""
+        if op.name == "handler_enable":
+            mask = self._eval_quiet(op.value)
+            if mask is not None:
+                self._set_enable_mask(op, int(mask))
+        elif op.name == "input_function" and isinstance(op.value, ir.Text) and op.value.value == "capture" \
+                and self.scenario.capture is None and op.index is not None:
+            self.capture_input = op.index
+        return None
+
     def _do_native(self, op) -> Wait | None:
+        args = [values.plain(v) if (v := self._eval_quiet(a)) is not None else ir_print.expr_text(a)
+                for a in op.args]
+        self._event(op, "native", dialect=op.dialect, mnemonic=op.mnemonic, args=args, axis=op.axis)
         if op.mnemonic not in self.natives:
             self.natives.add(op.mnemonic)
             self.diags.add("S006", op.span or _file_span(self.module.path),
@@ -697,6 +744,31 @@ class Simulator:
             if handler is not None and handler.armed:
                 self._trigger("position", handler)
 
+    def _incident(self, kind: str, axis_name: str) -> None:
+        """A scenario's stall, drive fault or power loss (docs/SIMULATOR.md, "Incidents")."""
+        if kind == "power":
+            for axis in list(self.machine.axes.values()):
+                self._stop_axis(axis, False, None, record=False)
+            self._event(None, "power_loss")
+            self._fault(RuntimeFault("S013", "the main power was lost", kind="power"), None)
+            return
+        names = [axis_name] if axis_name else list(self.machine.axes)
+        running = None  # the move that was running: the diagnostic's line
+        for name in names:
+            axis = self._axis(name)
+            op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            running = running or op
+            self._stop_axis(axis, False, None, record=False)
+            if kind == "stall":
+                axis.stalled = 1
+            axis.fault = 1
+            self._event(op, kind, axis=name, position=_round(axis.at(self.now)))
+        what = f"axis {axis_name}" if axis_name else "the drive"
+        if kind == "stall":
+            self._fault(RuntimeFault("S011", f"{what} stalled", kind="stall"), running)
+        else:
+            self._fault(RuntimeFault("S012", f"{what} reported a fault", kind="fault"), running)
+
     def _motion_end(self, axis: Axis) -> None:
         motion = axis.motion
         if motion is None:
@@ -767,6 +839,13 @@ class Simulator:
         self._event(None, "input", input=index, value=value, **where)
         if old != value:
             self.changes += 1
+            capture = self.capture_input if self.capture_input is not None else DEFAULT_CAPTURE_INPUT
+            if index == capture and value == 1:
+                self._event(None, "capture", input=index,
+                            positions={n: _round(a.at(self.now)) for n, a in self.machine.axes.items()})
+                handler = self.handlers.get("capture")
+                if handler is not None and handler.armed:
+                    self._trigger("capture", handler)
             handler = self.handlers.get("input")
             if handler is not None and handler.armed:
                 wanted = handler.args
@@ -807,7 +886,7 @@ class Simulator:
             handler.routine = op.routine
         if op.args:
             handler.args = op.args
-        handler.armed = True
+        handler.armed = self._enabled(op.event)
         handler.last = False
         self._event(op, "handler_on", event=op.event, routine=handler.routine)
         if op.event == "time" and handler.args:
@@ -820,11 +899,35 @@ class Simulator:
         elif op.event == "when":
             self._check_when()
 
+    def _enabled(self, event: str) -> bool:
+        """Whether a handler for `event` may fire: in MCode a trip fires only while its TE bit is set."""
+        if self.module.dialect not in GATED_DIALECTS or event not in ENABLE_BITS:
+            return True
+        return bool(self.enable_mask & ENABLE_BITS[event])
+
+    def _set_enable_mask(self, op, mask: int) -> None:
+        self.enable_mask = mask
+        for event, handler in self.handlers.items():
+            if event in ENABLE_BITS and handler.routine:
+                was = handler.armed
+                handler.armed = self._enabled(event)
+                if handler.armed and not was:
+                    if event == "position":
+                        axis = self.machine.axes.get(self._handler_axis())
+                        if axis is not None:
+                            self._watch(axis)
+                    elif event == "time" and handler.args:
+                        handler.fired_at = self.now
+                        self._schedule(self.now + float(self._eval(handler.args[0])), "timer", (self.now,))
+        self._event(op, "handler_enable", mask=mask)
+
     def _trigger(self, event: str, handler: Handler) -> None:
         if not handler.routine:
             return
         if self.module.dialect in ONE_SHOT_DIALECTS or event in ("time", "position"):
             handler.armed = False
+            if event in ENABLE_BITS:
+                self.enable_mask &= ~ENABLE_BITS[event]  # a fired trip clears its TE bit (L5657)
         self.pending.append((event, handler))
 
     def _fire_pending(self) -> None:
@@ -865,6 +968,9 @@ class Simulator:
         if isinstance(expr, ir.BinOp):
             left = self._eval(expr.left)
             right = self._eval(expr.right)
+            if self.default_type is ir.VarType.DECIMAL and expr.op in ("/", "%") \
+                    and isinstance(left, int) and isinstance(right, int):
+                left = Decimal(left)  # X150 computes in decimals: 1/3 of two literals too
             try:
                 return values.binary(expr.op, left, right)
             except values.ArithmeticFault as exc:
@@ -927,15 +1033,21 @@ class Simulator:
             lim = axis.limits(m.shared)
             return {"max_speed": lim.maximum, "initial_speed": lim.initial, "accel": lim.accel,
                     "decel": lim.decel}[meaning]
-        return 0  # stalled: the model never stalls
+        if meaning == "stalled":
+            return axis.stalled
+        return 0
 
     def _cond(self, cond) -> bool:
         if isinstance(cond, ir.Compare):
             left, right = self._eval(cond.left), self._eval(cond.right)
             return values.compare(cond.op, left, right)
         if isinstance(cond, ir.Logic):
-            left, right = self._cond(cond.left), self._cond(cond.right)  # both are evaluated
-            return (left and right) if cond.op == "and" else (left or right)
+            # left to right, the right only when the left does not decide (a division by zero on
+            # the right of a false `and` does not fault): how the backends write it, nested IFs
+            left = self._cond(cond.left)
+            if left == (cond.op == "or"):
+                return left
+            return self._cond(cond.right)
         if isinstance(cond, ir.Truth):
             return self._eval(cond.expr) != 0
         if isinstance(cond, ir.InputMatch):
@@ -993,6 +1105,7 @@ OP_METHODS = {
     ir.Call: Simulator._do_call,
     ir.SetHandler: Simulator._do_sethandler,
     ir.Native: Simulator._do_native,
+    ir.Setting: Simulator._do_setting,
 }
 
 

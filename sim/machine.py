@@ -41,6 +41,7 @@ class Axis:
     # acceleration with the speeds in force when the move starts
     ramp_by_time: dict[str, bool] = field(default_factory=dict)
     fault: int = 0
+    stalled: int = 0  # 1 after the scenario stalled the axis
     enabled: int = 1
     on_end: str = ""  # "home": the position becomes 0 when the motion ends
     cached: Limits | None = None  # the limits in force, until a setting changes

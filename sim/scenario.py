@@ -26,6 +26,19 @@ value = 1
 home = 1200                  # the home switch position (default 0)
 limit_plus = 50000           # positive limit switch (default: none)
 limit_minus = -50000
+
+capture = 1                  # the capture input (default: the one the program sets up, else 1)
+
+[[stall]]                    # axis X stalls at t = 2 s
+at = 2.0
+axis = "X"
+
+[[fault]]                    # a drive fault at t = 3 s (on axis X; without `axis`, on every axis)
+at = 3.0
+axis = "X"
+
+[[power]]                    # the main power is lost at t = 5 s
+at = 5.0
 ```
 """
 
@@ -56,6 +69,18 @@ class AxisSwitches:
     limit_minus: float | None = None
 
 
+@dataclass(frozen=True)
+class Incident:
+    """Something that happens to the machine at a time: a stall, a drive fault, a power loss."""
+
+    kind: str  # "stall" | "fault" | "power"
+    at: float
+    axis: str = ""  # "" : every axis (a fault) or none (a power loss)
+
+
+INCIDENTS = ("stall", "fault", "power")
+
+
 @dataclass
 class Scenario:
     inputs: dict[int, int] = field(default_factory=dict)
@@ -64,6 +89,8 @@ class Scenario:
     axes: dict[str, AxisSwitches] = field(default_factory=dict)
     until: float | None = None
     name: str = "default"
+    incidents: list[Incident] = field(default_factory=list)
+    capture: int | None = None  # the capture input; None: the program's (input_function), else 1
 
     def switches(self, axis: str) -> AxisSwitches:
         return self.axes.get(axis, AxisSwitches())
@@ -93,7 +120,7 @@ def parse(text: str, name: str = "scenario") -> Scenario:
         data = toml.loads(text)
     except toml.TOMLDecodeError as exc:
         raise ScenarioError(f"{name}: invalid TOML: {exc}") from None
-    known = {"until", "inputs", "analog", "events", "axes"}
+    known = {"until", "inputs", "analog", "events", "axes", "capture", *INCIDENTS}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ScenarioError(f"{name}: unknown key '{unknown[0]}' (known: {', '.join(sorted(known))})")
@@ -127,6 +154,25 @@ def parse(text: str, name: str = "scenario") -> Scenario:
                                          passes=float(_number(raw["passes"], f"{where}: passes"))))
         else:
             raise ScenarioError(f"{where}: needs 'at' (seconds) or 'axis' and 'passes' (steps)")
+    if "capture" in data:
+        out.capture = _index(data["capture"], f"{name}: capture")
+    for kind in INCIDENTS:
+        raw_list = data.get(kind, [])
+        if not isinstance(raw_list, list):
+            raise ScenarioError(f"{name}: {kind} must be an array of tables ([[{kind}]])")
+        for n, raw in enumerate(raw_list, 1):
+            where = f"{name}: {kind} {n}"
+            if not isinstance(raw, dict) or "at" not in raw:
+                raise ScenarioError(f"{where}: needs 'at' (seconds)")
+            extra = sorted(set(raw) - ({"at"} if kind == "power" else {"at", "axis"}))
+            if extra:
+                raise ScenarioError(f"{where}: unknown key '{extra[0]}'")
+            if kind == "stall" and "axis" not in raw:
+                raise ScenarioError(f"{where}: needs 'axis' (the axis that stalls)")
+            at = float(_number(raw["at"], f"{where}: at"))
+            if at < 0:
+                raise ScenarioError(f"{where}: 'at' must be >= 0")
+            out.incidents.append(Incident(kind, at, str(raw.get("axis", ""))))
     axes = data.get("axes", {})
     if not isinstance(axes, dict):
         raise ScenarioError(f"{name}: [axes.NAME] tables expected")

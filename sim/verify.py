@@ -19,12 +19,13 @@ The first difference is returned as a `Divergence` naming its time, source line 
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
 
 from mcc.compiler import ir, units
 from mcc.sim.interpreter import Options, simulate
-from mcc.sim.scenario import InputEvent, Scenario
+from mcc.sim.scenario import AxisSwitches, InputEvent, Scenario
 from mcc.sim.trace import Event, Trace
 
 TIME_ABS = 0.01  # seconds
@@ -32,6 +33,10 @@ TIME_REL = 0.01  # share of the event's time
 POSITION_TOLERANCE = 1.0  # output steps
 OBSERVABLE = ("move", "arc", "slew", "stop", "home", "home_end", "set_position", "output", "print", "limit",
               "error", "move_end")
+# A stricter comparison for transformations that keep the program's structure of device commands
+# (the optimizer, a backend reading back its own dialect): also the native commands in order, the
+# handlers installed and removed, the drive switched on and off.
+STRICT = OBSERVABLE + ("native", "handler_on", "handler_off", "drive")
 LIMITS = ("time-limit", "step-limit")
 VERIFY_UNTIL = 30.0
 VERIFY_STEPS = 200_000
@@ -83,36 +88,79 @@ def default_scenarios(module: ir.Module) -> list[Scenario]:
 
 
 def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | None = None,
-            options: Options | None = None, source_profile=None, output_profile=None) -> Divergence | None:
+            options: Options | None = None, source_profile=None, output_profile=None,
+            kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False) -> Divergence | None:
     """The first divergence between `source` and `output` on the scenarios, or None.
 
     Both modules must keep the IR contract (`interpreter.ContractError` otherwise)."""
+    source, output = _stated_steps(source, output), _stated_steps(output, source)
     for scenario in scenarios or default_scenarios(source):
         opts = options or Options(until=scenario.until or VERIFY_UNTIL, max_steps=VERIFY_STEPS)
         opts.samples = False
+        ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
         a = simulate(source, scenario, _copy(opts), source_profile)
         b = simulate(output, scenario, _copy(opts), output_profile)
-        found = compare_traces(a, b, units.ratio(source.steps_per_rev, output.steps_per_rev), scenario.name)
+        moved = _translated(scenario, _axis_map(a, b), ratio)
+        if moved is not scenario:  # the switches and positions of the output's axes, in its steps
+            b = simulate(output, moved, _copy(opts), output_profile)
+        found = compare_traces(a, b, ratio, scenario.name, kinds, by_count)
         if found is not None:
             return found
     return None
+
+
+def _translated(scenario: Scenario, axis_map: dict[str, str], ratio: Fraction) -> Scenario:
+    """The scenario as the output sees it: the source's axis names and steps turned into the
+    output's (a home switch on MCode axis 1 is on Arcus axis X), or the scenario itself."""
+    if all(axis_map.get(a, a) == a for a in scenario.axes) and ratio == 1 and \
+            all(axis_map.get(e.axis, e.axis) == e.axis for e in scenario.events if e.axis):
+        return scenario
+    scale = float(ratio)
+
+    def at(value):
+        return None if value is None else value * scale
+
+    axes = {axis_map.get(name, name): AxisSwitches(sw.home * scale, at(sw.limit_plus), at(sw.limit_minus))
+            for name, sw in scenario.axes.items()}
+    events = [dataclasses.replace(e, axis=axis_map.get(e.axis, e.axis), passes=e.passes * scale) if e.axis else e
+              for e in scenario.events]
+    return dataclasses.replace(scenario, axes=axes, events=events)
+
+
+def _stated_steps(module: ir.Module, other: ir.Module) -> ir.Module:
+    """`module`, with the other side's steps per revolution when it does not state its own.
+
+    A program that does not say how many steps a revolution has (an Arcus profile without
+    `steps_per_rev`) is written one step per source step (`units.ratio` is 1), so its machine is
+    the other side's: the simulator's default speeds, which are in revolutions, must be too."""
+    if module.steps_per_rev or not other.steps_per_rev:
+        return module
+    return dataclasses.replace(module, steps_per_rev=other.steps_per_rev)
 
 
 def _copy(options: Options) -> Options:
     return Options(options.until, options.max_steps, options.nesting, options.spin, options.poll, False)
 
 
-def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "") -> Divergence | None:
-    """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps."""
+def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "",
+                   kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False) -> Divergence | None:
+    """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps.
+
+    `kinds` are the events compared (OBSERVABLE, or STRICT). A run cut by a limit is compared up to
+    the earlier cut-off time, or with `by_count` on the events both made (a loop that never waits
+    stops at the step limit at time 0, and a transformation may change the steps per round)."""
     cut = None
-    if a.stopped in LIMITS or b.stopped in LIMITS:
+    limited = a.stopped in LIMITS or b.stopped in LIMITS
+    if limited and not by_count:
         cut = min(a.time, b.time) - TIME_ABS
-    elif a.stopped != b.stopped:
+    elif not limited and a.stopped != b.stopped:
         return Divergence(scenario, min(a.time, b.time), _last_line(a),
                           f"the source stopped with '{a.stopped}' ({a.reason}), the output with '{b.stopped}' "
                           f"({b.reason})")
     axis_map = _axis_map(a, b)
-    ea, eb = _observable(a, cut), _observable(b, cut)
+    ea, eb = _observable(a, cut, kinds), _observable(b, cut, kinds)
+    if limited and by_count:
+        ea, eb = ea[:min(len(ea), len(eb))], eb[:min(len(ea), len(eb))]
     scale = float(ratio)
     for n in range(max(len(ea), len(eb))):
         if n >= len(ea):
@@ -125,7 +173,7 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
         problem = _differ(x, y, axis_map, scale)
         if problem:
             return Divergence(scenario, x.t, x.line, problem)
-    if cut is None:
+    if not limited:
         for axis, pos in a.axes.items():
             other = b.axes.get(axis_map.get(axis, axis))
             if other is not None and abs(pos * scale - other) > POSITION_TOLERANCE + 1e-6:
@@ -139,10 +187,10 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
     return None
 
 
-def _observable(trace: Trace, cut: float | None) -> list[Event]:
+def _observable(trace: Trace, cut: float | None, kinds: tuple[str, ...] = OBSERVABLE) -> list[Event]:
     out = []
     for event in trace.events:
-        if event.kind not in OBSERVABLE or (cut is not None and event.t > cut):
+        if event.kind not in kinds or (cut is not None and event.t > cut):
             continue
         if event.kind == "move" and event.data["from"] == event.data["to"]:
             continue  # a move to where the axis already is does nothing
@@ -197,7 +245,11 @@ def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float) -> str:
         if dx["text"].strip() != dy["text"].strip():
             return f"the source prints {dx['text']!r}, the output {dy['text']!r}"
         return ""
-    for key in ("output", "value", "code", "ramp", "switch"):
+    if x.kind == "native":
+        if (dx["mnemonic"], dx["args"]) != (dy["mnemonic"], dy["args"]):
+            return f"{_show(x)} in the source, {_show(y)} in the output"
+        return ""
+    for key in ("output", "value", "code", "ramp", "switch", "event", "on"):
         if key in dx and dx[key] != dy.get(key):
             return f"{_show(x)} in the source, {_show(y)} in the output"
     return ""

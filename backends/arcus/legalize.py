@@ -15,12 +15,15 @@ The result obeys what backends/structure.py assumes of a routine.
 
 from __future__ import annotations
 
+import functools
+
 from mcc.backends.arcus import convert
 from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.convert import Refused
 from mcc.backends.arcus.target import DIALECT, HOME_KEYWORDS, MOTION_IR
 from mcc.backends.structure import NEGATE, negate
 from mcc.compiler import ir, units
+from mcc.compiler.arcus import catalog as arcus_catalog
 from mcc.compiler.span import Span
 
 ARCUS_BINARY = {"+", "-", "*", "/", "%", "&", "|", "<<", ">>"}
@@ -136,7 +139,11 @@ class Legalizer:
                               "that depends on it and on the speeds: set it with a constant")
             ramp = ramp_ms(op.value.value, state, op.axis)
             if ramp is None:
-                return  # written when the speeds are set (ramp_after_speed); a move before that is refused
+                if self.speeds_follow(op):
+                    return  # written when the speeds are set (ramp_after_speed), just below
+                raise Refused(f"the {param.value}eration of {op.value.value:g} steps/s^2 is set with speeds that are "
+                              "not known here, and Arcus sets a ramp time (ACC) that depends on them: set the "
+                              "initial and maximum speeds before it (or just after it, before any move)")
             value = ir.Const(ramp, ir.Unit.NONE, op.value.span)
         if param in (ir.MotionParam.DECEL_TIME, ir.MotionParam.DECEL):
             up = accel_ramp_ms(state, op.axis)
@@ -147,6 +154,22 @@ class Legalizer:
             raise Refused(f"the {param.value.replace('_', ' ')} differs from the acceleration ramp in force, and Arcus "
                           "ramps down in the same time it ramps up (one ACC): set both to the same ramp")
         self.emit(ir.SetMotion(ir.MotionParam.ACCEL, axis, self.value(value, op), op.span))
+
+    def speeds_follow(self, op: ir.SetMotion) -> bool:
+        """Both speeds are set to constants after `op` in its block, before anything else that moves,
+        calls or ends it: the deferred ramp is then written with them (a join or a call would lose it)."""
+        ops = self.source_ops
+        index = next((i for i, o in enumerate(ops) if o is op), len(ops))
+        wanted = {ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED}
+        for later in ops[index + 1:]:
+            if isinstance(later, (ir.Move, ir.Arc, ir.Slew, ir.Home, ir.Call, ir.Native)):
+                return False
+            if isinstance(later, ir.SetMotion) and later.param in wanted and later.axis in (op.axis, ir.ALL_AXES) \
+                    and isinstance(later.value, ir.Const):
+                wanted.discard(later.param)
+                if not wanted:
+                    return True
+        return False
 
     def same_ramp_var(self, op: ir.SetMotion, state: dict) -> bool:
         """DECEL_TIME = v*0.001 just after ACCEL_TIME = v*0.001 (how Arcus `ACC=V3` lowers)."""
@@ -206,6 +229,26 @@ class Legalizer:
                 raise Refused(f"the move runs with an acceleration of {accel.value:g} steps/s^2 and speeds that are not "
                               "known here, and Arcus sets a ramp time (ACC) that depends on them: set the initial "
                               "and maximum speeds before the move")
+            self.decel_known(state, axis)
+
+    def decel_known(self, state: dict, axis: str) -> None:
+        """A deceleration in force must ramp down in the ACC written for the acceleration: Arcus has
+        one ramp time for both. A deceleration set while the speeds were unknown wrote nothing, so it
+        is checked again at the move, with the speeds in force there."""
+        if lookup(state, ir.MotionParam.DECEL_TIME, axis) is not None:
+            return  # a ramp time: checked (or written) where it was set
+        decel = lookup(state, ir.MotionParam.DECEL, axis)
+        if decel is None:
+            return
+        down = ramp_ms(decel.value, state, axis)
+        if down is None:
+            raise Refused(f"the move runs with a deceleration of {decel.value:g} steps/s^2 and speeds that are not "
+                          "known here, and Arcus sets a ramp time (ACC) that depends on them: set the initial "
+                          "and maximum speeds before the move")
+        up = accel_ramp_ms(state, axis)
+        if up is None or abs(up - down) > RAMP_TOLERANCE_MS:
+            raise Refused(f"the deceleration of {decel.value:g} steps/s^2 differs from the acceleration ramp in force, "
+                          "and Arcus ramps down in the same time it ramps up (one ACC): set both to the same ramp")
 
     def ms_value(self, value: ir.Expr, op) -> ir.Expr:
         return self.value(convert.ms(self.arcus(value), "ramp time"), op)
@@ -676,10 +719,20 @@ def ramp_ms(accel: float, state: dict, axis: str) -> int | None:
     maximum = lookup(state, ir.MotionParam.MAX_SPEED, axis)
     if initial is None or maximum is None:
         return None
-    ramp = units.ramp_from_accel(accel, initial.value, maximum.value)
+    # from the LSPD written: a start speed under the minimum is written as the minimum (`ranged`)
+    low = max(initial.value, lowest_speed()) if initial.value >= 0 else initial.value
+    ramp = units.ramp_from_accel(accel, low, maximum.value)
     if ramp is None:
         return None
     return max(1, round(units.s_to_ms(ramp)))
+
+
+@functools.cache
+def lowest_speed() -> float:
+    """The lowest LSPD the PMX-4EX-SA accepts (catalog `range`)."""
+    keyword = arcus_catalog.load().lookup("LSPD")
+    bounds = keyword.range if keyword is not None else None
+    return float(bounds[0]) if bounds else 0.0
 
 
 def accel_ramp_ms(state: dict, axis: str) -> float | None:

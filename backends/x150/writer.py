@@ -69,6 +69,9 @@ def number(value) -> str:
     return text
 
 
+RATE_MNEMONICS = {"speed": "V", "acceleration": "A"}  # the catalog entries that bound rate()
+
+
 @dataclass
 class Line:
     text: str
@@ -98,6 +101,17 @@ def meet(a: State, b: State) -> State:
     return {k: v for k, v in a.items() if b.get(k) == v}
 
 
+def waited_moves(module: ir.Module) -> set[int]:
+    """The moves (by id) the program waits for at once: the next operation waits for their axis."""
+    found: set[int] = set()
+    for _, block in module.blocks():
+        for op, after in zip(block.ops, block.ops[1:]):
+            if isinstance(op, ir.Move) and isinstance(after, ir.WaitMotion) \
+                    and all(after.axis in (axis, ir.ALL_AXES) for axis, _ in op.targets):
+                found.add(id(op))
+    return found
+
+
 class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
         self.module = module
@@ -116,13 +130,14 @@ class Writer:
         self.read_counters: set[str] = set()  # per routine: hidden L counters written as variables
         self.entries = {r.blocks[0].label: r.name for r in module.routines if r.blocks}
         self.touches = self.mode_touching()
+        self.waited = waited_moves(module)
         self.routine: ir.Routine | None = None
         self.device: int | None = None
         self.in_sequence = False
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
+        self.previous: ir.Op | None = None  # the operation written last
         self.reported: set[tuple[int, str]] = set()
-        self.awaited: set[int] = set()  # moves the next operation waits for (written in MN, the others MQ)
 
     # -- the target's step and axes -----------------------------------------------------------------
     def device_resolutions(self) -> dict[str, int]:
@@ -266,11 +281,6 @@ class Writer:
             self.out.header = self.header()
         for _, _, op, state in self.each_op():
             self.forces[id(op)] = state
-        for _, block in self.module.blocks():
-            for op, after in zip(block.ops, block.ops[1:]):
-                if isinstance(op, ir.Move) and isinstance(after, ir.WaitMotion) \
-                        and after.axis in (ir.ALL_AXES, *(axis for axis, _ in op.targets)):
-                    self.awaited.add(id(op))
         selected = set()
         for routine in self.module.routines:
             for block in routine.blocks:
@@ -549,13 +559,23 @@ class Writer:
 
     # -- operations ------------------------------------------------------------------------------------
     def write_op(self, op) -> None:
+        try:
+            self.write_one(op)
+        finally:
+            self.previous = op
+
+    def write_one(self, op) -> None:
         span = op.span
         if isinstance(op, ir.Native):
             if op.dialect != DIALECT:
                 raise CannotWrite(f"{op.dialect} command {op.mnemonic} has no X150 equivalent; rewrite this part "
                                   "with X150 commands or compile to its own dialect", "G003")
             self.emit(self.native_text(op), span)
-            if op.mnemonic in MODE_COMMANDS:
+            if op.mnemonic in ("MN", "MC", "MQ"):  # the move mode written: a move in it needs no repeat
+                key = self.address(op.axis) or ir.ALL_AXES
+                self.state = {k: v for k, v in self.state.items() if k[0] != "move"}
+                self.state[("move", key)] = op.mnemonic
+            elif op.mnemonic in MODE_COMMANDS:
                 self.state = {}
         elif isinstance(op, ir.SetMotion):
             self.motion(op)
@@ -619,12 +639,10 @@ class Writer:
         param, span = op.param, op.span
         prefix = self.address(op.axis)
         if param is ir.MotionParam.MAX_SPEED:
-            self.emit(prefix + "V" + self.ranged("V", self.rate(op.value, "speed"), "speed", "rev/s"), span)
-        elif param is ir.MotionParam.ACCEL:
-            self.emit(prefix + "A" + self.ranged("A", self.rate(op.value, "acceleration"), "acceleration",
-                                                 "rev/s^2"), span)
-        elif param is ir.MotionParam.ACCEL_TIME:
-            self.emit(prefix + "A" + self.ranged("A", self.ramp(op), "acceleration", "rev/s^2"), span)
+            self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
+        elif param in (ir.MotionParam.ACCEL, ir.MotionParam.ACCEL_TIME):
+            text = self.rate(op.value, "acceleration") if param is ir.MotionParam.ACCEL else self.ramp(op)
+            self.emit(prefix + "A" + text, span)
         elif param in (ir.MotionParam.DECEL, ir.MotionParam.DECEL_TIME):
             self.same_as_accel(op)
         elif param is ir.MotionParam.RESOLUTION:
@@ -674,6 +692,11 @@ class Writer:
 
     def same_as_accel(self, op: ir.SetMotion) -> None:
         """X150 decelerates at A: a deceleration equal to the acceleration in force needs nothing."""
+        before = self.previous
+        if isinstance(before, ir.SetMotion) and before.axis == op.axis and before.value == op.value and \
+                (before.param, op.param) in ((ir.MotionParam.ACCEL, ir.MotionParam.DECEL),
+                                             (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME)):
+            return  # the A just written (how X150's own A lowers: ACCEL then DECEL of the same value)
         state = self.forces.get(id(op), {})
         if op.param is ir.MotionParam.DECEL:
             accel = lookup(state, ir.MotionParam.ACCEL, op.axis)
@@ -705,8 +728,9 @@ class Writer:
         computed = not isinstance(target, ir.Const)
         if computed and not register:
             self.distance(prefix, key, distance, first)
-        # MN: the next command waits for the move's end; MQ: it runs during the move (L2622-L2656)
-        self.set_mode("move", key, "MN" if id(op) in self.awaited else "MQ", prefix, first)
+        # MN: the next command runs when the move has ended; MQ: at once (L2631). The IR says which by
+        # the WaitMotion that follows the move, or not
+        self.set_mode("move", key, "MN" if id(op) in self.waited else "MQ", prefix, first)
         self.set_mode("pos", key, "MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI", prefix, first)
         if not computed:
             self.distance(prefix, key, distance, first)
@@ -851,6 +875,12 @@ class Writer:
             if value == 0 and expr.value != 0:
                 raise CannotWrite(f"the {what} {number(expr.value)} {expr.unit.value} is below the X150's "
                                   f"resolution of {RATE_STEP} rev/s", "X207")
+            info = self.cat.lookup(RATE_MNEMONICS[what])
+            if info is not None and not info.in_range(value):
+                raise CannotWrite(f"the {what} {number(expr.value)} {expr.unit.value} is {number(value)} "
+                                  f"rev/s{'^2' if what == 'acceleration' else ''} at {self.source_spr} steps/rev, "
+                                  f"outside what X150 {RATE_MNEMONICS[what]} accepts ({info.manual or 'catalog'})",
+                                  "X207")
             return number(value)
         # X150 V(VARn)/A(VARn): the variable holds rev/s (rev/s^2): the IR says VARn * steps per rev
         if isinstance(expr, ir.BinOp) and expr.op == "*" and isinstance(expr.left, ir.Var) \

@@ -59,12 +59,24 @@ def reads_input(item) -> bool:
         isinstance(item, ir.WaitInput)
 
 
+def is_te(op) -> bool:
+    """A `TE=`: the neutral setting `handler_enable` (or a Native TE of an older lowering)."""
+    return (isinstance(op, ir.Setting) and op.name == "handler_enable") or \
+        (isinstance(op, ir.Native) and op.mnemonic == "TE" and bool(op.args))
+
+
+def te_value(op):
+    return op.value if isinstance(op, ir.Setting) else op.args[0]
+
+
 def te_writes(module: ir.Module):
     """Every `TE=` of the module: (routine, block, op, constant value or None)."""
-    for routine, block, op in flow.ops(module, ir.Native):
-        if op.mnemonic == "TE" and op.args:
-            value = op.args[0]
-            yield routine, block, op, value.value if isinstance(value, ir.Const) else None
+    for routine in module.routines:
+        for block in routine.blocks:
+            for op in block.ops:
+                if is_te(op):
+                    value = te_value(op)
+                    yield routine, block, op, value.value if isinstance(value, ir.Const) else None
 
 
 def handlers(module: ir.Module) -> list[ir.SetHandler]:
@@ -183,8 +195,11 @@ def missing_return(ctx: Context) -> None:
 
 # M303 / M317 / M322 / M315 / M319 / M318 — trips -------------------------------------------------
 
-def te_sets_bit(op: ir.Native, bit: int) -> bool:
-    value = op.args[0] if op.args else None
+def te_sets_bit(op, bit: int) -> bool:
+    """Whether `op` is a TE that sets `bit` (one whose value is not known counts as setting it)."""
+    if not is_te(op):
+        return False
+    value = te_value(op)
     return not isinstance(value, ir.Const) or bool(int(value.value) & bit)
 
 
@@ -192,12 +207,11 @@ def handler_re_enables(module: ir.Module, routine: ir.Routine, bit: int) -> bool
     """True when every path from the handler's entry to an RT sets TE with the trip's bit."""
 
     def transfer(done: bool, item) -> bool:
-        if isinstance(item, ir.Native) and item.mnemonic == "TE" and te_sets_bit(item, bit):
+        if te_sets_bit(item, bit):
             return True
         if isinstance(item, ir.Call):
             callee = module.routine(item.routine)
-            if callee is not None and any(isinstance(op, ir.Native) and op.mnemonic == "TE" and te_sets_bit(op, bit)
-                                          for block in callee.blocks for op in block.ops):
+            if callee is not None and any(te_sets_bit(op, bit) for block in callee.blocks for op in block.ops):
                 return True
         return done
 
@@ -219,8 +233,7 @@ def main_re_arms(module: ir.Module, bit: int) -> bool:
             continue
         looping = flow.in_loops(routine)
         for block in routine.blocks:
-            if block.label in looping and any(isinstance(op, ir.Native) and op.mnemonic == "TE"
-                                              and te_sets_bit(op, bit) for op in block.ops):
+            if block.label in looping and any(te_sets_bit(op, bit) for op in block.ops):
                 return True
     return False
 

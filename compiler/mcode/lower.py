@@ -27,7 +27,7 @@ from mcc.compiler.profiles import Profile
 
 DIALECT = "mcode"
 TRIP_EVENTS = {"TI": "input", "TP": "position", "TC": "capture", "TT": "time", "TR": "relative",
-               "TA": "hmt", "TM": "power"}
+               "TA": "hmt", "TM": "power_loss"}
 HOME_METHODS = {"HM": "switch", "HI": "index", "HF": "offset"}
 HOME_TYPES = {1: (-1, +1), 2: (-1, -1), 3: (+1, -1), 4: (+1, +1)}  # type -> (seek, creep) (L3206-L3210)
 MOTION_PARAMS = {"accel": ir.MotionParam.ACCEL, "decel": ir.MotionParam.DECEL,
@@ -44,7 +44,8 @@ READINGS = {"set_position": "position", "counter": "position", "encoder": "encod
 SETTINGS = {"error_code": ("error_code", 1, ir.Unit.NONE), "run_current": ("run_current", 1, ir.Unit.PERCENT),
             "hold_current": ("hold_current", 1, ir.Unit.PERCENT),
             "settle_time": ("settle_time", 0.001, ir.Unit.S), "hold_delay": ("hold_delay", 0.001, ir.Unit.S),
-            "input_debounce": ("input_debounce", 0.001, ir.Unit.S), "encoder_enable": ("encoder_enable", 1, ir.Unit.NONE)}
+            "input_debounce": ("input_debounce", 0.001, ir.Unit.S), "encoder_enable": ("encoder_enable", 1, ir.Unit.NONE),
+            "trip_enable": ("handler_enable", 1, ir.Unit.NONE)}
 # IS/OS type numbers (spec §6.6, L770-L831) -> ir_names.INPUT_FUNCTIONS / OUTPUT_FUNCTIONS.
 INPUT_TYPES = {0: "general", 1: "home", 2: "limit_plus", 3: "limit_minus", 4: "run_program", 5: "soft_stop",
                6: "pause", 7: "jog_plus", 8: "jog_minus", 11: "reset", 12: "capture", 13: "step_direction",

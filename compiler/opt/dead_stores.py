@@ -6,7 +6,8 @@ variable is removed (`V1 = 0` then `V1 = 5` keeps only `V1 = 5`); a hidden varia
 at -O2, a declared variable that no operation reads or assigns loses its declaration (a name-table
 entry on MCode).
 
-Why it is safe: the value removed is never read by the program: not by the operations between the
+Why it is safe: a store whose value may fault (a division by a variable, `may_fault`) is kept,
+since removing it would remove the runtime error; any other value removed is never read by the program: not by the operations between the
 two stores, not by a call or a native command (the removal stops at either), not by an event
 handler (variables a handler reads are left alone). A host can read variables over the serial
 line, so the removal also stops at every operation that takes time (a move, a wait, a delay, a
@@ -43,7 +44,7 @@ def run(module: ir.Module, context) -> int:
                 name = op.target.name
                 if name in pending:
                     keep[pending[name]] = False
-                if name not in handler_reads:
+                if name not in handler_reads and not may_fault(op.value):
                     pending[name] = index
         if not all(keep):
             changed += keep.count(False)
@@ -90,6 +91,19 @@ def reads_in_handlers(module: ir.Module) -> set[str]:
     return names
 
 
+def may_fault(expr) -> bool:
+    """Whether computing `expr` may stop the program with a runtime error (a division or remainder
+    by a divisor that is not a non-zero constant, a function outside its domain): such a store is
+    kept, since removing it would remove the error."""
+    for node in ir.walk_expr(expr):
+        if isinstance(node, ir.BinOp) and node.op in ("/", "%") and \
+                not (isinstance(node.right, ir.Const) and node.right.value != 0):
+            return True
+        if isinstance(node, ir.Func) and node.name not in ("abs", "pi"):
+            return True
+    return False
+
+
 def drop_hidden(module: ir.Module) -> int:
     """mcc's own declared temporaries (an X150 loop counter) that nothing reads. A hidden name that
     is not a declared variable is device state (the X150 distance register `%D`, which a later `G`
@@ -99,7 +113,7 @@ def drop_hidden(module: ir.Module) -> int:
     removed = 0
     for _, block in module.blocks():
         kept = [op for op in block.ops if not (isinstance(op, ir.Assign) and op.target.name in hidden
-                                               and op.target.name not in read)]
+                                               and op.target.name not in read and not may_fault(op.value))]
         removed += len(block.ops) - len(kept)
         block.ops[:] = kept
     for name in [n for n in module.variables if n.startswith("%") and n not in read]:

@@ -317,7 +317,10 @@ class Lowering:
         axis_ok = not command.buffered  # operations that carry the axis keep the address themselves
         name = command.mnemonic
         if role in MOTION and arg is not None and axis_ok:
-            self.emit(ir.SetMotion(MOTION[role], axis, self.value(arg, info), span))
+            value = self.value(arg, info)
+            self.emit(ir.SetMotion(MOTION[role], axis, value, span))
+            if MOTION[role] is ir.MotionParam.ACCEL:  # X150 decelerates at A too (one ramp rate)
+                self.emit(ir.SetMotion(ir.MotionParam.DECEL, axis, value, span))
         elif role == "distance" and arg is not None and axis_ok and not isinstance(arg, st.Pattern):
             self.emit(ir.Assign(ir.Var(modes.distance_var(axis), span), self.distance(arg, axis), span))
         elif name in DIRECTION and arg is None and axis_ok:

@@ -12,7 +12,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "ir"))
 
 from ir_programs import lowered, program_files  # noqa: E402
-from opt_oracle import same_behaviour  # noqa: E402
+from sim_behaviour import same_behaviour  # noqa: E402
 from mcc.compiler import ir, profiles  # noqa: E402
 from mcc.compiler.ir_verify import verify  # noqa: E402
 from mcc.compiler.opt import LEVELS, PASSES, optimize  # noqa: E402

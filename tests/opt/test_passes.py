@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from opt_oracle import same_behaviour
+from sim_behaviour import same_behaviour
 from mcc.compiler import ir, profiles
 from mcc.compiler.ir_print import to_text
 from mcc.compiler.opt import optimize, pass_names

@@ -6,7 +6,7 @@ from __future__ import annotations
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from opt_oracle import same_behaviour
+from sim_behaviour import same_behaviour
 from random_ir import modules
 from mcc.compiler import ir, profiles
 from mcc.compiler.ir_verify import verify

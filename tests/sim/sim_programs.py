@@ -38,3 +38,16 @@ def contract_module(path: Path, dialect: str):
     if problems:
         pytest.skip(f"the {dialect} frontend does not keep the IR contract yet ({problems[0]})")
     return result
+
+
+def scenarios_for(path: Path, module) -> list | None:
+    """The scenario stored next to a program (`homing.toml` beside `homing.prg`), run with the
+    default ones that drive every input the program reads; None (the defaults only) when there is
+    none."""
+    from mcc.sim.scenario import load
+    from mcc.sim.verify import default_scenarios
+
+    stored = path.with_suffix(".toml")
+    if not stored.exists():
+        return None
+    return [load(str(stored))] + default_scenarios(module)

@@ -200,7 +200,7 @@ def test_calls_return_to_the_next_operation():
 
 def test_an_input_handler_interrupts_a_delay():
     handler = sub("TRIP", [ir.SetOutput(2, c(1))])
-    ops = [ir.SetHandler("input", "TRIP", (c(1), c(1))), ir.Delay(c(5, U.S))]
+    ops = [ir.SetHandler("input", "TRIP", (c(1), c(1))), ir.Setting("handler_enable", "1", c(1)), ir.Delay(c(5, U.S))]
     trace = simulate(module(ops, routines=(handler,), dialect="mcode"), Scenario(events=[InputEvent(1, 1, at=2)]))
     (output,) = kinds(trace, "output")
     assert output.t == 2 and trace.time == 5
@@ -208,7 +208,7 @@ def test_an_input_handler_interrupts_a_delay():
 
 def test_mcode_trips_are_one_shot():
     handler = sub("TRIP", [ir.Assign(ir.Var("N"), ir.BinOp("+", ir.Var("N"), c(1)))])
-    ops = [ir.SetHandler("input", "TRIP", (c(1), c(1))), ir.Delay(c(5, U.S))]
+    ops = [ir.SetHandler("input", "TRIP", (c(1), c(1))), ir.Setting("handler_enable", "1", c(1)), ir.Delay(c(5, U.S))]
     pulses = [InputEvent(1, v, at=t) for t, v in ((1, 1), (2, 0), (3, 1))]
     trace = simulate(module(ops, routines=(handler,), dialect="mcode"), Scenario(events=pulses))
     assert trace.variables["N"] == 1

@@ -11,7 +11,7 @@ from mcc.compiler import driver
 from mcc.compiler.config import Settings
 from mcc.compiler.lint import engine, formatting
 from mcc.sim.verify import check_translation
-from sim_programs import DIALECTS, contract_module, programs
+from sim_programs import DIALECTS, contract_module, programs, scenarios_for
 
 CASES = [(d, p) for d in DIALECTS for p in programs(d)]
 IDS = [f"{d}/{p.parent.name}/{p.name}" for d, p in CASES]
@@ -24,7 +24,8 @@ def test_compiled_program_behaves_like_its_source(dialect, path, target):
     compiled = driver.compile_file(str(path), dialect, target)
     if compiled.has_errors or compiled.listing is None:
         pytest.skip(f"{path.name} does not compile to {target}")
-    problem = check_translation(str(path), dialect, result.analysis.module, compiled.listing.text, target)
+    problem = check_translation(str(path), dialect, result.analysis.module, compiled.listing.text, target,
+                                scenarios=scenarios_for(path, result.analysis.module))
     if problem.startswith("cannot verify"):
         pytest.skip(problem)
     if problem.startswith("the written program has errors"):
@@ -35,7 +36,7 @@ def test_compiled_program_behaves_like_its_source(dialect, path, target):
 
 @pytest.mark.parametrize("dialect, path", CASES, ids=IDS)
 def test_formatted_and_fixed_programs_behave_like_their_source(dialect, path, tmp_path):
-    contract_module(path, dialect)
+    result = contract_module(path, dialect)
     copy = tmp_path / path.name
     shutil.copy(path, copy)
     if formatting.formatter(dialect) is not None:
@@ -43,6 +44,10 @@ def test_formatted_and_fixed_programs_behave_like_their_source(dialect, path, tm
         assert "--verify" not in outcome.error
     fixed = engine.lint_file(str(copy), Settings(), engine.Options(fix=True, verify=True))
     assert [d.message for d in fixed.diagnostics if d.code == "S010"] == []
+    scenarios = scenarios_for(path, result.analysis.module)
+    if scenarios is not None:  # the program's own scenario too (fmt and lint --verify use the defaults)
+        after = copy.read_text(encoding="utf-8")
+        assert check_translation(str(path), dialect, result.analysis.module, after, scenarios=scenarios) == ""
 
 
 @pytest.mark.parametrize("level", ["O0", "O1", "O2", "Os"])
@@ -53,7 +58,8 @@ def test_every_optimization_level_behaves_like_the_source(dialect, path, level):
     compiled = driver.compile_file(str(path), dialect, opt_level=level)
     if compiled.has_errors or compiled.listing is None:
         pytest.skip(f"{path.name} does not compile")
-    problem = check_translation(str(path), dialect, result.analysis.module, compiled.listing.text, dialect)
+    problem = check_translation(str(path), dialect, result.analysis.module, compiled.listing.text, dialect,
+                                scenarios=scenarios_for(path, result.analysis.module))
     if problem.startswith("cannot verify"):
         pytest.skip(problem)
     assert problem == ""

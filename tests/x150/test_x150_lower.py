@@ -103,10 +103,12 @@ def test_goto_terminates_and_keeps_what_follows():
 def test_motion_units_and_moves():
     mod = module("1A10\n1V5\n1MPA\n1D4000\n1G\n1MPI\n1D-200\n1G\n1H\n1G\n1MC\n1G\n1T0.5\n1TRE_X1\n1TRN_X1\n")
     found = ops(mod.routines[0])
-    accel, speed = found[0], found[1]
+    accel, decel, speed = found[0], found[1], found[2]
     # rev/s^2 and rev/s times the profile's 4000 steps per revolution
     assert (accel.param, accel.axis, accel.value.value, accel.value.unit) == (
         ir.MotionParam.ACCEL, "1", 40000, ir.Unit.STEPS_PER_S2)
+    # X150 decelerates at A too (one ramp rate for both)
+    assert (decel.param, decel.axis, decel.value) == (ir.MotionParam.DECEL, "1", accel.value)
     assert (speed.param, speed.value.value, speed.value.unit) == (ir.MotionParam.MAX_SPEED, 20000, ir.Unit.STEPS_PER_S)
     moves = [op for op in found if isinstance(op, ir.Move)]
     # D then G; D-200 G; H reverses D: the third G moves +200 (L1828)
@@ -181,8 +183,9 @@ def test_mixed_devices_keep_addresses_on_natives():
     mod = module("1A10\n2A10\n1VAR1=5\n2T1\n1SV\nVAR2=1\n")
     found = ops(mod.routines[0])
     assert mod.routines[0].name == "immediate"
-    assert [type(op).__name__ for op in found] == ["SetMotion", "SetMotion", "Native", "Native", "Native", "Assign"]
-    assert [op.axis for op in found[:5]] == ["1", "2", "1", "2", "1"]
+    # each A is an acceleration and the same deceleration
+    assert [type(op).__name__ for op in found] == ["SetMotion"] * 4 + ["Native", "Native", "Native", "Assign"]
+    assert [op.axis for op in found[:7]] == ["1", "1", "2", "2", "1", "2", "1"]
 
 
 def test_single_device_stream_uses_neutral_operations():
