@@ -39,6 +39,15 @@ class Context:
         self.axes = Axes(module, self.config.axes)
         self._in_force: dict[int, in_force.State] | None = None
 
+    @cached_property
+    def sets_accel(self) -> bool:
+        """Whether any operation sets a constant acceleration in steps/s^2: without one, no state
+        of the in-force analysis holds one (it starts empty), and the legalizer's ramp questions
+        that need one are answered without the analysis."""
+        accel = ir.MotionParam.ACCEL
+        return any(isinstance(op, ir.SetMotion) and op.param is accel and isinstance(op.value, ir.Const)
+                   for _, block in self.module.blocks() for op in block.ops)
+
     def in_force_before(self, op: ir.Op) -> in_force.State:
         """The motion settings in force just before `op` (constants known by data flow)."""
         if self._in_force is None:
