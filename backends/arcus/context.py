@@ -100,7 +100,7 @@ class Context:
         """The Arcus variable for an IR variable: Vn stays, other names get the first free V number."""
         name = var.name.upper()
         if VARIABLE.match(name):
-            return ir.Var(name, var.span)
+            return var if name == var.name else ir.Var(name, var.span)  # an IR value is never changed
         if name not in self.var_map:
             used = {int(VARIABLE.match(n.upper()).group(1)) for n in self.variable_names
                     if VARIABLE.match(n.upper())} | set(self.config.temporaries) | \

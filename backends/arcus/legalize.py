@@ -583,6 +583,8 @@ class Legalizer:
     # neutral readings as Arcus registers --------------------------------------------------------------
     def arcus(self, node):
         """An expression or condition with its neutral readings as Arcus registers (refused: Refused)."""
+        if type(node) in LEAVES:
+            return node  # a number or a variable: most values are
         if isinstance(node, ir.Status):
             letter = self.ctx.axes.letter(node.axis) if node.axis else ""
             if letter is None:
@@ -641,6 +643,8 @@ class Legalizer:
 
     def atom(self, value: ir.Expr) -> ir.Expr:
         if isinstance(value, ir.Const):
+            if type(value.value) is int:
+                return value  # already a whole number (an IR value is never changed: share it)
             return ir.Const(int(value.value), value.unit, value.span)
         if isinstance(value, ir.Var):
             return self.ctx.var(value)
@@ -662,6 +666,9 @@ class Legalizer:
         self.ctx.unsupported_at(getattr(cond, "span", None),
                                 f"this condition ({type(cond).__name__}) has no Arcus form")
 
+
+
+LEAVES = (ir.Const, ir.Var)
 
 
 def input_match(cond: ir.InputMatch) -> ir.Cond:
