@@ -84,23 +84,32 @@ class Resolved:
 def sub_span(part: st.Part, begin: int, end: int) -> Span:
     """The span of characters begin..end of `part.key` (word, then sign, then number)."""
 
-    def offset(i: int) -> tuple[Span, int]:
-        pieces = [(part.word_span, len(part.word))]
-        if part.sign_span is not None:
-            pieces.append((part.sign_span, len(part.sign)))
-        if part.number_span is not None:
-            pieces.append((part.number_span, len(part.number)))
-        for span, length in pieces:
-            if i < length:
-                return span, i
-            i -= length
-        span, length = pieces[-1]
-        return span, length
-
-    first, i = offset(begin)
-    last, j = offset(max(begin, end - 1))
+    first, i = _offset(part, begin)
+    last, j = _offset(part, max(begin, end - 1))
     j += 1 if end > begin else 0
     return Span(first.file, first.line, first.column + i, last.line, last.column + j, first.start + i, last.start + j)
+
+
+def _offset(part: st.Part, i: int) -> tuple[Span, int]:
+    """The piece (word, sign, number) holding character i of `part.key`, and i within it; past the
+    end, the last piece and its length."""
+    length = len(part.word)
+    if i < length:
+        return part.word_span, i
+    i -= length
+    last = part.word_span, length
+    if part.sign_span is not None:
+        length = len(part.sign)
+        if i < length:
+            return part.sign_span, i
+        i -= length
+        last = part.sign_span, length
+    if part.number_span is not None:
+        length = len(part.number)
+        if i < length:
+            return part.number_span, i
+        last = part.number_span, length
+    return last
 
 
 class Resolver:
