@@ -148,8 +148,8 @@ def structure(routine: ir.Routine, flag: Callable[[int], ir.Var | None], dispatc
     flagged = ir.Routine(routine.name, routine.kind, [copy_block(b) for b in routine.blocks], routine.span,
                          routine.number)
     try:
-        flag_loops(flagged, flag, max_copied, stops, repeat)
-        structurer = Structurer(flagged, tail_copy, stops, repeat)
+        graph = flag_loops(flagged, flag, max_copied, stops, repeat)
+        structurer = Structurer(flagged, tail_copy, stops, repeat, graph)
         return Structured(structurer.run(), structurer.exit_span)
     except Unstructurable as why:
         var = dispatch_var()
@@ -178,6 +178,7 @@ class Graph:
 
     def __init__(self, routine: ir.Routine, stops: tuple = (ir.End,)):
         self.stops = stops
+        self._terminating: set[str] | None = None
         self.blocks = {b.label: b for b in routine.blocks}
         self.entry = routine.blocks[0].label if routine.blocks else EXIT
         self.succ: dict[str, list[str]] = {}
@@ -301,7 +302,10 @@ class Graph:
         return body
 
     def terminating(self) -> set[str]:
-        """Blocks from which every path ends at an END (never falls through to anything after)."""
+        """Blocks from which every path ends at an END (never falls through to anything after).
+        Computed once per graph (a graph is not changed once built); callers only read the set."""
+        if self._terminating is not None:
+            return self._terminating
         result: set[str] = set()
         changed = True
         while changed:
@@ -314,6 +318,7 @@ class Graph:
                 if isinstance(block.terminator, self.stops) or (succ and all(s in result for s in succ)):
                     result.add(label)
                     changed = True
+        self._terminating = result
         return result
 
     def exits(self, header: str, body: set[str], ends: set[str]) -> list[tuple[str, str]]:
@@ -339,7 +344,7 @@ class Graph:
 
 
 def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_copied: int,
-               stops: tuple = (ir.End,), repeat: bool = False) -> None:
+               stops: tuple = (ir.End,), repeat: bool = False) -> Graph:
     """Rewrites loops whose one exit is not the header's test into `f=1; WHILE f=1 ... f=0` form.
 
     The exit edge u -> e goes to a new block `f=0` that jumps to a new header testing f, whose false
@@ -348,7 +353,8 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
     with the operations copied before WHILE and at the end of the body when there are at most
     `max_copied` of them, with a flag otherwise. `flag(depth)` gives the flag of a loop nested in
     `depth` others. Raises Unstructurable when the graph is irreducible, a loop has several exits
-    (the dispatch fallback handles those) or no flag is left."""
+    (the dispatch fallback handles those) or no flag is left. Returns the graph of the routine as
+    it leaves (the structurer reads the same graph: it is not built twice)."""
     counter = 0
     done: set[str] = set()
     while True:
@@ -373,7 +379,7 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
             target = (header, body, exits[0])
             break
         if target is None:
-            return
+            return graph
         header, body, (source, exit_label) = target
         depth = sum(1 for h in graph.headers if h != header and header in graph.loop_body(h))
         var = flag(depth)
@@ -407,10 +413,11 @@ class Structurer:
     """Rebuilds if/elif/else and while from a reducible CFG whose loops all exit at their header."""
 
     def __init__(self, routine: ir.Routine, tail_copy: int = TAIL_COPY, stops: tuple = (ir.End,),
-                 repeat: bool = False):
+                 repeat: bool = False, graph: Graph | None = None):
+        """`graph`: the routine's graph when the caller has it (built with the same `stops`)."""
         self.stops = stops
         self.repeat = repeat
-        self.graph = Graph(routine, stops)
+        self.graph = graph if graph is not None else Graph(routine, stops)
         self.blocks = self.graph.blocks
         self.tail_copy = tail_copy
         self.emitted: set[str] = set()

@@ -9,7 +9,8 @@ the tree builder, resolve against the catalog, lower to the IR, check, and price
 with the backend's passes and the cost model (A201/A204/A240 are reported by check); target (issue
 12): at most 2x the bare parse. The compile is what `mcc compile` does for one file: the check,
 then legalize, structure, lay out and count the assembly lines. Each figure is the best of R runs
-(the least disturbed by the machine). See docs/PERFORMANCE.md.
+(the least disturbed by the machine), in CPU time of this process (`time.process_time`), so that
+other work on a shared machine does not count. See docs/PERFORMANCE.md.
 """
 
 from __future__ import annotations
@@ -60,9 +61,9 @@ def program(statements: int, seed: int = 7) -> str:
 def best(function, repeat: int) -> float:
     times = []
     for _ in range(repeat):
-        start = time.perf_counter()
+        start = time.process_time()
         function()
-        times.append(time.perf_counter() - start)
+        times.append(time.process_time() - start)
     return min(times)
 
 

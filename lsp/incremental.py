@@ -199,14 +199,15 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
     diags = Diagnostics()
     source = SourceFile(path, text)
     result = driver.FileResult(path, found.name, source=source)
-    try:
-        result.analysis = analyze_source(source, found, profile, diags, cache, stop)
-    except Stale:
-        return None, cache
-    if result.analysis is not None and not diags.has_errors:
-        if stop is not None and stop():
+    with driver.fewer_collections():  # over every step, as `driver.check_file`
+        try:
+            result.analysis = analyze_source(source, found, profile, diags, cache, stop)
+        except Stale:
             return None, cache
-        driver.measure_memory(result.analysis, found, profile, diags)
+        if result.analysis is not None and not diags.has_errors:
+            if stop is not None and stop():
+                return None, cache
+            driver.measure_memory(result.analysis, found, profile, diags)
     result.diagnostics = diags.items
     return engine.Checked(path, result.dialect, result, profile), cache
 

@@ -39,6 +39,15 @@ class Context:
         self.axes = Axes(module, self.config.axes)
         self._in_force: dict[int, in_force.State] | None = None
 
+    @cached_property
+    def sets_accel(self) -> bool:
+        """Whether any operation sets a constant acceleration or deceleration in steps/s^2: without
+        one, no state of the in-force analysis holds one (it starts empty), and the legalizer's ramp
+        questions that need one are answered without the analysis."""
+        rates = (ir.MotionParam.ACCEL, ir.MotionParam.DECEL)
+        return any(isinstance(op, ir.SetMotion) and op.param in rates and isinstance(op.value, ir.Const)
+                   for _, block in self.module.blocks() for op in block.ops)
+
     def in_force_before(self, op: ir.Op) -> in_force.State:
         """The motion settings in force just before `op` (constants known by data flow)."""
         if self._in_force is None:
@@ -91,7 +100,7 @@ class Context:
         """The Arcus variable for an IR variable: Vn stays, other names get the first free V number."""
         name = var.name.upper()
         if VARIABLE.match(name):
-            return ir.Var(name, var.span)
+            return var if name == var.name else ir.Var(name, var.span)  # an IR value is never changed
         if name not in self.var_map:
             used = {int(VARIABLE.match(n.upper()).group(1)) for n in self.variable_names
                     if VARIABLE.match(n.upper())} | set(self.config.temporaries) | \

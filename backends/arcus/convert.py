@@ -17,6 +17,7 @@ A reading or setting with no Arcus counterpart is None here; the legaliser refus
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from fractions import Fraction
 
 from mcc.compiler import ir, units
@@ -50,8 +51,8 @@ class Scale:
     source: int  # steps per revolution of the IR (0: unknown)
     target: int  # pulses per revolution of the target (0: unknown)
 
-    @property
-    def factor(self) -> Fraction:
+    @cached_property
+    def factor(self) -> Fraction:  # asked once per position and speed: computed once
         return units.ratio(self.source, self.target)
 
     def steps(self, value: ir.Expr) -> ir.Expr:
@@ -128,6 +129,9 @@ class Axes:
         return self.map.get(axis) or self.map.get(axis.upper())
 
 
+LEAVES = (ir.Const, ir.Var)
+
+
 def _axes_used(module: ir.Module) -> list[str]:
     seen: dict[str, None] = {}
 
@@ -148,7 +152,7 @@ def _axes_used(module: ir.Module) -> list[str]:
             elif getattr(op, "axis", ""):
                 add(op.axis)
             for expr in ir.op_exprs(op):
-                if isinstance(expr, (ir.Const, ir.Var)):
+                if type(expr) in LEAVES:
                     continue  # a leaf, and not a reading: most values are
                 for node in ir.walk_expr(expr):
                     if isinstance(node, ir.Status) and node.axis:

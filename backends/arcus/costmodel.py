@@ -31,10 +31,14 @@ def cost_of(stmt: Stmt, config: Config) -> int:
 def price(stmts: list[Stmt], config: Config) -> int:
     """Sets each statement's cost and address; returns the program's total in assembly lines."""
     address = 0
+    costs: dict[str, int] = {}  # per cost key: a program uses a few dozen keys
     for stmt in stmts:
-        stmt.cost = cost_of(stmt, config)
+        cost = costs.get(stmt.key)
+        if cost is None:
+            cost = costs[stmt.key] = cost_of(stmt, config)
+        stmt.cost = cost
         stmt.address = address
-        address += stmt.cost
+        address += cost
     return address
 
 

@@ -127,7 +127,7 @@ class Legalizer:
     def ramp(self, op: ir.SetMotion, axis: str) -> None:
         """ACC for a ramp time, or for an acceleration with the speeds in force (in_force.py)."""
         param = op.param
-        state = self.state(op)
+        state = self.ramp_state(op)
         if param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME):
             self.check_unit(op.value, ir.Unit.S, param.value.replace("_", " "))
             value = convert.ms(op.value, "ramp time") if isinstance(op.value, ir.Const) else \
@@ -171,6 +171,28 @@ class Legalizer:
                     return True
         return False
 
+    def ramp_state(self, op: ir.SetMotion) -> dict:
+        """The settings in force before a ramp setting, as far as `ramp` reads them. A ramp time
+        reads none, and a deceleration time just after an acceleration time of the same axis reads
+        only the ramp time that operation set when no acceleration in steps/s^2 exists anywhere
+        (the state the data flow would give has it under the same key): the program's data-flow
+        analysis is not needed for the usual `ACC=n` of an Arcus program."""
+        param = op.param
+        if param is ir.MotionParam.ACCEL_TIME:
+            return {}
+        if param is ir.MotionParam.DECEL_TIME and not self.ctx.sets_accel:
+            before = self.previous(op)
+            if isinstance(before, ir.SetMotion) and before.param is ir.MotionParam.ACCEL_TIME \
+                    and before.axis == op.axis and isinstance(before.value, ir.Const):
+                return {(ir.MotionParam.ACCEL_TIME, op.axis): before.value}
+        return self.state(op)
+
+    def previous(self, op: ir.Op) -> ir.Op | None:
+        """The operation just before `op` in its source block, if any."""
+        ops = self.source_ops
+        index = next((i for i, o in enumerate(ops) if o is op), None)
+        return ops[index - 1] if index else None
+
     def same_ramp_var(self, op: ir.SetMotion, state: dict) -> bool:
         """DECEL_TIME = v*0.001 just after ACCEL_TIME = v*0.001 (how Arcus `ACC=V3` lowers)."""
         ops = self.source_ops
@@ -183,6 +205,8 @@ class Legalizer:
 
     def ramp_after_speed(self, op: ir.SetMotion, axis: str) -> None:
         """A speed changed while an acceleration in steps/s^2 is in force: the ramp time changes."""
+        if not self.ctx.sets_accel:
+            return  # no acceleration in steps/s^2 is ever in force
         state = dict(self.state(op))
         if lookup(state, ir.MotionParam.ACCEL, op.axis) is None:
             return
@@ -220,6 +244,8 @@ class Legalizer:
 
     def ramp_known(self, op) -> None:
         """A move under an acceleration in steps/s^2 needs the speeds that make it a ramp time."""
+        if not self.ctx.sets_accel:
+            return  # no acceleration in steps/s^2 is ever in force
         state = self.state(op)
         for axis, _ in getattr(op, "targets", ()):
             if lookup(state, ir.MotionParam.ACCEL_TIME, axis) is not None:
@@ -600,6 +626,8 @@ class Legalizer:
     # neutral readings as Arcus registers --------------------------------------------------------------
     def arcus(self, node):
         """An expression or condition with its neutral readings as Arcus registers (refused: Refused)."""
+        if type(node) in LEAVES:
+            return node  # a number or a variable: most values are
         if isinstance(node, ir.Status):
             letter = self.ctx.axes.letter(node.axis) if node.axis else ""
             if letter is None:
@@ -658,6 +686,8 @@ class Legalizer:
 
     def atom(self, value: ir.Expr) -> ir.Expr:
         if isinstance(value, ir.Const):
+            if type(value.value) is int:
+                return value  # already a whole number (an IR value is never changed: share it)
             return ir.Const(int(value.value), value.unit, value.span)
         if isinstance(value, ir.Var):
             return self.ctx.var(value)
@@ -679,6 +709,9 @@ class Legalizer:
         self.ctx.unsupported_at(getattr(cond, "span", None),
                                 f"this condition ({type(cond).__name__}) has no Arcus form")
 
+
+
+LEAVES = (ir.Const, ir.Var)
 
 
 def input_match(cond: ir.InputMatch) -> ir.Cond:

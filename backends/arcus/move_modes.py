@@ -27,6 +27,7 @@ ABS, INC = "ABS", "INC"
 BOTH = frozenset({ABS, INC})
 NONE: frozenset[str] = frozenset()
 NEED = {ir.MoveMode.ABSOLUTE: ABS, ir.MoveMode.RELATIVE: INC}
+SELECTED = {ABS: frozenset({ABS}), INC: frozenset({INC})}  # the state after a move in that mode
 
 State = frozenset[str]
 MAIN = "<main>"  # the main program's body (with any setup lines before it); no GOSUB names it
@@ -106,15 +107,22 @@ class Modes:
         """The modes after `nodes`; `seen` collects the modes before each move, `calls` at each GOSUB.
         Places are named by their path in the tree: the structurer may put one node in two places."""
         for index, node in enumerate(nodes):
-            where = path + (index,)
             if isinstance(node, Simple):
                 op = node.op
-                if need(node):
-                    seen[where] = seen.get(where, NONE) | state
-                elif isinstance(op, ir.Call) and state:
+                if isinstance(op, ir.Move):  # most statements: what `need` and `after` do for a move
+                    mode = NEED.get(op.mode)
+                    if mode is not None:
+                        where = path + (index,)
+                        seen[where] = seen.get(where, NONE) | state
+                        if state:
+                            state = SELECTED[mode]
+                    continue
+                if isinstance(op, ir.Call) and state:
                     calls[op.routine] = calls.get(op.routine, NONE) | state
                 state = self.after(op, state)
-            elif isinstance(node, EndNode):
+                continue
+            where = path + (index,)
+            if isinstance(node, EndNode):
                 state = NONE
             elif isinstance(node, IfNode):
                 out = NONE

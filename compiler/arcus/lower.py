@@ -90,6 +90,18 @@ class Program:
     subs_before_end: list[Resolved] = field(default_factory=list)
 
 
+# The method of `Lowering` that builds the operation of a statement, per catalog `ir` name (names,
+# not bound methods kept on the instance: those would make each Lowering a reference cycle that
+# only the garbage collector frees, with everything it holds).
+BUILDERS: dict[str, str] = {
+    "max_speed": "set_motion", "initial_speed": "set_motion", "accel": "set_ramp",
+    "jog": "jog", "home": "home", "stop": "stop", "abort": "stop",
+    "wait_motion": "wait", "delay": "delay", "outputs": "output", "output": "output",
+    "position": "position", "assign": "assign", "move": "move", "arc": "arc",
+    "circle": "arc",
+}
+
+
 class Lowering:
     def __init__(self, tree: st.SyntaxTree, profile: Profile, diags: Diagnostics):
         self.tree = tree
@@ -107,13 +119,6 @@ class Lowering:
         self.stack: list[Frame] = []
         self.dead_warned = False
         self.last_span: Span | None = None
-        self.builders: dict[str, Callable[[Resolved], ir.Op]] = {
-            "max_speed": self.set_motion, "initial_speed": self.set_motion, "accel": self.set_ramp,
-            "jog": self.jog, "home": self.home, "stop": self.stop, "abort": self.stop,
-            "wait_motion": self.wait, "delay": self.delay, "outputs": self.output, "output": self.output,
-            "position": self.position, "assign": self.assign, "move": self.move, "arc": self.arc,
-            "circle": self.arc,
-        }
 
     # driver ------------------------------------------------------------------------------------
     def run(self) -> ir.Module:
@@ -153,7 +158,7 @@ class Lowering:
                 if res.valid:
                     self.emit(res, ir.Call(sub_name(res.number), span=res.span))
         elif shape in (MOVE, BARE, WRITE, ASSIGN, COLON):
-            builder = self.builders.get(res.keyword.ir, self.native)
+            builder = getattr(self, BUILDERS.get(res.keyword.ir, "native"))
             self.emit(res, builder(res))
 
     # blocks ------------------------------------------------------------------------------------

@@ -112,6 +112,7 @@ class _Flow:
         if not routine.blocks:
             return NONE
         blocks = {b.label: b for b in routine.blocks}
+        relevant = {label: self.ops_of(block) for label, block in blocks.items()}
         states: dict[str, State] = {b.label: NONE for b in routine.blocks}
         first = routine.blocks[0].label
         states[first] = self.entry[routine.name]
@@ -120,7 +121,7 @@ class _Flow:
         while work:
             label = work.pop()
             state = states[label]
-            for op in self.ops_of(blocks[label]):
+            for op in relevant[label]:
                 state = self.after(op, state, None)
             for succ in ir.successors(blocks[label].terminator):
                 if succ in states and not state <= states[succ]:
@@ -171,14 +172,21 @@ def resolve(module: ir.Module, profile: Profile | None, diags: Diagnostics) -> d
         for block in routine.blocks:
             state = flow.blocks.get(block.label, NONE)
             kept: list[ir.Op] = []
-            for op in block.ops:
-                if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:
-                    op.mode = _mode(op, state, flow.boot, diags)
-                elif isinstance(op, ir.Arc) and op.span is not None:
-                    arcs[(op.span.line, op.span.column)] = state
-                state = flow.after(op, state, None)
-                if switch(op) is None:
+            for op in block.ops:  # only ABS, INC and calls change the state (`_Flow.after`)
+                if isinstance(op, ir.Move):
+                    if op.mode is ir.MoveMode.MODAL:
+                        op.mode = _mode(op, state, flow.boot, diags)
                     kept.append(op)
+                    continue
+                if isinstance(op, ir.Arc) and op.span is not None:
+                    arcs[(op.span.line, op.span.column)] = state
+                selected = switch(op)
+                if selected is not None:
+                    state = flow.after(op, state, None)
+                    continue  # ABS and INC leave the IR: each move carries its mode
+                if isinstance(op, ir.Call):
+                    state = flow.after(op, state, None)
+                kept.append(op)
             block.ops = kept
     return arcs
 

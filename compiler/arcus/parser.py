@@ -39,6 +39,19 @@ FLATTENED = re.compile(r"\b(ENDIF|ENDWHILE)\b", re.IGNORECASE)
 PRECEDENCE = {"|": 1, "&": 2, "<<": 3, ">>": 3, "+": 4, "-": 4, "*": 5, "/": 5, "%": 5}
 
 
+def _climb(operands: list, ops: list[str], position: list[int], min_prec: int):
+    """Precedence climbing from operand `position[0]` (a one-item list the calls share). A function
+    of its own, not a closure: a recursive closure refers to itself, a reference cycle per
+    expression that only the garbage collector frees."""
+    left = operands[position[0]]
+    while position[0] < len(ops) and PRECEDENCE[ops[position[0]]] >= min_prec:
+        op = ops[position[0]]
+        position[0] += 1
+        right = _climb(operands, ops, position, PRECEDENCE[op] + 1)
+        left = st.Binary(op, left, right, left.span.to(right.span))
+    return left
+
+
 class Builder(recovery.PositionedBuilder):
     """Builds `syntax` nodes from the parser's callbacks. The deltas shift positions when one line
     is parsed on its own (recovery mode)."""
@@ -111,19 +124,7 @@ class Builder(recovery.PositionedBuilder):
         ops = [str(t) for t in children[1::2]]
         if not ops:
             return operands[0]
-        position = 0
-
-        def climb(min_prec: int):
-            nonlocal position
-            left = operands[position]
-            while position < len(ops) and PRECEDENCE[ops[position]] >= min_prec:
-                op = ops[position]
-                position += 1
-                right = climb(PRECEDENCE[op] + 1)
-                left = st.Binary(op, left, right, left.span.to(right.span))
-            return left
-
-        return climb(0)
+        return _climb(operands, ops, [0], 0)
 
     # operands ------------------------------------------------------------------------------------
     def number(self, children):

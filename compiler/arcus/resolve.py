@@ -84,23 +84,32 @@ class Resolved:
 def sub_span(part: st.Part, begin: int, end: int) -> Span:
     """The span of characters begin..end of `part.key` (word, then sign, then number)."""
 
-    def offset(i: int) -> tuple[Span, int]:
-        pieces = [(part.word_span, len(part.word))]
-        if part.sign_span is not None:
-            pieces.append((part.sign_span, len(part.sign)))
-        if part.number_span is not None:
-            pieces.append((part.number_span, len(part.number)))
-        for span, length in pieces:
-            if i < length:
-                return span, i
-            i -= length
-        span, length = pieces[-1]
-        return span, length
-
-    first, i = offset(begin)
-    last, j = offset(max(begin, end - 1))
+    first, i = _offset(part, begin)
+    last, j = _offset(part, max(begin, end - 1))
     j += 1 if end > begin else 0
     return Span(first.file, first.line, first.column + i, last.line, last.column + j, first.start + i, last.start + j)
+
+
+def _offset(part: st.Part, i: int) -> tuple[Span, int]:
+    """The piece (word, sign, number) holding character i of `part.key`, and i within it; past the
+    end, the last piece and its length."""
+    length = len(part.word)
+    if i < length:
+        return part.word_span, i
+    i -= length
+    last = part.word_span, length
+    if part.sign_span is not None:
+        length = len(part.sign)
+        if i < length:
+            return part.sign_span, i
+        i -= length
+        last = part.sign_span, length
+    if part.number_span is not None:
+        length = len(part.number)
+        if i < length:
+            return part.number_span, i
+        last = part.number_span, length
+    return last
 
 
 class Resolver:
@@ -108,7 +117,9 @@ class Resolver:
         self.cat = cat.load()
         self.profile = profile
         self.diags = diags
-        self._refs: dict[str, cat.Match | None] = {}
+        self._refs: dict[str, RefInfo | None] = {}
+        self._variable_limits = (self.cat.limit("variables.min", -2147483648),
+                                 self.cat.limit("variables.max", 2147483647))
         rng = profile.get("arcus.subroutines") or [self.cat.limit("subroutines.first", 0),
                                                    self.cat.limit("subroutines.last", 31)]
         self.sub_range = (int(rng[0]), int(rng[1]))
@@ -178,16 +189,18 @@ class Resolver:
     def ref(self, ref: st.Ref) -> RefInfo | None:
         """A name used as a value, without reporting (see `check_ref`)."""
         key = ref.part.key
-        if key not in self._refs:
-            match = self.cat.match(key)
-            if match is not None and match.end != len(key):
-                match = None
-            self._refs[key] = match
-        match = self._refs[key]
-        if match is None or match.keyword.kind in (cat.ASCII_ONLY, cat.OTHER_PRODUCT):
-            return None
-        keyword = match.keyword
-        return RefInfo(match, keyword.spell(match.axis, match.index, match.direction, match.suffix))
+        try:
+            return self._refs[key]  # the answer per spelling, computed once (nothing changes a RefInfo)
+        except KeyError:
+            pass
+        match = self.cat.match(key)
+        info = None
+        if match is not None and match.end == len(key) and match.keyword.kind not in (cat.ASCII_ONLY,
+                                                                                      cat.OTHER_PRODUCT):
+            keyword = match.keyword
+            info = RefInfo(match, keyword.spell(match.axis, match.index, match.direction, match.suffix))
+        self._refs[key] = info
+        return info
 
     # command statements ------------------------------------------------------------------------
     def command(self, res: Resolved, cmd: st.Command) -> None:
@@ -239,16 +252,17 @@ class Resolver:
         seen: dict[str, Span] = {}
         ok = True
         for part in cmd.parts:
-            match = self.cat.match(part.key)
+            key = part.key
+            match = self.cat.match(key)
             if match is None or match.keyword.form != "glued":
                 self.diags.add("A125", part.span,
-                               f"'{part.key}' in a move: a move line holds only axis targets (X, Y, Z, U); "
+                               f"'{key}' in a move: a move line holds only axis targets (X, Y, Z, U); "
                                "put other statements on their own lines")
                 ok = False
                 continue
             axis = match.keyword.name
-            text = part.key[match.end:]
-            span = sub_span(part, match.end, len(part.key)) if text else part.span
+            text = key[match.end:]
+            span = sub_span(part, match.end, len(key)) if text else part.span
             value: st.Node | None = None
             if (m := VALUE.match(text)) is not None:
                 value = st.Number(("-" if m.group(1) == "-" else "") + m.group(2), span)
@@ -462,8 +476,7 @@ class Resolver:
         return info
 
     def check_number(self, node: st.Number) -> None:
-        low = self.cat.limit("variables.min", -2147483648)
-        high = self.cat.limit("variables.max", 2147483647)
+        low, high = self._variable_limits
         if not low <= node.value <= high:
             self.diags.add("A119", node.span, f"{node.text} does not fit in a 32-bit variable ({low} to {high})")
 

@@ -170,4 +170,6 @@ def walk(node: Node):
 
 
 def operator_count(node: Node) -> int:
+    if not isinstance(node, (Binary, Unary)):
+        return 0  # a number or a name: most values are
     return sum(1 for item in walk(node) if isinstance(item, (Binary, Unary)))
