@@ -406,7 +406,10 @@ class Lowering:
             options = tuple((key, self.expr(arg)) for key, arg in zip(("notify", "continuous"), args[1:]))
             return ir.Move(mode, ((axis, self.expr(args[0], ir.Unit.STEPS)),), options, span)
         if kind == "slew" and args:
-            return ir.Slew(axis, self.expr(args[0], ir.Unit.STEPS_PER_S), span=span)
+            velocity = self.expr(args[0], ir.Unit.STEPS_PER_S)
+            if isinstance(velocity, ir.Const) and velocity.value == 0:
+                return ir.Stop(axis, True, span)  # SL 0: decelerate to a stop, as every dialect's ramped stop
+            return ir.Slew(axis, velocity, span=span)
         if name in HOME_METHODS and args:
             kind_of = self.expr(args[0])
             if isinstance(kind_of, ir.Const) and kind_of.value in HOME_TYPES:
