@@ -396,15 +396,18 @@ def unused_variable(ctx: Context, voice: Voice) -> None:
     def-use chains; updating a variable from itself (`IC Q1`) is not a read. Variants `.never`
     (nothing mentions it: the fix deletes the declaration's line) and `.written`; fields: name (as
     written), host (the `.host` message for a global variable, which a host may read). Hook
-    `name_span(ctx, variable)`: the span of the declared name."""
+    `name_span(ctx, variable)`: the span of the declared name; hook `declaration_lines(ctx, variable)`:
+    every line that declares it (a file may declare it again, which the device refuses), all deleted
+    by the one fix."""
     defuse = ctx.analysis.defuse
     name_span = voice.hook("name_span", lambda ctx, var: var.span)
     for name, var in ctx.module.variables.items():
         if var.span is None or defuse.read(name):
             continue
         mentioned = defuse.mentioned(name)
-        fix = None if mentioned else Fix("delete the declaration", (delete_line(ctx.source, var.span.line),),
-                                         safe=False)
+        lines = voice.hook("declaration_lines", lambda ctx, var: [var.span.line])(ctx, var)
+        fix = None if mentioned else Fix("delete the declaration",
+                                         tuple(delete_line(ctx.source, line) for line in lines), safe=False)
         where = name_span(ctx, var)
         written = ctx.source.text[where.start:where.end] if where is not var.span else name
         host = voice.say("unused-variable.host") if var.scope == "global" and "unused-variable.host" in \

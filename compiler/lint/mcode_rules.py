@@ -403,6 +403,19 @@ def declared_name(ctx: Context, var: ir.Variable):
     return span
 
 
+def declaration_lines(ctx: Context, var: ir.Variable) -> list[int]:
+    """Every `VA <name>` line of the variable (a repeated VA is M141's error; deleting the variable
+    deletes them all at once)."""
+    lines = []
+    for stmt in ctx.tree.statements():
+        if stmt.head.key == "VA" and stmt.args:
+            arg = stmt.args[0]
+            name = arg.left if isinstance(arg, st.Comparison) else arg
+            if isinstance(name, st.Name) and name.key == var.name.upper():
+                lines.append(stmt.span.line)
+    return lines or [var.span.line]
+
+
 @rule("M310", MCODE)
 def declaration_in_loop(ctx: Context) -> None:
     for routine in ctx.module.routines:
@@ -605,6 +618,6 @@ VOICE = ir_rules.Voice(
         "position-read-while-moving": {"anchor": "operation", "skip_immediate": True},
         "unreachable-code": {"skip_immediate": True},
     },
-    hooks={"name_span": declared_name},
+    hooks={"name_span": declared_name, "declaration_lines": declaration_lines},
 )
 ir_rules.register(VOICE)

@@ -210,6 +210,16 @@ def test_unsafe_fixes_of_shared_rules_delete_the_unused_declaration_and_subrouti
     assert mcode.read_text(encoding="utf-8") == "PG 1\nLB G1\n  E\nPG\nS\n' end\n"
 
 
+def test_the_unused_variable_fix_deletes_every_declaration_at_once(mcc, tmp_path) -> None:
+    """A file that declares a variable nine times (the fuzzer's duplicated line; the device refuses
+    all but the first, M141) settles in one round instead of one declaration per round (G008)."""
+    mcode = tmp_path / "p.mxt"
+    mcode.write_text("VA Np=0\n" * 9 + "PG 1\nLB G1\n  E\nPG\nS\n' end\n", encoding="utf-8")
+    result = mcc("lint", "--fix", "--unsafe-fixes", "--select", "M306", str(mcode))
+    assert "G008" not in result.stdout + result.stderr
+    assert mcode.read_text(encoding="utf-8") == "PG 1\nLB G1\n  E\nPG\nS\n' end\n"
+
+
 def run_rule(code: str, dialect: str, module, text: str = "") -> list:
     """Run one rule on a module built by hand (the neutral operations a lowering may produce)."""
     from mcc.compiler.analysis import Analysis
