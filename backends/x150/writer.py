@@ -1110,33 +1110,31 @@ def is_true(cond) -> bool:
 
 def counters_read(nodes: list) -> set[str]:
     """The hidden L-loop counters a structured routine reads other than as `Ln .. N` (such a counter
-    is written as a variable, and its count must be written too)."""
+    is written as a variable, and its count must be written too). An explicit stack, not a
+    recursive closure: a check or compile makes no reference cycles (docs/PERFORMANCE.md)."""
     found: set[str] = set()
-
-    def reads(*exprs) -> None:
-        for expr in exprs:
-            found.update(e.name for e in ir.walk_expr(expr) if isinstance(e, ir.Var) and e.name.startswith(LOOP_PREFIX))
-
-    def visit(items: list) -> None:
-        for node in items:
-            if isinstance(node, Simple):
-                reads(*ir.op_exprs(node.op))
-            elif isinstance(node, IfNode):
-                for cond, body in node.arms:
-                    reads(cond)
-                    visit(body)
-                visit(node.orelse)
-            elif isinstance(node, WhileNode):
-                reads(node.cond)
-                visit(node.body)
-            elif isinstance(node, RepeatNode):
-                if counted(node):
-                    visit(unnested(node.body)[:-1])
-                else:
-                    reads(node.until)
-                    visit(node.body)
-
-    visit(nodes)
+    exprs: list = []
+    stack = list(nodes)
+    while stack:
+        node = stack.pop()
+        if isinstance(node, Simple):
+            exprs.extend(ir.op_exprs(node.op))
+        elif isinstance(node, IfNode):
+            for cond, body in node.arms:
+                exprs.append(cond)
+                stack.extend(body)
+            stack.extend(node.orelse)
+        elif isinstance(node, WhileNode):
+            exprs.append(node.cond)
+            stack.extend(node.body)
+        elif isinstance(node, RepeatNode):
+            if counted(node):
+                stack.extend(unnested(node.body)[:-1])
+            else:
+                exprs.append(node.until)
+                stack.extend(node.body)
+    for expr in exprs:
+        found.update(e.name for e in ir.walk_expr(expr) if isinstance(e, ir.Var) and e.name.startswith(LOOP_PREFIX))
     return found
 
 
