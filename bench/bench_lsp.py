@@ -92,10 +92,11 @@ class Bench:
             self.published.setdefault((params.uri, params.version), []).append(time.perf_counter())
             self.arrived.set()
 
-    async def start(self, root: Path) -> None:
+    async def start(self, root: Path, debounce: float | None = None) -> None:
         await self.client.start_io(sys.executable, "-m", "mcc", "lsp")
+        options = {"debounce": debounce} if debounce is not None else None
         await self.client.initialize_async(t.InitializeParams(
-            capabilities=t.ClientCapabilities(), root_uri=root.as_uri()))
+            capabilities=t.ClientCapabilities(), root_uri=root.as_uri(), initialization_options=options))
         self.client.initialized(t.InitializedParams())
 
     async def wait_published(self, uri: str, version: int, count: int = 1, timeout: float = 120.0) -> list[float]:
@@ -245,7 +246,7 @@ def frontend_alone(path: Path, text: str, repeat: int) -> list[float]:
 async def main_async(options) -> None:
     root = Path(tempfile.mkdtemp(prefix="mcc-bench-lsp-"))
     bench = Bench()
-    await bench.start(root)
+    await bench.start(root, options.debounce)
     try:
         print(f"mcc lsp: {options.edits} edits, bursts of typing and {options.requests} queries per dialect")
         for dialect in options.dialects.split(","):
@@ -276,6 +277,7 @@ def main() -> None:
     args.add_argument("--edits", type=int, default=12)
     args.add_argument("--requests", type=int, default=40)
     args.add_argument("--dialects", default="mcode,arcus,x150", help="comma-separated")
+    args.add_argument("--debounce", type=float, default=None, help="the server's debounce in ms (default: its own)")
     asyncio.run(main_async(args.parse_args()))
 
 
