@@ -11,9 +11,9 @@ A real server process (stdio) is driven by pygls's client as an editor drives it
   They come one at a time, so each is the first after a quiet spell and is analysed at once.
   Target: <= 150 ms.
 - typing: bursts of five keystrokes 40 ms apart in one number (each edit arrives while the previous
-  one is analysed, so the server's debounce applies: it waits 20 ms of quiet and drops the stale
-  analysis); the time from the last keystroke to the last publication of its version, debounce
-  included: what the user sees once they stop typing.
+  one is analysed, which stops at its next checkpoint, compiler/cancel.py); the time from the last
+  keystroke to the last publication of its version, the abandoned analyses (and the debounce, when
+  one is set with --debounce) included: what the user sees once they stop typing.
 - hover and completion latency at random tokens, when the server is idle and while it is
   re-analysing after an edit (requests answer from the latest finished analysis). Target: <= 50 ms.
 
@@ -21,6 +21,7 @@ Medians and 95th percentiles of one run are printed next to the targets; the mac
 printed too, since other processes compete for the CPUs.
 
 Run: .venv/bin/python bench/bench_lsp.py [--lines 3000] [--edits 12] [--requests 40] [--dialects x150]
+     [--debounce MS]
 """
 
 from __future__ import annotations
