@@ -7,6 +7,7 @@ first line to `END`; `IF`/`WHILE` blocks and subroutines fold.
 
 from __future__ import annotations
 
+from mcc.compiler import cancel
 from mcc.compiler.arcus import catalog as acat
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler.span import SourceFile
@@ -26,6 +27,7 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
             index.symbol(f"subroutine:{int(stmt.parts[0].number)}", m.SYMBOL_SUBROUTINE,
                          str(int(stmt.parts[0].number)))
     for line in tree.lines:
+        cancel.every(line.number)  # a newer keystroke abandons this model (compiler/cancel.py)
         if line.comment is not None:
             index.add(line.comment.span, m.COMMENT)
         stmt = line.statement

@@ -1,17 +1,20 @@
-"""The open documents and their analyses: debounced, off the protocol thread, stale work dropped.
+"""The open documents and their analyses: off the protocol thread, stale work dropped at once.
 
-Every edit bumps the document's generation. The first edit after a quiet spell is analysed at
-once; edits that arrive while an analysis is under way wait for a short quiet time (`debounce`)
-and are coalesced. The newest text is analysed off the protocol thread, in one worker: the
-frontend's checks (parsing only the lines that changed since the document's previous version),
-then the lint rules, after which the diagnostics are published (once: the checks alone are
-published first only when the rules are still running `early` seconds after the analysis
-started), then the editor model, and `memory_delay` seconds later, unless the document changed
-meanwhile, the program memory (Arcus and X150 programs are priced by their backend, which takes
-as long as the checks: done at once, it would hold up the next keystroke's checks). Between
-steps, and between lint rules, the worker asks whether a newer edit has arrived; if so the old
-work stops and nothing stale is published. Requests (hover, completion, definition, ...) read `latest`, the last snapshot with
-an editor model, and never wait.
+Every edit bumps the document's generation and its newest text is analysed off the protocol
+thread, in one worker: the frontend's checks (parsing only the lines that changed since the
+document's previous version), then the lint rules, after which the diagnostics are published
+(once: the checks alone are published first only when the rules are still running `early`
+seconds after the analysis started), then the editor model, and `memory_delay` seconds later,
+unless the document changed meanwhile, the program memory (Arcus and X150 programs are priced by
+their backend, which takes as long as the checks: done at once, it would hold up the next
+keystroke's checks).
+
+An analysis that a newer edit made stale stops at the compiler's next checkpoint (every few
+hundred lines of lowering, between the checks, between lint rules, in the editor model:
+compiler/cancel.py), a few milliseconds later, and nothing stale is published. So an edit that
+arrives while an analysis runs is analysed at once too: waiting for a quiet time (`debounce`,
+default 0) would only delay the diagnostics of the last keystroke. Requests (hover, completion,
+definition, ...) read `latest`, the last snapshot with an editor model, and never wait.
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ import time
 from concurrent.futures import ThreadPoolExecutor
 from typing import Callable
 
-from mcc.compiler import config
+from mcc.compiler import cancel, config
 from mcc.compiler.config import Resolver
 from mcc.lsp import analysis, incremental, memory
 from mcc.lsp.analysis import Snapshot
@@ -32,7 +35,7 @@ log = logging.getLogger(__name__)
 
 
 class Documents:
-    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.02, early: float = 0.15,
+    def __init__(self, publish: Callable[[Snapshot], None], debounce: float = 0.0, early: float = 0.15,
                  memory_delay: float = 0.2, priced: Callable[[Snapshot], None] | None = None):
         self.publish = publish
         self.priced = priced  # called (protocol thread) when a version's program memory is current
@@ -111,7 +114,10 @@ class Documents:
     def work(self, uri: str, path: str, version: int | None, text: str, generation: int) -> None:
         stop = lambda: self.stale(uri, generation)  # noqa: E731
         try:
-            self.analyse(uri, path, version, text, generation, stop)
+            with cancel.stopping_when(stop):  # the compiler's checkpoints ask it (compiler/cancel.py)
+                self.analyse(uri, path, version, text, generation, stop)
+        except cancel.Cancelled:  # a newer edit arrived: nothing of this analysis is published
+            pass
         except Exception:  # noqa: BLE001 - one bad analysis must not stop the server
             log.exception("analysis of %s failed", uri)
         finally:
@@ -185,7 +191,10 @@ class Documents:
         if self.stale(snap.uri, generation):
             return
         try:
-            self.deliver(analysis.complete(snap), generation, publish=False)
+            with cancel.stopping_when(lambda: self.stale(snap.uri, generation)):
+                self.deliver(analysis.complete(snap), generation, publish=False)
+        except cancel.Cancelled:
+            pass
         except Exception:  # noqa: BLE001
             log.exception("pricing %s failed", snap.uri)
 

@@ -26,7 +26,7 @@ import dataclasses
 import importlib
 from typing import Any, Callable
 
-from mcc.compiler import dialects, driver
+from mcc.compiler import cancel, dialects, driver
 from mcc.compiler.config import Settings, load_profile
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Edit, Fix
 from mcc.compiler.lint import engine
@@ -181,15 +181,12 @@ class LineCache:
         return True
 
 
-class Stale(Exception):
-    """A newer version of the document arrived: the check stops between its steps."""
-
-
 def check_text(path: str, text: str, settings: Settings, dialect: str | None, cache: LineCache | None,
                stop: Callable[[], bool] | None = None) -> tuple[engine.Checked | None, LineCache | None]:
     """`engine.check_text` (the work of `mcc check`), parsing through `cache` (made or replaced
     when the document's dialect is new); the cache to keep for the next version. The check is
-    None when `stop` answered True between two steps (parsing, lowering and checks, memory)."""
+    None when `stop` answered True at a checkpoint (after parsing, in the lowering, between the
+    checks, before the memory: compiler/cancel.py); the cache then holds the new text's lines."""
     found = driver.resolve_dialect(path, dialect)
     if found is None or found.name not in dialects.DIALECTS:
         return engine.check_text(path, text, settings, dialect), None
@@ -201,8 +198,9 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
     result = driver.FileResult(path, found.name, source=source)
     with driver.fewer_collections():  # over every step, as `driver.check_file`
         try:
-            result.analysis = analyze_source(source, found, profile, diags, cache, stop)
-        except Stale:
+            with cancel.stopping_when(stop):
+                result.analysis = analyze_source(source, found, profile, diags, cache)
+        except cancel.Cancelled:
             return None, cache
         if result.analysis is not None and not diags.has_errors:
             if stop is not None and stop():
@@ -212,20 +210,17 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
     return engine.Checked(path, result.dialect, result, profile), cache
 
 
-def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile, diags: Diagnostics, cache: LineCache,
-                   stop: Callable[[], bool] | None = None):
-    """`driver.analyze_source` with the parse going through the cache."""
+def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile, diags: Diagnostics, cache: LineCache):
+    """`driver.analyze_source` with the parse going through the cache (cancel.Cancelled goes
+    through: the cache is complete for the new text once the parse is done)."""
     source = driver.without_long_lines(source, dialect.longest_line, diags)
     try:
         frontend = dialect.load_frontend()
         with driver.fewer_collections():
             found = Diagnostics()
             tree = cache.parse(source, found)
-            if stop is not None and stop():
-                raise Stale
+            cancel.checkpoint()
             analysis = frontend.analyze_tree(source, tree, driver.profile_for(dialect, profile), found)
-    except Stale:
-        raise
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         driver.internal_error(diags, source.path, exc, "checking")
         cache.placed, cache.relative = {}, {}

@@ -7,6 +7,7 @@ Program regions (`PG n` … `PG`) and label bodies make the outline and the fold
 
 from __future__ import annotations
 
+from mcc.compiler import cancel
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as mcat
 from mcc.compiler.mcode import syntax as st
@@ -41,6 +42,7 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
     resolver = Resolver(profile, Diagnostics())
     resolved = []
     for line in tree.lines:
+        cancel.every(line.number)  # a newer keystroke abandons this model (compiler/cancel.py)
         if line.comment is not None:
             index.add(line.comment.span, m.COMMENT)
         if line.statement is not None:

@@ -8,6 +8,7 @@ its number alone, whatever device address is written in front. Variables are `VA
 
 from __future__ import annotations
 
+from mcc.compiler import cancel
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import syntax as st
 from mcc.lsp import model as m
@@ -23,6 +24,7 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
             number = int(command.arg.value)
             index.symbol(f"sequence:{number}", m.SYMBOL_SEQUENCE, str(number))
     for line in tree.lines:
+        cancel.every(line.number)  # a newer keystroke abandons this model (compiler/cancel.py)
         if line.comment is not None:
             index.add(line.comment.span, m.COMMENT)
         for command in line.commands:

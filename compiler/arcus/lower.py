@@ -26,7 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Callable
 
-from mcc.compiler import ir, units
+from mcc.compiler import cancel, ir, units
 from mcc.compiler.arcus import modes
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler.arcus.resolve import (ASSIGN, BARE, COLON, CONDITION, CONTROL, MOVE, NUMBERED, WRITE, Resolved,
@@ -122,7 +122,8 @@ class Lowering:
 
     # driver ------------------------------------------------------------------------------------
     def run(self) -> ir.Module:
-        for line in self.tree.lines:
+        for index, line in enumerate(self.tree.lines):
+            cancel.every(index)  # the editor server abandons a stale analysis here
             if line.statement is None:
                 if line.error and line.keyword in ("IF", "ELSEIF", "WHILE"):
                     self.statement(self.placeholder(line))  # keep the block structure around a bad line

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.analysis import Analysis
 from mcc.compiler.mcode import checks, parser
@@ -21,6 +22,7 @@ def analyze_tree(source: SourceFile, tree, profile: Profile, diags: Diagnostics)
     of the previous version that did not change: lsp/incremental.py)."""
     lowering = Lowering(tree, profile, diags)
     module = lowering.run()
+    checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
     checks.check_labels(lowering, diags)
     checks.check_user_names(lowering, diags)
     checks.check_speeds(lowering, diags)

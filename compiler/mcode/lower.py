@@ -18,7 +18,7 @@ it when it leaves a handler).
 
 from __future__ import annotations
 
-from mcc.compiler import ir, units
+from mcc.compiler import cancel, ir, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
@@ -116,7 +116,8 @@ class Lowering:
     def collect(self) -> None:
         in_program = False
         names = self.resolver.names
-        for line in self.tree.lines:
+        for index, line in enumerate(self.tree.lines):
+            cancel.every(index)  # the editor server abandons a stale analysis here
             stmt = line.statement
             if stmt is None:
                 continue
@@ -169,7 +170,8 @@ class Lowering:
     # pass 2: the IR ------------------------------------------------------------------------------
     def run(self) -> ir.Module:
         self.collect()
-        for line, res, in_program in self.resolved:
+        for index, (line, res, in_program) in enumerate(self.resolved):
+            cancel.every(index)
             ok = self.resolver.check(res, in_program)
             try_lower = ok or res.command is not None and res.command.name in ("PG", "LB")
             if not try_lower:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
+from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix, Severity
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
@@ -55,6 +56,7 @@ class Checker:
 
     def run(self) -> None:
         for unit in self.lowering.units:
+            checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
             self.check_unit(unit)
         self.check_saved()
         self.check_transfers()

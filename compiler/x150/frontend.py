@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.analysis import Analysis
 from mcc.compiler.profiles import Profile
@@ -21,5 +22,6 @@ def analyze_tree(source: SourceFile, tree, profile: Profile, diags: Diagnostics)
     of the previous version that did not change: lsp/incremental.py)."""
     lowering = Lowering(tree, profile, diags)
     module = lowering.run()
+    checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
     memory = checks.run(lowering, profile, diags)
     return Analysis(source, tree, module, diags, memory)

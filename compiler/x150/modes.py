@@ -29,6 +29,7 @@ the `WaitMotion`, which the backend writes in MQ); assignments to
 from __future__ import annotations
 
 from mcc.compiler import ir
+from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
 
 DIALECT = "x150"
@@ -305,6 +306,7 @@ class Resolver:
         kept_go = False
         with_modes: list[ir.Block] = []  # the blocks holding a mode command (MPA MPI MN MC MQ)
         for routine in self.module.routines:
+            checkpoint()
             for block in routine.blocks:
                 relevant = self.ops_of(block)
                 if any(isinstance(op, ir.Move) and op.mode is modal for op in relevant):
@@ -322,6 +324,7 @@ class Resolver:
             for block in with_modes:
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
                                                             and op.mnemonic in (*POSITION_MODES, *MOVE_MODES))]
+        checkpoint()
         self.drop_unread_distances()
 
     def rewrite_op(self, op, ops: list, done: list) -> list:
@@ -506,4 +509,5 @@ def states_equal(a: State | None, b: State | None) -> bool:
 def resolve(module: ir.Module, diags: Diagnostics) -> None:
     resolver = Resolver(module, diags)
     resolver.solve()
+    checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
     resolver.rewrite()

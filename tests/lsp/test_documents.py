@@ -5,6 +5,7 @@ test_robustness.py."""
 from __future__ import annotations
 
 import asyncio
+import threading
 from pathlib import Path
 
 import pytest
@@ -112,4 +113,40 @@ async def test_slow_rules_let_the_checks_be_published_first():
     assert checks.version == everything.version == 1
     assert [d.code for d in checks.diagnostics] == []
     assert [d.code for d in everything.diagnostics] == ["A307", "A315"]
+    docs.shutdown()
+
+
+@pytest.mark.asyncio
+async def test_an_edit_abandons_the_analysis_under_way_at_its_next_checkpoint(monkeypatch):
+    """The version being lowered when a newer edit arrives stops between the lowering and the
+    checks (compiler/cancel.py): it is never published, and the newer one is."""
+    from mcc.compiler import cancel
+    from mcc.compiler.arcus import frontend
+
+    reached, edited = threading.Event(), threading.Event()
+    abandoned = []
+
+    def checkpoint() -> None:
+        if not reached.is_set():
+            reached.set()
+            edited.wait(10)  # the worker waits here, after lowering version 1, for version 2
+        try:
+            cancel.checkpoint()
+        except cancel.Cancelled:
+            abandoned.append(True)
+            raise
+
+    monkeypatch.setattr(frontend, "checkpoint", checkpoint)
+    docs = Recorder(early=60)
+    text = (FIXTURES / "cell.prg").read_text(encoding="utf-8")
+    versions = {"text": text, "version": 1}
+    docs.changed(URI, PATH, lambda: (versions["text"], versions["version"]), delay=0)
+    await until(reached.is_set)
+    versions.update(text=text.replace("DELAY=250", "DELAY=300"), version=2)
+    docs.changed(URI, PATH, lambda: (versions["text"], versions["version"]))
+    edited.set()
+    await until(lambda: complete(docs, 2))
+    assert abandoned == [True]
+    assert [snap.version for snap in docs.published] == [2]
+    assert all(version == 2 for version, _, _ in docs.delivered)
     docs.shutdown()

@@ -11,7 +11,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from conftest import EXTENSIONS, sample_files
-from mcc.compiler import ir_print
+from mcc.compiler import cancel, ir_print
 from mcc.compiler.config import Settings
 from mcc.compiler.lint import engine
 from mcc.lsp import incremental
@@ -97,3 +97,27 @@ def test_a_stale_check_stops_and_keeps_the_lines_it_parsed():
     assert cache.parsed == len(set(text.rstrip("\n").split("\n")))
     cache = assert_same(path, text, cache)
     assert cache.parsed == 0
+
+
+@pytest.mark.parametrize("dialect", sorted(EXTENSIONS))
+@settings(max_examples=15, deadline=None,
+          suppress_health_check=[HealthCheck.too_slow, HealthCheck.function_scoped_fixture])
+@given(data=st.data())
+def test_a_check_abandoned_at_any_checkpoint_leaves_a_cache_that_checks_right(dialect, data, monkeypatch):
+    """A newer keystroke stops the check at the compiler's next checkpoint (compiler/cancel.py);
+    whichever it is, the cache it leaves gives the next version what a check from scratch gives."""
+    monkeypatch.setattr(cancel, "EVERY", 1)  # a checkpoint at every line of the lowering
+    path = f"/edits/program{EXTENSIONS[dialect]}"
+    text = starting_text(dialect)
+    cache = assert_same(path, text, None)
+    asked = {"count": 0}
+    after = data.draw(st.integers(0, len(text.split("\n")) + 3))
+
+    def stop() -> bool:
+        asked["count"] += 1
+        return asked["count"] > after
+
+    edited = text.replace("\n", "\n\n", 1)
+    checked, cache = incremental.check_text(path, edited, Settings(), None, cache, stop)
+    assert (checked is None) == (asked["count"] > after)  # stopped at the first "stop"
+    assert_same(path, edited.replace("\n", " 1\n", 3), cache)

@@ -33,7 +33,7 @@ function clientOptions(): LanguageClientOptions {
       // the project's configuration: the server reads it again when it changes
       fileEvents: vscode.workspace.createFileSystemWatcher("**/{mcc.toml,pyproject.toml}"),
     },
-    initializationOptions: { debounce: config.get<number>("debounce", 20) },
+    initializationOptions: { debounce: config.get<number>("debounce", 0) },
   };
 }
 
