@@ -60,17 +60,6 @@ def argument(op) -> ir.Expr | None:
     return args[0] if args else None
 
 
-def motion_axes(op) -> tuple[str, ...]:
-    """Axes an operation sets moving."""
-    if isinstance(op, ir.Move):
-        return tuple(axis for axis, _ in op.targets)
-    if isinstance(op, ir.Arc):
-        return op.axes
-    if isinstance(op, (ir.Slew, ir.Home)):
-        return (op.axis,)
-    return ()
-
-
 def forward_all(module: ir.Module, transfer, join=frozenset.union, entry=frozenset()):
     """(routine, item, state before it) for every reachable operation and terminator."""
     for routine in module.routines:
@@ -178,7 +167,7 @@ def speed_mode_not_reset(ctx: Context) -> None:
         return state
 
     for _, item, state in forward_all(ctx.module, transfer):
-        for axis in motion_axes(item):
+        for axis in ir_rules.motion_axes(item):
             if ("used", axis) in state:
                 ctx.report(item.span, f"SSPDM{axis} is not 0 here: set SSPDM{axis}=0 before a normal move after "
                                       "on-the-fly speed moves (L564)")

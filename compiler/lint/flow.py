@@ -440,3 +440,17 @@ class MustFacts:
                             if item.routine not in queue:
                                 queue.append(item.routine)
         return result
+
+
+def exit_state(routine: ir.Routine, states: dict, transfer, join):
+    """The state after the routine's last blocks (those without a successor in the routine), from
+    the states at block entries that `forward` computed; None when no last block is reached."""
+    result = None
+    succ = successor_map(routine)
+    for block in routine.blocks:
+        if block.label in states and not succ[block.label]:
+            state = states[block.label]
+            for item in [*block.ops, block.terminator]:
+                state = transfer(state, item)
+            result = state if result is None else join(result, state)
+    return result

@@ -227,15 +227,7 @@ def stream_entries(module: ir.Module, transfer, join) -> dict[str, frozenset]:
     for routine in module.routines:
         if routine.kind is ir.RoutineKind.IMMEDIATE:
             entries[routine.name] = carried
-            states = flow.forward(routine, carried, transfer, join)
-            succ = flow.successor_map(routine)
-            end = None
-            for block in routine.blocks:
-                if block.label in states and not succ[block.label]:
-                    state = states[block.label]
-                    for item in [*block.ops, block.terminator]:
-                        state = transfer(state, item)
-                    end = state if end is None else join(end, state)
+            end = flow.exit_state(routine, flow.forward(routine, carried, transfer, join), transfer, join)
             carried = carried if end is None else end
     for routine in module.routines:
         if routine.kind is not ir.RoutineKind.SUBROUTINE:

@@ -60,19 +60,6 @@ def axis_of(item) -> str:
     return getattr(item, "axis", "")
 
 
-def exit_state(routine: ir.Routine, states: dict, transfer, join):
-    """The state after the routine's last blocks (those without a successor in the routine)."""
-    result = None
-    succ = flow.successor_map(routine)
-    for block in routine.blocks:
-        if block.label in states and not succ[block.label]:
-            state = states[block.label]
-            for item in [*block.ops, block.terminator]:
-                state = transfer(state, item)
-            result = state if result is None else join(result, state)
-    return result
-
-
 def stream_entries(module: ir.Module, transfer, join=frozenset.union) -> dict[str, frozenset]:
     """Each stretch of the stream starts where the previous one ended; a sequence starts with the
     state the whole stream leaves (the controller keeps settings between commands)."""
@@ -81,7 +68,7 @@ def stream_entries(module: ir.Module, transfer, join=frozenset.union) -> dict[st
     for routine in module.routines:
         if routine.kind is ir.RoutineKind.IMMEDIATE:
             entries[routine.name] = carried
-            end = exit_state(routine, flow.forward(routine, carried, transfer, join), transfer, join)
+            end = flow.exit_state(routine, flow.forward(routine, carried, transfer, join), transfer, join)
             carried = carried if end is None else end
     for routine in module.routines:
         entries.setdefault(routine.name, carried)
