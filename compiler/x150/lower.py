@@ -114,6 +114,7 @@ class Lowering:
         self.cur: dict[str, int] = {}  # user steps per revolution of each device (CUR)
         self.factors: dict[int, Fraction] = {}  # CUR -> IR steps per user step (see `distance`)
         self.addresses = {c.address for c in self.tree.commands() if c.address is not None}
+        self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
         self.name_units()
@@ -273,7 +274,11 @@ class Lowering:
         addressed to the device itself)."""
         if self.device is not None or command.address is None:
             return True
-        return self.addresses == {command.address} and [str(command.address)] == [str(a) for a in self.profile.axes]
+        found = self.own_device.get(command.address)
+        if found is None:  # once per address: the file's addresses and the profile do not change
+            found = self.own_device[command.address] = self.addresses == {command.address} \
+                and [str(command.address)] == [str(a) for a in self.profile.axes]
+        return found
 
     def sender(self, command: st.Command) -> str:
         """The device a report comes from (`Print.axis`): empty when the routine's device says it."""
