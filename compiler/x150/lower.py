@@ -52,6 +52,11 @@ ROLE_KINDS = {"call": ir.RoutineKind.SUBROUTINE, "powerup": ir.RoutineKind.POWER
               "fault_handler": ir.RoutineKind.HANDLER, "event_handler": ir.RoutineKind.HANDLER}
 KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKind.SUBROUTINE: 1,
              ir.RoutineKind.MAIN: 0}
+# The roles and the mnemonics `Lowering.simple` lowers to a neutral operation (each of its cases asks
+# for one of them); any other command is a Native at once, without asking every case.
+NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "delay", "wait_input", "assign", "save", "return", "when"))
+NEUTRAL_NAMES = frozenset((*DIRECTION, "CUR", "O", "TRIP", "PZ", '"', "PR", "SB", "ST", *neutral.SETTINGS,
+                           "IN", "OUT", "INL", "OUTL", "HALT"))
 OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
 CLOSERS = {"loop_end": "L", "endif": "IF", "endwhile": "WHILE", "until": "REPEAT", "else": "IF"}
 CLOSER_NAMES = {"L": "N", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL(...)"}
@@ -318,9 +323,12 @@ class Lowering:
         if command.host:
             self.emit(ir.Native(DIALECT, "!", (self.expr(arg),), axis=axis, span=span))
             return
+        name = command.mnemonic
+        if role not in NEUTRAL_ROLES and name not in NEUTRAL_NAMES:
+            self.emit(self.native(command))
+            return
         fits = self.fits(command) and not command.buffered
         axis_ok = not command.buffered  # operations that carry the axis keep the address themselves
-        name = command.mnemonic
         if role in MOTION and arg is not None and axis_ok:
             value = self.value(arg, info)
             self.emit(ir.SetMotion(MOTION[role], axis, value, span))
