@@ -84,7 +84,9 @@ def get_key(state: State, kind: str, axis: str):
 def meet(a: State | None, b: State) -> State:
     if a is None:
         return dict(b)
-    return {k: v for k, v in a.items() if k in b and same(b[k], v)}
+    # `is` first: the states share most values (a value is the same as itself: no NaN is ever a
+    # constant of a program, its numbers are read from decimal text)
+    return {k: v for k, v in a.items() if k in b and ((other := b[k]) is v or same(other, v))}
 
 
 def same(a, b) -> bool:
@@ -525,7 +527,9 @@ def identical(a: State | None, b: State | None) -> bool:
 def states_equal(a: State | None, b: State | None) -> bool:
     if a is None or b is None:
         return a is b
-    return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if a is b:
+        return True
+    return a.keys() == b.keys() and all(a[k] is b[k] or same(a[k], b[k]) for k in a)
 
 
 def resolve(module: ir.Module, diags: Diagnostics) -> None:
