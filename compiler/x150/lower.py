@@ -52,6 +52,11 @@ ROLE_KINDS = {"call": ir.RoutineKind.SUBROUTINE, "powerup": ir.RoutineKind.POWER
               "fault_handler": ir.RoutineKind.HANDLER, "event_handler": ir.RoutineKind.HANDLER}
 KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKind.SUBROUTINE: 1,
              ir.RoutineKind.MAIN: 0}
+# The roles and the mnemonics `Lowering.simple` lowers to a neutral operation (each of its cases asks
+# for one of them); any other command is a Native at once, without asking every case.
+NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "delay", "wait_input", "assign", "save", "return", "when"))
+NEUTRAL_NAMES = frozenset((*DIRECTION, "CUR", "O", "TRIP", "PZ", '"', "PR", "SB", "ST", *neutral.SETTINGS,
+                           "IN", "OUT", "INL", "OUTL", "HALT"))
 OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
 CLOSERS = {"loop_end": "L", "endif": "IF", "endwhile": "WHILE", "until": "REPEAT", "else": "IF"}
 CLOSER_NAMES = {"L": "N", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL(...)"}
@@ -114,6 +119,7 @@ class Lowering:
         self.cur: dict[str, int] = {}  # user steps per revolution of each device (CUR)
         self.factors: dict[int, Fraction] = {}  # CUR -> IR steps per user step (see `distance`)
         self.addresses = {c.address for c in self.tree.commands() if c.address is not None}
+        self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
         self.name_units()
@@ -273,7 +279,11 @@ class Lowering:
         addressed to the device itself)."""
         if self.device is not None or command.address is None:
             return True
-        return self.addresses == {command.address} and [str(command.address)] == [str(a) for a in self.profile.axes]
+        found = self.own_device.get(command.address)
+        if found is None:  # once per address: the file's addresses and the profile do not change
+            found = self.own_device[command.address] = self.addresses == {command.address} \
+                and [str(command.address)] == [str(a) for a in self.profile.axes]
+        return found
 
     def sender(self, command: st.Command) -> str:
         """The device a report comes from (`Print.axis`): empty when the routine's device says it."""
@@ -313,9 +323,12 @@ class Lowering:
         if command.host:
             self.emit(ir.Native(DIALECT, "!", (self.expr(arg),), axis=axis, span=span))
             return
+        name = command.mnemonic
+        if role not in NEUTRAL_ROLES and name not in NEUTRAL_NAMES:
+            self.emit(self.native(command))
+            return
         fits = self.fits(command) and not command.buffered
         axis_ok = not command.buffered  # operations that carry the axis keep the address themselves
-        name = command.mnemonic
         if role in MOTION and arg is not None and axis_ok:
             value = self.value(arg, info)
             self.emit(ir.SetMotion(MOTION[role], axis, value, span))

@@ -37,6 +37,9 @@ DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
 MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
+# The only operations that can read or set a distance register (`Resolver.op_reads`): the others
+# are skipped by their exact class (the IR's operation classes have no subclasses).
+READERS = frozenset((ir.Native, ir.Move, ir.Assign))
 # The factory defaults (L2608, L2520; D4000, L810): MPI, MN, and a positive distance register, so a
 # G in MC before any D runs forward. Assumed where the file shows nothing else (see resolve).
 DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN", ("sign", ir.ALL_AXES): 1}
@@ -82,7 +85,9 @@ def get_key(state: State, kind: str, axis: str):
 def meet(a: State | None, b: State) -> State:
     if a is None:
         return dict(b)
-    return {k: v for k, v in a.items() if k in b and same(b[k], v)}
+    # `is` first: the states share most values (a value is the same as itself: no NaN is ever a
+    # constant of a program, its numbers are read from decimal text)
+    return {k: v for k, v in a.items() if k in b and ((other := b[k]) is v or same(other, v))}
 
 
 def same(a, b) -> bool:
@@ -157,7 +162,9 @@ class Resolver:
         # routine is a function of these, so a later round whose inputs did not change reuses it
         self.memo: dict[int, tuple] = {}
         self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
+        self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
+        self.names = {routine.name for routine in module.routines}  # `module.routine` is a linear search
 
     def touching(self) -> dict[str, bool]:
         """Routines that may change a mode or D, themselves or through what they call."""
@@ -168,10 +175,11 @@ class Resolver:
             calls[routine.name] = set()
             for block in routine.blocks:
                 for op in block.ops:
-                    if (isinstance(op, ir.Native) and op.mnemonic in (*POSITION_MODES, *MOVE_MODES)) or \
-                            (isinstance(op, ir.Assign) and is_distance(op.target.name)):
+                    kind = type(op)  # the IR's operation classes have no subclasses
+                    if (kind is ir.Native and op.mnemonic in MODE_COMMANDS) or \
+                            (kind is ir.Assign and op.target.name.startswith(DISTANCE)):
                         direct[routine.name] = True
-                    elif isinstance(op, ir.Call):
+                    elif kind is ir.Call:
                         calls[routine.name].add(op.routine)
         result = dict(direct)
         for name in self.module.externals:
@@ -240,7 +248,12 @@ class Resolver:
         return end
 
     def calls(self, routine: ir.Routine) -> list:
-        return [op for block in routine.blocks for op in self.ops_of(block) if isinstance(op, ir.Call)]
+        """The routine's calls, found once (the walks do not change the operations)."""
+        found = self.call_ops.get(id(routine))
+        if found is None:
+            found = [op for block in routine.blocks for op in self.ops_of(block) if isinstance(op, ir.Call)]
+            self.call_ops[id(routine)] = found
+        return found
 
     def ops_of(self, block: ir.Block) -> list:
         """The operations of `block` that `transfer` or the rewriting look at (the others leave
@@ -268,25 +281,34 @@ class Resolver:
             visits[label] = visits.get(label, 0) + 1
             block = blocks[label]
             state = entry[label] or {}
-            ops = self.ops_of(block)
-            if ops:  # else the state passes through unchanged, and nothing below changes it
-                state = dict(state)
+            # Copy on write: `state` is shared (the block's entry, or kept for a G or a call site,
+            # which only read it) until an operation changes it, and copied only then.
+            shared = True
             waiting = False
-            for op in ops:
-                if isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL:  # only a G needs its state
-                    self.before[id(op)] = dict(state)
-                if isinstance(op, ir.Call):
-                    reached.append((op.routine, dict(state)))
-                    if self.touched.get(op.routine, True) and self.module.routine(op.routine) is not None \
-                            and op.routine not in self.analysed:
+            for op in self.ops_of(block):  # a modal Move, a Call, a mode command or a %D assignment
+                kind = type(op)
+                if kind is ir.Move:  # only a G needs its state; a move changes none
+                    self.before[id(op)] = state
+                    shared = True
+                    continue
+                if kind is ir.Call:
+                    reached.append((op.routine, state))
+                    shared = True
+                    touches = self.touched.get(op.routine, True)
+                    if touches and op.routine in self.names and op.routine not in self.analysed:
                         waiting = True  # what it leaves is not known yet: the next round goes on from here
                         break
+                    if not touches:
+                        continue  # `transfer` leaves the state as it is
+                if shared:
+                    state = dict(state)
+                    shared = False
                 state = transfer(state, op, self.touched, self.exits)
             if waiting:
                 continue
             term = block.terminator
             if isinstance(term, ir.GotoRoutine):
-                reached.append((term.routine, dict(state)))
+                reached.append((term.routine, state))
             if isinstance(term, (ir.FallOff, ir.Return)) or term is None:
                 end = meet(end, state)
             for succ in ir.successors(term):
@@ -317,13 +339,13 @@ class Resolver:
                         else:
                             out.append(op)
                     block.ops = out
-                kept_go = kept_go or any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in block.ops)
+                kept_go = kept_go or any(type(op) is ir.Native and op.mnemonic == "G" for op in block.ops)
                 if any(isinstance(op, ir.Native) for op in relevant):
                     with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
             for block in with_modes:
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
-                                                            and op.mnemonic in (*POSITION_MODES, *MOVE_MODES))]
+                                                            and op.mnemonic in MODE_COMMANDS)]
         checkpoint()
         self.drop_unread_distances()
 
@@ -388,11 +410,13 @@ class Resolver:
         for routine in self.module.routines:
             self.drop_dead_in(routine, read)
         used: set[str] = set()
-        for _, block in self.module.blocks():
-            for op in block.ops:
-                used |= self.op_reads(op)
-                if isinstance(op, ir.Assign) and is_distance(op.target.name):
-                    used.add(op.target.name)
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                for op in block.ops:
+                    if type(op) in READERS:
+                        used |= self.op_reads(op)
+                        if type(op) is ir.Assign and op.target.name.startswith(DISTANCE):
+                            used.add(op.target.name)
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
 
@@ -409,7 +433,8 @@ class Resolver:
         return NOTHING
 
     def distance_reads(self) -> set[str]:
-        return {name for _, block in self.module.blocks() for op in block.ops for name in self.op_reads(op)}
+        return {name for routine in self.module.routines for block in routine.blocks for op in block.ops
+                if type(op) in READERS for name in self.op_reads(op)}
 
     def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
         if not any(isinstance(op, ir.Assign) and is_distance(op.target.name)
@@ -431,13 +456,14 @@ class Resolver:
         def through(block, live: set[str], drop: bool) -> set[str]:
             kept = []
             for op in reversed(block.ops):
-                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                kind = type(op)
+                if kind is ir.Assign and op.target.name.startswith(DISTANCE):
                     if op.target.name not in live and drop:
                         continue
                     live = (live - {op.target.name}) | self.op_reads(op)
-                elif isinstance(op, ir.Call):
+                elif kind is ir.Call:
                     live = live | read
-                else:
+                elif kind in READERS:  # the others read no register
                     live = live | self.op_reads(op)
                 kept.append(op)
             if drop:
@@ -450,13 +476,14 @@ class Resolver:
             kill: set[str] = set()
             gen: set[str] = set()
             for op in reversed(block.ops):
-                if isinstance(op, ir.Assign) and is_distance(op.target.name):
+                kind = type(op)
+                if kind is ir.Assign and op.target.name.startswith(DISTANCE):
                     gen.discard(op.target.name)
                     kill.add(op.target.name)
                     gen |= self.op_reads(op)
-                elif isinstance(op, ir.Call):
+                elif kind is ir.Call:
                     gen |= read
-                else:
+                elif kind in READERS:  # the others read no register
                     gen |= self.op_reads(op)
             return kill, gen
 
@@ -503,7 +530,9 @@ def identical(a: State | None, b: State | None) -> bool:
 def states_equal(a: State | None, b: State | None) -> bool:
     if a is None or b is None:
         return a is b
-    return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+    if a is b:
+        return True
+    return a.keys() == b.keys() and all(a[k] is b[k] or same(a[k], b[k]) for k in a)
 
 
 def resolve(module: ir.Module, diags: Diagnostics) -> None:

@@ -149,17 +149,53 @@ class Command:
     text: str  # as written, the joining space of a re-joined argument removed
     span: Span
     address: int | None = None
-    address_span: Span | None = None
+    # The spans of the address and of the mnemonic are made only when asked for (`address_span`,
+    # `mnemonic_span`): most commands never need them, and a parse reads thousands of commands
+    # (docs/PERFORMANCE.md). On a line without a re-joined space they are characters
+    # [0, address_chars) and [mnemonic_from, mnemonic_to) of the token, on the command's own line
+    # (so a copy moved with the command's span moves them too); else the spans given.
+    address_chars: int = 0
+    given_address_span: Span | None = None
     buffered: bool = False  # the B prefix of an immediate `*` command (L185)
     mnemonic: str = ""  # canonical upper-case catalog name; "" when not a known command
     written: str = ""  # the mnemonic as written (case kept)
-    mnemonic_span: Span | None = None
+    mnemonic_from: int = 0
+    mnemonic_to: int = 0
+    given_mnemonic_span: Span | None = None
     info: CatalogCommand | None = None  # the catalog entry (for VARn=FUN etc. the statement's entry)
     arg: Argument | None = None
     arg_span: Span | None = None
     host: bool = False  # `!number`: the host's reply to VARn=RSIN, data rather than a command
     rejoined: bool = False  # a space inside the command was removed (IF (..), 1OUTL XX10X1)
     problems: list[Problem] = field(default_factory=list)
+
+    @property
+    def address_span(self) -> Span | None:
+        chars = self.address_chars
+        if chars:
+            span = self.span
+            return Span(span.file, span.line, span.column, span.line, span.column + chars, span.start,
+                        span.start + chars)
+        return self.given_address_span
+
+    @address_span.setter
+    def address_span(self, span: Span | None) -> None:
+        self.given_address_span = span
+        self.address_chars = 0
+
+    @property
+    def mnemonic_span(self) -> Span | None:
+        begin, end = self.mnemonic_from, self.mnemonic_to
+        if end:
+            span = self.span
+            return Span(span.file, span.line, span.column + begin, span.line, span.column + end, span.start + begin,
+                        span.start + end)
+        return self.given_mnemonic_span
+
+    @mnemonic_span.setter
+    def mnemonic_span(self, span: Span | None) -> None:
+        self.given_mnemonic_span = span
+        self.mnemonic_from = self.mnemonic_to = 0
 
     @property
     def ok(self) -> bool:

@@ -155,7 +155,9 @@ class CommandReader:
                 return Span(path, line, column + start, line, column + stop, base + start, base + stop)
 
             span = Span(path, line, column, line, column + size, base, base + size)
+            lazy = True  # the address and mnemonic spans are characters of `span` (st.Command)
         else:
+            lazy = False
             def sub(begin: int, end: int) -> Span:
                 start = piece.offset(begin) if begin < size else piece.end_offset(size)
                 return at(start, piece.end_offset(end) if end > begin else start)
@@ -170,7 +172,10 @@ class CommandReader:
         if digits:
             pos = digits.end()
             cmd.address = whole(digits.group())
-            cmd.address_span = sub(0, pos)
+            if lazy:
+                cmd.address_chars = pos  # sub(0, pos): pos > 0, and the token is longer
+            else:
+                cmd.address_span = sub(0, pos)
         if pos == len(text):
             cmd.problems.append(st.Problem("X003", span, f"'{text}' is a device address with no command after it; "
                                                          "write the command right after the address (1A10)"))
@@ -191,7 +196,11 @@ class CommandReader:
         cmd.info = info
         cmd.mnemonic = info.name
         cmd.written = text[pos:end]
-        cmd.mnemonic_span = sub(pos - (1 if cmd.buffered else 0), end)
+        if lazy:  # sub(begin, end): the mnemonic is inside the token, and not empty
+            cmd.mnemonic_from = pos - (1 if cmd.buffered else 0)
+            cmd.mnemonic_to = end
+        else:
+            cmd.mnemonic_span = sub(pos - (1 if cmd.buffered else 0), end)
         try:
             cmd.arg = self.arg_readers.get(info.arg, self.read_none)(cmd, text, end, sub)
         except ArgError as exc:
