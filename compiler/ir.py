@@ -543,6 +543,20 @@ def successors(term: Terminator | None) -> tuple[str, ...]:
     return ()
 
 
+def callers_of(seeds: set[str], calls: dict[str, set[str]]) -> set[str]:
+    """`seeds` and every routine that calls one of them, directly or through other routines
+    (`calls`: routine name -> the names it calls)."""
+    result = set(seeds)
+    changed = True
+    while changed:
+        changed = False
+        for name, callees in calls.items():
+            if name not in result and callees & result:
+                result.add(name)
+                changed = True
+    return result
+
+
 def retarget(term: Terminator | None, old: str, new: str) -> None:
     """Point a terminator's transfers to block `old` at block `new` instead."""
     if isinstance(term, Jump) and term.target == old:

@@ -265,15 +265,8 @@ class Writer:
                         called.add(op.routine)
             direct[routine.name] = touched
             calls[routine.name] = called
-        result = {name for name, touched in direct.items() if touched} | set(self.module.externals)
-        changed = True
-        while changed:
-            changed = False
-            for name, called in calls.items():
-                if name not in result and called & result:
-                    result.add(name)
-                    changed = True
-        return result
+        return ir.callers_of({name for name, touched in direct.items() if touched} | set(self.module.externals),
+                             calls)
 
     # -- module and routines -----------------------------------------------------------------------
     def write_module(self) -> Written:

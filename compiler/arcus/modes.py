@@ -52,15 +52,7 @@ def changers(module: ir.Module) -> set[str]:
                     direct.add(routine.name)
                 elif isinstance(op, ir.Call):
                     calls.setdefault(routine.name, set()).add(op.routine)
-    result = set(direct)
-    changed = True
-    while changed:
-        changed = False
-        for name, callees in calls.items():
-            if name not in result and callees & result:
-                result.add(name)
-                changed = True
-    return result
+    return ir.callers_of(direct, calls)
 
 
 class _Flow:
