@@ -618,6 +618,9 @@ class Writer:
         name = {"switch": "HM", "index": "HI", "offset": "HF"}.get(op.method)
         if name is None:
             raise Unsupported(f"homing by {op.method}")
+        if op.speed is not None:  # X150 GH n
+            raise Unsupported("homing at a speed of its own (MCode homes at the max speed VM; set VM to that speed "
+                              "around the homing move in the source)")
         if op.mode is not None:
             return f"{self.prefix(op.axis)}{name} {self.expr(op.mode)}"
         kind = HOME_TYPES.get((op.direction, op.creep))

@@ -280,8 +280,8 @@ class Slew:
 @dataclass(slots=True)
 class Home:
     """Seek the home reference (`method`: switch | index | switch+index | offset) moving in
-    `direction` (+1/-1) at the max speed, then creep off it in `creep` (+1/-1, 0: the device's
-    default) at the initial speed; the position there becomes 0."""
+    `direction` (+1/-1) at `speed` (steps/s; None: the max speed in force), then creep off it in
+    `creep` (+1/-1, 0: the device's default) at the initial speed; the position there becomes 0."""
 
     axis: str
     method: str  # switch | index | switch+index | offset
@@ -289,6 +289,7 @@ class Home:
     mode: Expr | None = None  # legacy: a dialect homing type; the contract uses direction/creep
     span: Span | None = None
     creep: int = 0
+    speed: Expr | None = None  # X150 GH n homes at a speed of its own, not at V
 
 
 @dataclass(slots=True)

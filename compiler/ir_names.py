@@ -152,10 +152,12 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
                 "HANDLER_ENABLE_BITS order; a handler that fires clears its bit (MCode TE)", ("mcode",)),
     SettingInfo("input_debounce", Unit.S, "time input `index` must hold a new level before it counts",
                 ("mcode",)),
-    SettingInfo("input_function", Unit.NONE, "what input `index` does: a name of INPUT_FUNCTIONS", ("mcode",)),
-    SettingInfo("input_active_high", Unit.NONE, "1: input `index` is active at a high level, 0: low", ("mcode",)),
-    SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS", ("mcode",)),
-    SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode",)),
+    SettingInfo("input_function", Unit.NONE, "what input `index` does: a name of INPUT_FUNCTIONS", ("mcode", "x150")),
+    SettingInfo("input_active_high", Unit.NONE, "1: input `index` is active at a high level, 0: low",
+                ("mcode", "x150")),
+    SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS",
+                ("mcode", "x150")),
+    SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode", "x150")),
     SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis", ("arcus",)),
     SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again",
                 ("arcus",)),
@@ -187,15 +189,69 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("encoder_step_mode", Unit.NONE, "1: distances count encoder steps, 0: motor steps", ("x150",)),
     SettingInfo("keep_buffer_on_stop", Unit.NONE, "1: a stop keeps the commands waiting in the buffer, 0: clears "
                 "them", ("x150",)),
+    SettingInfo("home_accel", Unit.STEPS_PER_S2, "acceleration of a homing move (0: the largest the drive makes)",
+                ("x150",)),
+    SettingInfo("home_final_speed", Unit.STEPS_PER_S, "speed of a homing move's final approach to the home edge",
+                ("x150",)),
+    SettingInfo("following_mode", Unit.NONE, "0: the axis is an indexer (it runs its own moves); 1-6: it follows "
+                "a step/encoder input in one of the device's following modes", ("x150",)),
+    SettingInfo("following_ratio", Unit.PERCENT, "speed of a following axis as a percentage of its input",
+                ("x150",)),
+    SettingInfo("command_source", Unit.NONE, "how the following input is counted: 0 quadrature x4, 1 x2, 2 x1, "
+                "3 step and direction", ("x150",)),
+    SettingInfo("single_step", Unit.NONE, "1: a stored program runs one command per step request from the host, "
+                "0: it runs freely", ("x150",)),
+    SettingInfo("trace", Unit.NONE, "1: the device reports each program command to the host as it runs it, 0: off",
+                ("x150",)),
+    SettingInfo("panel_pause_keys", Unit.NONE, "1: the operator panel's PAUSE and CONTINUE keys pause and resume "
+                "the program, 0: they are ignored", ("x150",)),
+    SettingInfo("limit_decel", Unit.STEPS_PER_S2, "deceleration of a stop at a limit switch", ("x150",)),
+    SettingInfo("position_error_limit", Unit.NONE, "position error, in motor steps, beyond which a servo faults "
+                "(0: no limit)", ("x150",)),
+    SettingInfo("in_position_window", Unit.NONE, "position error, in motor steps, within which a move counts as "
+                "in position", ("x150",)),
+    SettingInfo("in_position_time", Unit.S, "time the position error must stay within the in-position window",
+                ("x150",)),
+    SettingInfo("servo_proportional_gain", Unit.NONE, "the servo loop's proportional gain (device units)",
+                ("x150",)),
+    SettingInfo("servo_integral_gain", Unit.NONE, "the servo loop's integral gain (device units)", ("x150",)),
+    SettingInfo("servo_velocity_gain", Unit.NONE, "the servo loop's velocity feedback gain (device units)",
+                ("x150",)),
+    SettingInfo("servo_feedforward_gain", Unit.NONE, "the servo loop's velocity feedforward gain (device units)",
+                ("x150",)),
+    SettingInfo("servo_filter_time", Unit.S, "time constant of the servo loop's output filter", ("x150",)),
+    SettingInfo("following_filter_time", Unit.S, "time constant of the filter on a following input", ("x150",)),
+    SettingInfo("panel_stop_key", Unit.NONE, "1: the operator panel's STOP key stops motion and ends every loop "
+                "and program, 0: it is ignored", ("x150",)),
 )}
 
 # The values of the input_function and output_function settings (an `ir.Text`).
 INPUT_FUNCTIONS = ("general", "home", "limit_plus", "limit_minus", "run_program", "soft_stop", "pause",
                    "jog_plus", "jog_minus", "reset", "capture", "step_direction", "encoder_ab", "step_up_down",
-                   "kill")  # kill: stop at once without a ramp and end the program
+                   "kill",  # kill: stop at once without a ramp and end the program
+                   # X150 only (L2077-L2106):
+                   "sequence_strobe",  # a 0->1 edge runs the sequence the select inputs name
+                   "sequence_select",  # one bit of the sequence number the strobe runs
+                   "drive_enable",  # the drive is energised while the input is active
+                   "go",  # a 0->1 edge starts a move, as G
+                   "direction_toggle",  # a 0->1 edge reverses the direction of the next move, as H
+                   "end_loop",  # ends the running loop after its current pass, as Y
+                   "data",  # one bit of the parallel data (thumbwheel) read by the ...RD commands
+                   "data_sign",  # the sign of the parallel data
+                   "memory_lock",  # while active, the stored programs cannot be changed
+                   "continue",  # resumes a program paused by PS
+                   "position_zero")  # a 0->1 edge makes the present position 0, as PZ
 OUTPUT_FUNCTIONS = ("general", "moving", "error", "stall", "velocity_changing", "locked_rotor",
                     "moving_to_position", "hmt_active", "make_up_active", "encoder_a", "encoder_b", "trip",
-                    "attention")
+                    "attention",
+                    # X150 only (L2986-L2995):
+                    "program_running",  # on while a sequence runs
+                    "no_fault",  # on while there is no fault (fail-safe)
+                    "busy",  # on while the controller is busy
+                    "energised",  # on while the drive is energised by ON
+                    "data_strobe",  # strobes the parallel data inputs (thumbwheels)
+                    "in_position",  # on when the motor has settled within the in-position window
+                    "registration_pulse")  # a 100 ms pulse after a registration move
 
 
 def status_unit(meaning: str) -> Unit:

@@ -67,7 +67,8 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
         return f"jog {op.axis} {'+' if op.direction >= 0 else '-'}"
     if isinstance(op, ir.Home):
         mode = f" mode {expr_text(op.mode)}" if op.mode is not None else ""
-        return f"home {op.axis} {op.method} direction {op.direction:+d}{mode}"
+        speed = f" speed {expr_text(op.speed)}" if op.speed is not None else ""
+        return f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{mode}"
     if isinstance(op, ir.Stop):
         return f"stop {op.axis} {'ramp' if op.ramp else 'abort'}"
     if isinstance(op, ir.SetPosition):

@@ -15,6 +15,7 @@ Semantics the dialects leave open are decided in docs/SIMULATOR.md and noted whe
 
 from __future__ import annotations
 
+import dataclasses
 import heapq
 import math
 from dataclasses import dataclass
@@ -47,6 +48,11 @@ DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
+
+
+# Settings whose non-zero value changes how the machine runs in a way the simulator does not model.
+UNMODELLED = {"following_mode": "the axis follows an external input instead of running its own moves",
+              "single_step": "a stored program runs one command per step request from the host"}
 
 
 class ContractError(Exception):
@@ -158,6 +164,7 @@ class Simulator:
         self.motion_op: dict[int, ir.Op] = {}
         self.changes = 0  # bumped by anything a polling loop could be waiting for
         self.natives: set[str] = set()
+        self.unmodelled: set[str] = set()  # settings reported once each (S014)
         self.fixed_watches: dict[str, list] = {}
         self.read_continuous = False  # the running stretch read something that changes with time
         self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
@@ -539,13 +546,22 @@ class Simulator:
 
     def _do_setting(self, op) -> Wait | None:
         """The settings the model has: which handlers are enabled, which input captures."""
-        if op.name == "handler_enable":
+        if op.name == "home_accel":
+            value = self._eval_quiet(op.value)
+            for name in self._expand((op.axis,)):
+                self._axis(name).home_accel = float(value) if value is not None else None
+        elif op.name == "handler_enable":
             mask = self._eval_quiet(op.value)
             if mask is not None:
                 self._set_enable_mask(op, int(mask))
         elif op.name == "input_function" and isinstance(op.value, ir.Text) and op.value.value == "capture" \
                 and self.scenario.capture is None and op.index is not None:
             self.capture_input = op.index
+        elif op.name in UNMODELLED and self._eval_quiet(op.value) != 0 and op.name not in self.unmodelled:
+            self.unmodelled.add(op.name)
+            self.diags.add("S014", op.span or _file_span(self.module.path),
+                           f"the setting {op.name} changes how the machine runs ({UNMODELLED[op.name]}), which the "
+                           "simulator does not model: it goes on as if the setting were 0")
         return None
 
     def _do_native(self, op) -> Wait | None:
@@ -655,7 +671,12 @@ class Simulator:
             return
         delta = target - start
         path = Path({op.axis: start}, abs(delta), {op.axis: 1.0 if delta > 0 else -1.0})
-        self._begin(op, path, axis.limits(self.machine.shared), targets={op.axis: target}, plan_length=abs(delta))
+        limits = axis.limits(self.machine.shared)
+        if op.speed is not None:  # X150 GH n seeks at a speed of its own, not at the max speed
+            limits = dataclasses.replace(limits, maximum=abs(float(self._eval(op.speed))))
+        if axis.home_accel is not None:  # and ramps at GA (0: at once)
+            limits = dataclasses.replace(limits, accel=axis.home_accel, decel=axis.home_accel)
+        self._begin(op, path, limits, targets={op.axis: target}, plan_length=abs(delta))
         axis.on_end = "home"
 
     def _begin(self, op, path: Path, lim: Limits, targets: dict[str, float], plan_length: float) -> None:

@@ -44,6 +44,7 @@ class Axis:
     stalled: int = 0  # 1 after the scenario stalled the axis
     enabled: int = 1
     on_end: str = ""  # "home": the position becomes 0 when the motion ends
+    home_accel: float | None = None  # X150 GA: homing ramps at it rather than at the move acceleration
     cached: Limits | None = None  # the limits in force, until a setting changes
 
     def at(self, t: float) -> float:

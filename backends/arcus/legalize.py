@@ -326,6 +326,10 @@ class Legalizer:
             self.ctx.unsupported(op, f"homing by '{op.method}' without a direction has no Arcus statement "
                                      "(HOME, ZHOME and ZOME home in + or - on the switch, switch+index or index)")
             raise Skip
+        if op.speed is not None:  # X150 GH n
+            self.ctx.unsupported(op, "homing at a speed of its own has no Arcus statement (HOME seeks at the high "
+                                     "speed HSPD; set HSPD to that speed around the homing move in the source)")
+            raise Skip
         self.emit(ir.Home(self.axis(op.axis, op), op.method, op.direction, span=op.span))
 
     def op_stop(self, op: ir.Stop) -> None:

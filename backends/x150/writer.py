@@ -70,6 +70,7 @@ def number(value) -> str:
 
 
 RATE_MNEMONICS = {"speed": "V", "acceleration": "A"}  # the catalog entries that bound rate()
+SETTING_RATES = {ir.Unit.STEPS_PER_S: ("speed", "rev/s"), ir.Unit.STEPS_PER_S2: ("acceleration", "rev/s^2")}
 
 
 @dataclass
@@ -112,6 +113,17 @@ def waited_moves(module: ir.Module) -> set[int]:
     return found
 
 
+def homing_waits(module: ir.Module) -> dict[int, int]:
+    """The waits that directly follow a homing move on its axis, by id, to the id of their homing
+    move: X150's GH runs the next command only once homing has ended (L1715), so GH is both."""
+    found: dict[int, int] = {}
+    for _, block in module.blocks():
+        for op, after in zip(block.ops, block.ops[1:]):
+            if isinstance(op, ir.Home) and isinstance(after, ir.WaitMotion) and after.axis in (op.axis, ir.ALL_AXES):
+                found[id(after)] = id(op)
+    return found
+
+
 class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
         self.module = module
@@ -131,6 +143,8 @@ class Writer:
         self.entries = {r.blocks[0].label: r.name for r in module.routines if r.blocks}
         self.touches = self.mode_touching()
         self.waited = waited_moves(module)
+        self.homing_waits = homing_waits(module)
+        self.homing_ops = set(self.homing_waits.values())
         self.routine: ir.Routine | None = None
         self.device: int | None = None
         self.in_sequence = False
@@ -588,6 +602,11 @@ class Writer:
             self.emit(self.address() + "T" + self.seconds(op.duration), span)
         elif isinstance(op, ir.WaitInput):
             self.emit(self.address() + self.wait(op.cond), span)
+        elif isinstance(op, ir.Home):
+            for line in self.home(op):
+                self.emit(self.address(op.axis) + line, span)
+        elif isinstance(op, ir.WaitMotion) and id(op) in self.homing_waits:
+            pass  # GH has waited already
         elif isinstance(op, ir.WaitMotion):
             # in MN the command after G runs when the move has ended (MQ exists to change that, L2631)
             key = self.address(op.axis) or ir.ALL_AXES
@@ -627,6 +646,32 @@ class Writer:
             self.emit(self.setting(op), span)
         else:
             raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
+
+    def home(self, op: ir.Home) -> list[str]:
+        """GH n: seek the home input at n rev/s, the sign giving the direction (L1701-L1715). X150
+        homes on its home input only, at a speed of its own, and waits for the end of homing."""
+        if op.method != "switch" or op.direction not in (1, -1):
+            how = f"by {op.method}" + (" without a direction" if op.direction not in (1, -1) else "")
+            raise CannotWrite(f"X150 homes on the home switch in + or - (GH); homing {how} has no equivalent", "G003")
+        speed = op.speed
+        if speed is None:  # another dialect's homing seeks at the max speed in force: GH at that speed
+            speed = lookup(self.forces.get(id(op), {}), ir.MotionParam.MAX_SPEED, op.axis)
+        if not isinstance(speed, ir.Const):
+            raise CannotWrite("X150 homes at a speed written in GH n, and the max speed this homing move seeks at "
+                              "is not known here: set it with a constant before the homing move", "G003")
+        if id(op) not in self.homing_ops:
+            raise CannotWrite("X150 runs the next command only when GH has found home (L1715), and the source goes "
+                              "on while homing: wait for the end of the homing move in the source", "G003")
+        text = self.ranged("GH", self.rate(speed, "speed"), "homing speed", "rev/s")
+        lines: list[str] = []
+        if op.speed is None:  # another dialect's homing ramps at the acceleration in force; X150's at GA
+            accel = lookup(self.forces.get(id(op), {}), ir.MotionParam.ACCEL, op.axis)
+            if not isinstance(accel, ir.Const):
+                raise CannotWrite("X150 homing ramps at its own acceleration (GA), and the acceleration this homing "
+                                  "move ramps at is not known here: set it with a constant before the homing move",
+                                  "G003")
+            lines.append("GA" + self.ranged("GA", self.rate(accel, "acceleration"), "homing acceleration", "rev/s^2"))
+        return lines + ["GH" + ("-" if op.direction < 0 else "") + text]
 
     def motion(self, op: ir.SetMotion) -> None:
         param, span = op.param, op.span
@@ -796,10 +841,13 @@ class Writer:
             if self.in_sequence and info.exec == "I":
                 raise CannotWrite(f"X150 {mnemonic} ({name.replace('_', ' ')}) is an immediate command that a "
                                   "sequence cannot store; send it from the host", "G003")
-            if name == "speed_change":
-                value = self.ranged(mnemonic, self.rate(op.value, "speed"), "speed", "rev/s")
+            unit = ir_names.SETTINGS[name].unit
+            if unit in SETTING_RATES:  # a speed or acceleration setting (IV, GHF, GA) in rev/s or rev/s^2
+                what, written = SETTING_RATES[unit]
+                value = self.ranged(mnemonic, self.rate(op.value, what), name.replace("_", " "), written)
             else:
-                value = self.value(op.value)
+                written = units.from_ir(op.value, neutral.SCALES[mnemonic]) if mnemonic in neutral.SCALES else op.value
+                value = self.value(written)
                 self.ranged(mnemonic, value, name.replace("_", " "), "")
             return prefix + ("B" if self.in_sequence and info.b_prefixable else "") + mnemonic + value
         index = op.index or 0

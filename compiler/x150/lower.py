@@ -32,7 +32,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from mcc.compiler import ir
+from mcc.compiler import ir, ir_names
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
@@ -54,7 +54,8 @@ KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKin
              ir.RoutineKind.MAIN: 0}
 # The roles and the mnemonics `Lowering.simple` lowers to a neutral operation (each of its cases asks
 # for one of them); any other command is a Native at once, without asking every case.
-NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "delay", "wait_input", "assign", "save", "return", "when"))
+NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "home", "delay", "wait_input", "assign", "save", "return",
+                           "when"))
 NEUTRAL_NAMES = frozenset((*DIRECTION, "CUR", "O", "TRIP", "PZ", '"', "PR", "SB", "ST", *neutral.SETTINGS,
                            "IN", "OUT", "INL", "OUTL", "HALT"))
 OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
@@ -351,6 +352,12 @@ class Lowering:
             self.emit(self.outputs(arg, span))
         elif name == "TRIP" and arg is None and axis_ok:
             self.emit(ir.WaitMotion(axis, span))
+        elif role == "home" and isinstance(arg, st.Number) and arg.value != 0 and axis_ok:
+            # GH n: seek the home input at |n| rev/s in the sign's direction (L1711-L1713); the next
+            # command runs once homing has ended ("use the SP command after the GH is complete", L1715)
+            speed = self.value(st.Number(arg.text.lstrip("+-"), abs(arg.value), arg.span), info)
+            self.emit(ir.Home(axis, "switch", 1 if arg.value > 0 else -1, span=span, speed=speed))
+            self.emit(ir.WaitMotion(axis, span))
         elif name == "PZ" and arg is None and axis_ok:
             self.emit(ir.SetPosition(axis, ir.Const(0, ir.Unit.STEPS, span), span))
         elif role == "delay" and arg is not None and fits:
@@ -375,8 +382,13 @@ class Lowering:
         elif name == "ST" and isinstance(arg, st.Number) and arg.value in (0, 1) and axis_ok:  # ST1 shuts down
             self.emit(ir.DriveEnable(axis, ir.Const(1 - int(arg.value), ir.Unit.NONE, arg.span), span))
         elif name in neutral.SETTINGS and isinstance(arg, (st.Number, st.VarRef)) and self.settable(command):
-            value = self.value(arg, info) if name == "IV" else self.expr(arg)  # IV: rev/s -> steps/s
-            self.emit(ir.Setting(neutral.SETTINGS[name], axis, value, span))
+            setting = neutral.SETTINGS[name]
+            unit = ir_names.SETTINGS[setting].unit  # rev/s and rev/s^2 become steps/s and steps/s^2
+            if name in neutral.SCALES:  # ms -> s
+                value = units.to_ir(self.expr(arg), neutral.SCALES[name], unit)
+            else:
+                value = self.value(arg, info, unit) if unit is not ir.Unit.NONE else self.expr(arg)
+            self.emit(ir.Setting(setting, axis, value, span))
         elif name in ("IN", "OUT") and isinstance(arg, st.IoFunction) and self.settable(command) \
                 and arg.function.upper() in (neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS):
             table = neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS

@@ -98,7 +98,8 @@ def level(cond) -> tuple[tuple[str, int], str] | None:
 
 
 # Settings: X150 command -> the neutral setting it writes (ir_names.SETTINGS); each takes a plain
-# number, written back as the command with that number. `speed_change` (IV, rev/s) is converted.
+# number, written back as the command with that number. A setting whose neutral unit is a speed or an
+# acceleration (IV, GHF in rev/s; GA in rev/s^2) is converted with the resolution.
 SETTINGS = {
     "LD": "limits_disabled",  # L2388: 0 both limits enabled, 1 + disabled, 2 - disabled, 3 both
     "FSC": "position_maintenance",  # L1603
@@ -109,13 +110,38 @@ SETTINGS = {
     "FSB": "encoder_step_mode",  # L1595
     "SSH": "keep_buffer_on_stop",  # L3960
     "IV": "speed_change",  # L2192: the speed of the move in progress (immediate only)
+    "GA": "home_accel",  # L1695: rev/s^2, 0 = no acceleration period
+    "GHF": "home_final_speed",  # L1726: rev/s
+    "SIM": "following_mode",  # L3727-L3741
+    "FOL": "following_ratio",  # L1461: percent
+    "CCS": "command_source",  # L378-L383
+    "XST": "single_step",  # L5330
+    "XTR": "trace",  # L5384
+    "DCNT": "panel_pause_keys",  # L860
+    "DSTP": "panel_stop_key",  # L1237
+    "LA": "limit_decel",  # L2371: rev/s^2
+    "CPE": "position_error_limit",  # L669: motor steps
+    "CEW": "in_position_window",  # L440: motor steps
+    "CIT": "in_position_time",  # L500: ms
+    "CPG": "servo_proportional_gain",  # L693
+    "CIG": "servo_integral_gain",  # L489
+    "CVG": "servo_velocity_gain",  # L770
+    "CFG": "servo_feedforward_gain",  # L459
+    "CTG": "servo_filter_time",  # L705: ms
+    "CAG": "following_filter_time",  # L320-L330: ms, the SIM3/4 input filter
 }
+# Settings written in ms on the X150 and in seconds in the IR: IR units per X150 unit.
+SCALES = {"CIT": 0.001, "CTG": 0.001, "CAG": 0.001}
 SETTING_COMMANDS = {name: mnemonic for mnemonic, name in SETTINGS.items()}
 
 # Input and output functions (IN<n><letter>, OUT<n><letter>, L2058-L2114, L2974-L3013): the letters
 # with a neutral meaning (ir_names.INPUT_FUNCTIONS / OUTPUT_FUNCTIONS); the others stay Native.
-INPUT_FUNCTIONS = {"A": "general", "C": "kill", "F": "pause", "J": "jog_plus", "K": "jog_minus", "R": "reset"}
-OUTPUT_FUNCTIONS = {"A": "general", "B": "moving"}
+INPUT_FUNCTIONS = {"A": "general", "B": "sequence_strobe", "C": "kill", "E": "drive_enable", "F": "pause",
+                   "G": "go", "H": "direction_toggle", "J": "jog_plus", "K": "jog_minus", "M": "end_loop",
+                   "N": "data", "O": "sequence_select", "P": "memory_lock", "Q": "continue", "R": "reset",
+                   "T": "position_zero", "W": "data_sign"}
+OUTPUT_FUNCTIONS = {"A": "general", "B": "moving", "C": "program_running", "F": "no_fault", "G": "busy",
+                    "H": "energised", "J": "data_strobe", "T": "in_position", "Z": "registration_pulse"}
 INPUT_LETTERS = {name: letter for letter, name in INPUT_FUNCTIONS.items()}
 OUTPUT_LETTERS = {name: letter for letter, name in OUTPUT_FUNCTIONS.items()}
 OUTPUTS = 6

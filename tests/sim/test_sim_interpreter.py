@@ -130,6 +130,22 @@ def test_homing_runs_to_the_switch_and_zeroes_the_position():
     assert trace.axes["X"] == 100
 
 
+def test_homing_with_a_speed_of_its_own_seeks_at_that_speed_not_the_max_speed():
+    scenario = Scenario(axes={"X": AxisSwitches(home=-1500)})
+    ops = [speed("X", 1000), *accel("X", 1e9), ir.Home("X", "switch", -1, speed=c(500, U.STEPS_PER_S)),
+           ir.WaitMotion("X")]
+    (home_end,) = kinds(simulate(module(ops), scenario), "home_end")
+    assert home_end.t == pytest.approx(3.0)  # X150 GH: 1500 steps at 500 steps/s, V says 1000
+
+
+def test_a_setting_the_simulator_does_not_model_is_reported_once():
+    ops = [ir.Setting("following_mode", "X", c(5)), ir.Setting("following_mode", "X", c(5)),
+           ir.Setting("following_mode", "X", c(0)), ir.Setting("trace", "X", c(1))]
+    trace = simulate(module(ops))
+    assert [d.code for d in trace.diagnostics] == ["S014"]
+    assert "following" in trace.diagnostics[0].message
+
+
 def test_a_limit_switch_stops_the_run_with_the_line_of_the_move():
     scenario = Scenario(axes={"X": AxisSwitches(limit_plus=3000)})
     ops = [speed("X", 1000), *accel("X", 1e9), move("X", 5000, line=7), ir.WaitMotion("X")]

@@ -171,11 +171,11 @@ def test_assignments_are_left_to_right():
 
 
 def test_natives_keep_mnemonic_args_form_and_axis():
-    mod = module("1XE1\n1XD1\n1BCPG50\n1OUT3C\n1DPC208\n1TX1,0,3,A=\n1XT\n")  # C: no neutral output function
+    mod = module("1XE1\n1XD1\n1BCDG50\n1OUT3L\n1DPC208\n1TX1,0,3,A=\n1XT\n")  # L: no neutral output function
     natives = ops(mod.routines[0])
     assert [(n.mnemonic, n.form, n.axis) for n in natives] == [
-        ("CPG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1"), ("TX", "", "1")]
-    assert [a.value for a in natives[1].args] == [3, "C"]
+        ("CDG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1"), ("TX", "", "1")]
+    assert [a.value for a in natives[1].args] == [3, "L"]
     assert [a.value for a in natives[3].args] == [1, 0, 3, "A="]
 
 

@@ -5,8 +5,9 @@ it by name, never drop it."""
 from __future__ import annotations
 
 from mcc.backends import x150 as backend
-from mcc.compiler import driver, ir, profiles
+from mcc.compiler import driver, ir, ir_names, profiles
 from mcc.compiler.span import Span
+from mcc.compiler.x150 import neutral
 
 from x150_helpers import module, output
 
@@ -54,3 +55,80 @@ def test_other_dialects_refuse_what_they_cannot_set_by_name():
     assert any("active level" in d.message for d in to_mcode.diagnostics if d.severity.value == "error")
     both = driver.compile_file("s.x150", "x150", target="mcode", text="1IN4A\n1INL_XXX1\n")
     assert not both.has_errors and "IS=4,0,1" in both.listing.text
+
+
+# One line per X150 setting command the IR names (neutral.SETTINGS), with its neutral value.
+NAMED_SETTINGS = {
+    "1GA20": ("home_accel", 80000, ir.Unit.STEPS_PER_S2),  # 20 rev/s^2 at 4000 steps/rev
+    "1GHF0.5": ("home_final_speed", 2000.0, ir.Unit.STEPS_PER_S),
+    "1SIM1": ("following_mode", 1, ir.Unit.NONE),
+    "1FOL50": ("following_ratio", 50, ir.Unit.PERCENT),
+    "1CCS3": ("command_source", 3, ir.Unit.NONE),
+    "1XST1": ("single_step", 1, ir.Unit.NONE),
+    "1XTR0": ("trace", 0, ir.Unit.NONE),
+    "DCNT1": ("panel_pause_keys", 1, ir.Unit.NONE),
+    "DSTP0": ("panel_stop_key", 0, ir.Unit.NONE),
+    "1LA900": ("limit_decel", 3600000, ir.Unit.STEPS_PER_S2),
+    "1CPE4000": ("position_error_limit", 4000, ir.Unit.NONE),
+    "1CIT20": ("in_position_time", 0.02, ir.Unit.S),  # ms on the X150, seconds in the IR
+    "1CAG100": ("following_filter_time", 0.1, ir.Unit.S),
+}
+
+
+def test_configuration_commands_are_named_settings_in_ir_units_and_written_back():
+    text = "".join(line + "\n" for line in NAMED_SETTINGS)
+    ops = [op for _, block in module(text).blocks() for op in block.ops]
+    assert [(op.name, op.value.value, op.value.unit) for op in ops] == list(NAMED_SETTINGS.values())
+    assert output(text) == text.splitlines()
+
+
+def test_servo_settings_and_ms_settings_in_a_sequence_keep_their_b_prefix():
+    text = "1CPG91\n1CTG0.7\n1XE1\n1XD1\n1BCPG50\n1BCIT30\n1XT\n"
+    ops = [op for _, block in module(text).blocks() for op in block.ops]
+    assert [op.name for op in ops] == ["servo_proportional_gain", "servo_filter_time", "servo_proportional_gain",
+                                       "in_position_time"]
+    assert output(text, "x150e-bdhxe") == text.splitlines()
+
+
+def test_every_input_and_output_function_letter_but_one_has_a_neutral_name():
+    text = "".join(f"1IN{n % 10 + 1}{letter}\n" for n, letter in enumerate(neutral.INPUT_FUNCTIONS))
+    text += "".join(f"1OUT{n % 6 + 1}{letter}\n" for n, letter in enumerate(neutral.OUTPUT_FUNCTIONS))
+    ops = [op for _, block in module(text).blocks() for op in block.ops]
+    assert all(isinstance(op, ir.Setting) and op.value.value in (ir_names.INPUT_FUNCTIONS + ir_names.OUTPUT_FUNCTIONS)
+               for op in ops)
+    assert output(text) == text.splitlines()
+    assert isinstance(module("1OUT3L\n").routines[0].blocks[0].ops[0], ir.Native)  # changeover: no meaning
+
+
+def test_gh_is_a_homing_move_at_its_own_speed_that_the_program_waits_for():
+    text = "1V5\n1GH-2\n1D4000\n1G\n"
+    ops = [op for _, block in module(text).blocks() for op in block.ops]
+    home, wait = ops[1], ops[2]
+    assert isinstance(home, ir.Home) and (home.axis, home.method, home.direction) == ("1", "switch", -1)
+    assert home.speed.value == 8000 and home.speed.unit is ir.Unit.STEPS_PER_S  # 2 rev/s
+    assert isinstance(wait, ir.WaitMotion) and wait.axis == "1"
+    assert output(text) == ["1V5", "1GH-2", "1MN", "1MPI", "1D4000", "1G"]
+
+
+def test_a_homing_move_x150_cannot_write_is_refused_and_gh_is_refused_elsewhere():
+    span = Span("p.mxt", 2, 1, 2, 5, 0, 4)
+    seek = ir.Home("X", "switch", 1, span=span)  # MCode HM at a max speed the program never set
+    main = ir.Routine("main", ir.RoutineKind.MAIN, [ir.Block("a", [seek, ir.WaitMotion("X", span)], ir.End(span),
+                                                             span)], span)
+    listing = backend.emit(ir.Module("mcode", "lmd-e", routines=[main], steps_per_rev=4000), PROFILE)
+    [refusal] = [d for d in listing.diagnostics if d.severity.value == "error"]
+    assert refusal.code == "G003" and "speed" in refusal.message and refusal.span.line == 2
+    for target, words in (("mcode", "VM"), ("arcus", "HSPD")):
+        result = driver.compile_file("h.x150", "x150", target=target, text="1V5\n1GH2\n")
+        assert any(d.code == "G003" and words in d.message and d.span.line == 2 for d in result.diagnostics)
+
+
+def test_another_dialects_homing_becomes_gh_at_the_speed_and_acceleration_in_force():
+    source = "PG 1\nVM=25600\nA=102400\nD=102400\nHM 1\nH\nMA 51200\nH\nE\nPG\n"
+    result = driver.compile_file("h.mxt", "mcode", target="x150", text=source)
+    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
+    lines = result.listing.text.splitlines()
+    assert lines[lines.index("1GH-0.5") - 1] == "1GA2"  # 25600 steps/s and 102400 steps/s^2 at 51200 steps/rev
+    assert not driver.compile_file("out.x150", "x150", text=result.listing.text).has_errors
+    unknown = driver.compile_file("h.mxt", "mcode", target="x150", text="PG 1\nHM 1\nH\nE\nPG\n")
+    assert any(d.code == "G003" and "max speed" in d.message for d in unknown.diagnostics)
