@@ -23,7 +23,7 @@ import string
 from fractions import Fraction
 
 from mcc.backends.listing import Listing
-from mcc.compiler import ir, units
+from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
 from mcc.compiler.mcode import catalog as cat
@@ -630,7 +630,8 @@ class Writer:
 
     def setting(self, op: ir.Setting) -> str:
         if op.name not in SETTINGS:
-            raise Unsupported(f"the setting {op.name}")
+            info = ir_names.SETTINGS.get(op.name)
+            raise Unsupported(f"the setting {op.name}" + (f" ({info.meaning})" if info else ""))
         name, factor = SETTINGS[op.name]
         if name == "D":  # D1-D4: one per input
             if op.index not in range(1, 5):

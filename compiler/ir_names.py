@@ -189,12 +189,12 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("encoder_step_mode", Unit.NONE, "1: distances count encoder steps, 0: motor steps", ("x150",)),
     SettingInfo("keep_buffer_on_stop", Unit.NONE, "1: a stop keeps the commands waiting in the buffer, 0: clears "
                 "them", ("x150",)),
-    SettingInfo("home_accel", Unit.STEPS_PER_S2, "acceleration of a homing move (0: the largest the drive makes)",
+    SettingInfo("home_accel", Unit.STEPS_PER_S2, "acceleration of a homing move; 0: the largest the drive makes",
                 ("x150",)),
     SettingInfo("home_final_speed", Unit.STEPS_PER_S, "speed of a homing move's final approach to the home edge",
                 ("x150",)),
-    SettingInfo("following_mode", Unit.NONE, "0: the axis is an indexer (it runs its own moves); 1-6: it follows "
-                "a step/encoder input in one of the device's following modes", ("x150",)),
+    SettingInfo("following_mode", Unit.NONE, "0: the axis is an indexer that runs its own moves; 1-6: it "
+                "follows a step/encoder input in one of the device's following modes", ("x150",)),
     SettingInfo("following_ratio", Unit.PERCENT, "speed of a following axis as a percentage of its input",
                 ("x150",)),
     SettingInfo("command_source", Unit.NONE, "how the following input is counted: 0 quadrature x4, 1 x2, 2 x1, "
@@ -206,8 +206,8 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("panel_pause_keys", Unit.NONE, "1: the operator panel's PAUSE and CONTINUE keys pause and resume "
                 "the program, 0: they are ignored", ("x150",)),
     SettingInfo("limit_decel", Unit.STEPS_PER_S2, "deceleration of a stop at a limit switch", ("x150",)),
-    SettingInfo("position_error_limit", Unit.NONE, "position error, in motor steps, beyond which a servo faults "
-                "(0: no limit)", ("x150",)),
+    SettingInfo("position_error_limit", Unit.NONE, "position error, in motor steps, beyond which a servo faults; "
+                "0: no limit", ("x150",)),
     SettingInfo("in_position_window", Unit.NONE, "position error, in motor steps, within which a move counts as "
                 "in position", ("x150",)),
     SettingInfo("in_position_time", Unit.S, "time the position error must stay within the in-position window",
