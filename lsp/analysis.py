@@ -38,6 +38,7 @@ class Snapshot:
     profile: object | None = None
     tree: object | None = None
     module: object | None = None
+    analysis: object | None = None  # the frontend's Analysis: its symbol table and def-use chains
     index: model.Index = field(default_factory=lambda: model.Index(""))
     diagnostics: list[Diagnostic] = field(default_factory=list)
     complete: bool = False  # every step has run (lint rules, editor model, program memory)
@@ -73,7 +74,7 @@ def check(uri: str, path: str, version: int | None, text: str, resolver: Resolve
     source = analysis.source if analysis is not None else SourceFile(path, text)
     snap = Snapshot(uri, path, version, text, result.dialect, source, settings, checked.profile)
     if analysis is not None:
-        snap.tree, snap.module = analysis.tree, analysis.module
+        snap.tree, snap.module, snap.analysis = analysis.tree, analysis.module, analysis
     snap.diagnostics = engine.settle(checked, settings, rules=False)
     snap.check_errors = any(d.severity.value == "error" for d in snap.diagnostics)
     snap.config_diagnostics = [(p, d) for p, d, _ in resolver.diagnostics()]

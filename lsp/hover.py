@@ -43,7 +43,29 @@ def symbol_markdown(snap, symbol: model.Symbol | None) -> str:
         lines.append("- not defined in this file")
     uses = len(symbol.references)
     lines.append(f"- used {uses} time{'s' if uses != 1 else ''}")
+    if symbol.kind == model.SYMBOL_VARIABLE:
+        lines += data_flow(snap, symbol.name)
     return "\n".join(lines)
+
+
+def data_flow(snap, name: str) -> list[str]:
+    """What the program's data flow says of a variable: the def-use chains the check's analysis
+    keeps (`compiler/symbols.py`), so the editor does not walk the program again."""
+    analysis = snap.analysis
+    if analysis is None:
+        return []
+    defuse = analysis.defuse
+    key = next((n for n in (name, name.upper()) if n in defuse.defs or n in defuse.uses), None)
+    if key is None:
+        return []
+    writes = len(defuse.defs.get(key, ()))
+    reads = sum(not use.self_update for use in defuse.uses.get(key, ()))
+    line = f"- data flow: {writes} write{'s' if writes != 1 else ''}, {reads} read{'s' if reads != 1 else ''}"
+    if writes and not reads:
+        line += " (its value is never read)"
+    elif reads and not writes:
+        line += " (never written in this file)"
+    return [line]
 
 
 def steps_per_rev(snap) -> float:
