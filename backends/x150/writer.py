@@ -482,6 +482,18 @@ class Writer:
         self.state = meet(after, self.state)
         self.emit(f"{self.address()}NIF", end_span or span)
 
+    def conditional_call(self, cond, call: str, span) -> None:
+        """X150 has no conditional call (MCode `CL K1, I1=1`): IF(c) XRn NIF, or IF(c) ELSE XRn NIF for a
+        negated condition X150 cannot write (it has no NOT)."""
+        negated = isinstance(cond, ir.Not) and not self.writable(cond)
+        test = self.cond(cond.cond if negated else cond)
+        prefix = self.address()
+        self.emit(f"{prefix}IF({test})", span)
+        if negated:
+            self.emit(f"{prefix}ELSE", span)
+        self.emit(call, span)
+        self.emit(f"{prefix}NIF", span)
+
     def writable(self, cond) -> bool:
         try:
             self.cond(cond)
@@ -631,10 +643,11 @@ class Writer:
         elif isinstance(op, ir.Save):
             self.emit(self.address() + "SV", span)
         elif isinstance(op, ir.Call):
-            if op.cond is not None:
-                raise CannotWrite("X150 has no conditional call: write IF(...) XRn NIF")
             prefix, n = self.target(op.routine)
-            self.emit(f"{prefix}XR{n}", span)
+            if op.cond is None:
+                self.emit(f"{prefix}XR{n}", span)
+            else:
+                self.conditional_call(op.cond, f"{prefix}XR{n}", span)
             if op.routine in self.touches:
                 self.state = {}
         elif isinstance(op, ir.SetHandler):

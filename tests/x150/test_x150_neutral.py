@@ -132,3 +132,14 @@ def test_another_dialects_homing_becomes_gh_at_the_speed_and_acceleration_in_for
     assert not driver.compile_file("out.x150", "x150", text=result.listing.text).has_errors
     unknown = driver.compile_file("h.mxt", "mcode", target="x150", text="PG 1\nHM 1\nH\nE\nPG\n")
     assert any(d.code == "G003" and "max speed" in d.message for d in unknown.diagnostics)
+
+
+def test_a_conditional_call_is_an_if_around_the_call():
+    """MCode `CL SB, I1=1`: X150 has no conditional call; IF(c) XRn NIF runs the same."""
+    source = "PG 1\nLB K1\nVM=25600\nA=102400\nD=102400\nCL SB, I1=1\nCL SB, I2=0\nE\nLB SB\nMR 51200\nH\nRT\nPG\n"
+    result = driver.compile_file("c.mxt", "mcode", target="x150", text=source)
+    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
+    lines = result.listing.text.splitlines()
+    first = lines.index("IF(IN_1)")
+    assert lines[first:first + 6] == ["IF(IN_1)", "XR2", "NIF", "IF(IN_X0)", "XR2", "NIF"]
+    assert not driver.compile_file("out.x150", "x150", text=result.listing.text).has_errors
