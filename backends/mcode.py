@@ -25,7 +25,7 @@ from fractions import Fraction
 from mcc.backends.listing import Listing
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
-from mcc.compiler.in_force import InForce, lookup
+from mcc.compiler.in_force import FIXED, InForce, lookup, with_fixed_initial_speed
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
@@ -271,6 +271,8 @@ class Writer:
             lines.append(f"' source axis {axis} is this drive")
         if self.ramps:
             lines.append("' ramp times become A/D from the speeds in force")
+        if (ir.MotionParam.INITIAL_SPEED, ir.ALL_AXES) in FIXED.get(source.dialect, {}):
+            lines.append(f"' {source.dialect} starts moves from standstill: VI at its lowest")
         for text in lines:
             self.line(text[:self.limit])
 
@@ -892,6 +894,10 @@ def pattern_cond(pattern: ir.Pattern):
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
+    # an X150 program starts every move from standstill; VI has no 0: the output sets its lowest
+    lowest = float(cat.load().lookup("VI").entry.range[0])
+    module = with_fixed_initial_speed(
+        module, lowest / float(units.ratio(module.steps_per_rev, profile.steps_per_rev)))
     try:
         return Writer(module, profile).run()
     except Unsupported as exc:  # a limit of the whole program (the name space), not of one line

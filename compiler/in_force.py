@@ -30,6 +30,30 @@ State = dict[Key, ir.Const]
 ALL = ir.ALL_AXES
 
 
+# Settings a source dialect fixes for every axis, whatever the program does: X150 has no initial
+# speed (its moves start from standstill, docs/dialects/x150.md), so a program written for it runs
+# with an initial speed of 0 at every point.
+FIXED: dict[str, State] = {
+    "x150": {(ir.MotionParam.INITIAL_SPEED, ALL): ir.Const(0, ir.Unit.STEPS_PER_S)},
+}
+
+
+def with_fixed_initial_speed(module: ir.Module, lowest: float) -> ir.Module:
+    """For a target whose initial speed cannot be 0: a program from a dialect that fixes it at 0
+    (X150 starts every move from standstill) sets the target's lowest initial speed (`lowest`, in
+    the IR's steps/s) at the start of each routine that runs first, so that the device does not
+    start moves at whatever initial speed it has stored. A copy; other programs are returned as they
+    are."""
+    if (ir.MotionParam.INITIAL_SPEED, ALL) not in FIXED.get(module.dialect, {}):
+        return module
+    copy = ir.copy_module(module)
+    for routine in copy.routines:
+        if routine.kind in (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE) and routine.blocks:
+            speed = ir.Const(lowest, ir.Unit.STEPS_PER_S)
+            routine.blocks[0].ops.insert(0, ir.SetMotion(ir.MotionParam.INITIAL_SPEED, ALL, speed))
+    return copy
+
+
 def lookup(state: State, param: ir.MotionParam, axis: str) -> ir.Const | None:
     """The constant in force for `param` on `axis`, or None when it is not known statically."""
     found = state.get((param, axis))
@@ -74,12 +98,21 @@ class InForce:
     def __init__(self, module: ir.Module, defaults: State | None = None):
         self.module = module
         self.defaults = dict(defaults or {})
+        self.fixed = FIXED.get(module.dialect, {})
         self.clobbers = _clobbers(module)
         self.entry: dict[str, State] = {}
         self._solve()
 
     def at_entry(self, label: str) -> State:
-        return dict(self.entry.get(label, {}))
+        return {**self.entry.get(label, {}), **self.fixed}
+
+    def after(self, state: State, op: ir.Op) -> State:
+        """The state in force after `op`, given `state` before it (a new dictionary)."""
+        state = dict(state)
+        transfer(state, op, self.clobbers)
+        if self.fixed:
+            state.update(self.fixed)
+        return state
 
     def walk(self, routine: ir.Routine) -> Iterator[tuple[ir.Block, int, ir.Op, State]]:
         """Every operation of `routine` with the state in force just before it."""
@@ -87,8 +120,7 @@ class InForce:
             state = self.at_entry(block.label)
             for index, op in enumerate(block.ops):
                 yield block, index, op, state
-                state = dict(state)
-                transfer(state, op, self.clobbers)
+                state = self.after(state, op)
 
     def _solve(self) -> None:
         starts: dict[str, State | None] = {}

@@ -26,12 +26,13 @@ from __future__ import annotations
 
 from mcc.backends.arcus import costmodel, header, move_modes, temporaries
 from mcc.backends.arcus.context import Context
-from mcc.backends.arcus.legalize import Legalizer
+from mcc.backends.arcus.convert import Scale
+from mcc.backends.arcus.legalize import Legalizer, lowest_speed
 from mcc.backends.arcus.target import DIALECT
 from mcc.backends.arcus.writer import Writer
 from mcc.backends.listing import Listing
 from mcc.backends.structure import EndNode, structure
-from mcc.compiler import ir
+from mcc.compiler import in_force, ir
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -49,6 +50,7 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
 def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     """Passes 1-4: the program's statements in layout order (not yet priced), the context and
     how many routines became dispatch loops."""
+    module = with_fixed_speeds(module, profile)
     ctx = Context(module, profile)
     ctx.number_subroutines()
     main: list = []
@@ -72,6 +74,14 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
     return ctx, stmts, dispatched
+
+
+def with_fixed_speeds(module: ir.Module, profile: Profile) -> ir.Module:
+    """An X150 program starts every move from standstill; LSPD has no 0, so the output sets it at
+    its lowest (`in_force.with_fixed_initial_speed`), the value the ramp times are computed with
+    (`legalize.ramp_ms`)."""
+    return in_force.with_fixed_initial_speed(
+        module, lowest_speed() / float(Scale(module.steps_per_rev, profile.steps_per_rev).factor))
 
 
 def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:

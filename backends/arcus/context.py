@@ -64,8 +64,7 @@ class Context:
             state = self._analysis.at_entry(block.label)
             for o in block.ops:
                 self._in_force[id(o)] = state
-                state = dict(state)
-                in_force.transfer(state, o, self._analysis.clobbers)
+                state = self._analysis.after(state, o)
             found = self._in_force[id(op)]
         return found
 

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from mcc.compiler import ir
+from mcc.backends.arcus.legalize import lowest_speed
+from mcc.compiler import in_force, ir
 from mcc.compiler.profiles import Profile
 
 if TYPE_CHECKING:
@@ -30,9 +31,13 @@ def lines(module: ir.Module, profile: Profile, ctx: "Context") -> list[str]:
                  "unknown, so one source step is one pulse")
     boot = str(profile.get("arcus.boot_move_mode", "abs")).upper()
     axes = ", ".join(f"{name or '(unnamed)'}->{letter}" for name, letter in ctx.axes.map.items()) or "none"
-    return [
+    found = [
         f"; compiled by mcc from {module.dialect} ({module.path or 'source'}, profile {module.profile})",
         f"; {scale}",
         f"; axes: {axes}; move mode at power-up assumed {boot}; ACC ramp times from the source's "
         "accelerations and the speeds in force",
     ]
+    if (ir.MotionParam.INITIAL_SPEED, ir.ALL_AXES) in in_force.FIXED.get(module.dialect, {}):
+        found.append(f"; {module.dialect} starts every move from standstill: LSPD is set to its lowest, "
+                     f"{lowest_speed():g} pulse/s")
+    return found

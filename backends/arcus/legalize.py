@@ -22,7 +22,7 @@ from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.convert import Refused
 from mcc.backends.arcus.target import DIALECT, HOME_KEYWORDS, MOTION_IR
 from mcc.backends.structure import NEGATE, negate
-from mcc.compiler import ir, units
+from mcc.compiler import in_force, ir, units
 from mcc.compiler.arcus import catalog as arcus_catalog
 from mcc.compiler.span import Span
 
@@ -160,7 +160,8 @@ class Legalizer:
         calls or ends it: the deferred ramp is then written with them (a join or a call would lose it)."""
         ops = self.source_ops
         index = next((i for i, o in enumerate(ops) if o is op), len(ops))
-        wanted = {ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED}
+        fixed = in_force.FIXED.get(self.ctx.module.dialect, {})  # X150: the initial speed is always 0
+        wanted = {p for p in (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED) if (p, ir.ALL_AXES) not in fixed}
         for later in ops[index + 1:]:
             if isinstance(later, (ir.Move, ir.Arc, ir.Slew, ir.Home, ir.Call, ir.Native)):
                 return False

@@ -94,15 +94,16 @@ def test_ramp_times_and_delays_are_written_in_milliseconds() -> None:
     listing = backend.emit(module(
         "x150", setm(ir.MotionParam.ACCEL_TIME, 0.25, S), setm(ir.MotionParam.DECEL_TIME, 0.25, S),
         ir.Delay(ir.Const(1.5, S))), PROFILE)
-    assert code_lines(listing) == ["ACCX=250", "DELAY=1500", "END"]
+    # an X150 program starts every move from standstill: LSPD at its lowest first (in_force.FIXED)
+    assert code_lines(listing) == ["LSPD=1", "ACCX=250", "DELAY=1500", "END"]
 
 
 def test_relative_moves_get_inc_and_absolute_ones_abs() -> None:
     listing = backend.emit(module(
         "x150", move(ir.MoveMode.RELATIVE, ("1", 4000)), move(ir.MoveMode.RELATIVE, ("1", 4000)),
         move(ir.MoveMode.ABSOLUTE, ("1", 0))), PROFILE)
-    assert code_lines(listing) == ["INC", "X4000", "X4000", "ABS", "X0", "END"]
-    modes = [op.mode for op in read_back(listing).routines[0].blocks[0].ops]
+    assert code_lines(listing) == ["LSPD=1", "INC", "X4000", "X4000", "ABS", "X0", "END"]
+    modes = [op.mode for op in read_back(listing).routines[0].blocks[0].ops if isinstance(op, ir.Move)]
     assert modes == [ir.MoveMode.RELATIVE, ir.MoveMode.RELATIVE, ir.MoveMode.ABSOLUTE]
 
 
@@ -167,7 +168,7 @@ def test_the_header_states_the_assumptions_and_the_output_checks_clean() -> None
 def test_axes_map_in_order_and_a_fifth_axis_is_refused() -> None:
     listing = backend.emit(module("x150", move(ir.MoveMode.ABSOLUTE, ("2", 1)), move(ir.MoveMode.ABSOLUTE, ("1", 2))),
                            PROFILE)
-    assert code_lines(listing) == ["Y1", "X2", "END"]  # device addresses 1..4 are X..U
+    assert code_lines(listing) == ["LSPD=1", "Y1", "X2", "END"]  # device addresses 1..4 are X..U
     named = module("mcode", *[move(ir.MoveMode.ABSOLUTE, (name, 1)) for name in "ABCDE"])
     listing = backend.emit(named, PROFILE)
     assert code_lines(listing)[:4] == ["X1", "Y1", "Z1", "U1"]
@@ -299,14 +300,14 @@ def test_an_acceleration_becomes_the_ramp_time_of_the_speeds_in_force(initial: i
                                   setm(ir.MotionParam.ACCEL, accel, SPS2)), PROFILE)
     lspd = max(initial, 1)  # the LSPD written: the PMX-4EX-SA's minimum is 1 pulse/s (G005 below it)
     ramp = max(1, round((initial + span - lspd) / accel * 1000))
-    assert code_lines(listing)[2] == f"ACCX={ramp}"
+    assert code_lines(listing)[3] == f"ACCX={ramp}"  # after LSPD=1 (X150 starts from standstill), LSPDX, HSPDX
 
 
 def test_values_outside_the_controllers_ranges_are_clamped_with_a_warning_or_refused() -> None:
     listing = backend.emit(module("x150", setm(ir.MotionParam.INITIAL_SPEED, 0, SPS),
                                   setm(ir.MotionParam.MAX_SPEED, 7_000_000, SPS), ir.SetOutput(3, ir.Const(2)),
                                   ir.Setting("compare_pulse", "1", ir.Const(0.02, S))), PROFILE)
-    assert code_lines(listing) == ["LSPDX=1", "END"]
+    assert code_lines(listing) == ["LSPD=1", "LSPDX=1", "END"]
     assert [d.code for d in listing.diagnostics] == ["G005", "G003", "G003", "G003"]
     assert "6000000" in errors(listing)[0] and "SYNT" in errors(listing)[2]
 
@@ -328,3 +329,14 @@ def test_readings_in_conditions_keep_their_axis() -> None:
     result = driver.compile_file("t.prg", "arcus", text=text)
     assert not result.has_errors, result.diagnostics
     assert result.listing.text == text
+
+
+def test_an_x150_program_starts_from_standstill_so_its_ramps_need_only_the_max_speed() -> None:
+    """X150 has no initial speed (in_force.FIXED): `A10 V10` converts although no initial speed is
+    set, with LSPD written at its lowest and the ramp computed from it; the header says so."""
+    result = driver.compile_file("a.x150", "x150", target="arcus", text="MN\nA10\nV10\nD8000\nG\n")
+    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
+    assert code_lines(result.listing)[:3] == ["LSPD=1", "HSPD=40000", "ACC=1000"]  # (40000 - 1) / 40000 s
+    assert any("standstill" in line for line in result.listing.text.splitlines() if line.startswith(";"))
+    again = driver.compile_file("a.prg", "arcus", text=result.listing.text)
+    assert not again.has_errors

@@ -74,3 +74,15 @@ def test_another_dialects_stream_that_waits_for_a_move_runs_as_a_program():
     assert lines[0] == "PG 1" and "H" in lines and lines[-2:] == ["PG", "EX 1"]
     assert not driver.check_file("o.mxt", "mcode", text=result.listing.text).has_errors
     assert not check_translation("s.x150", "x150", source, result.listing.text, "mcode")
+
+
+def test_an_x150_program_starts_from_standstill_so_vi_is_written_at_its_lowest():
+    """X150 has no initial speed (in_force.FIXED): without VI the drive would start each move at its
+    stored VI (1000 by default), above this program's max speed of 0.01 rev/s (Error 22)."""
+    source = "XE1\nXD1\nMN\nV0.01\nA10\nD8000\nG\nXT\n"
+    result = driver.compile_file("s.x150", "x150", target="mcode", text=source)
+    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
+    lines = result.listing.text.splitlines()
+    assert lines[lines.index("PG 1") + 1:lines.index("PG 1") + 3] == ["VI=1", "VM=512"]  # 0.01 rev/s at 51200
+    assert any("standstill" in line for line in lines if line.startswith("'"))
+    assert not driver.compile_file("out.mxt", "mcode", text=result.listing.text).has_errors
