@@ -7,6 +7,9 @@ diagnostics as the parser alone (`recovery.parse_lines`, the path before the rea
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as hs
 
@@ -73,6 +76,22 @@ def test_a_text_gives_the_lines_and_diagnostics_of_the_parser_alone(texts: list[
     text = "\n".join(texts) + end
     with_reader, alone = parse_both(text)
     assert with_reader == alone
+
+
+ROOT = Path(__file__).resolve().parents[2]
+PROGRAMS = sorted([*ROOT.glob("samples/arcus/*.prg"), *ROOT.glob("tests/golden/arcus/*/*.prg")])
+
+
+@pytest.mark.parametrize("path", PROGRAMS, ids=lambda p: f"{p.parent.name}/{p.name}")
+def test_the_programs_and_their_mutations_read_as_by_the_parser_alone(path: Path) -> None:
+    text = path.read_text(encoding="utf-8")
+    texts = [text, text.rstrip("\n")]
+    rows = text.split("\n")
+    for k in range(0, len(rows), 3):  # a line deleted, a line doubled
+        texts += ["\n".join(rows[:k] + rows[k + 1:]), "\n".join(rows[:k + 1] + rows[k:])]
+    for variant in texts:
+        with_reader, alone = parse_both(variant)
+        assert with_reader == alone
 
 
 def test_the_common_shapes_are_read_without_the_parser() -> None:
