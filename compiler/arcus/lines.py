@@ -1,17 +1,18 @@
 """Reading the common Arcus lines with regular expressions instead of the LALR parser.
 
 Every line of `grammars/arcus.lark` stands on its own (`start: line*`), and the lines programs are
-made of have a few shapes: a command of parts (`X1000Y2000`, `WAITX`, `GOSUB 1`, `ENDIF`), an
-assignment with at most one operator (`V1=V2+1`, `HSPD=20000`), a condition with one comparison
-of two operands (`IF DI1=1`, `WHILE V3<5`), a comment, nothing. A line of one of these shapes is
-matched by one regular expression and its syntax nodes are made from the groups of the match,
-exactly as the parser's callbacks (`parser.Builder`) make them from the tokens: the same words,
-numbers and spans. That costs about a quarter of the parse (docs/PERFORMANCE.md).
+made of have a few shapes: a command of parts (`X1000Y2000`, `WAITX`, `GOSUB 1`, `ENDIF`), maybe
+with `:` operands (`ARCP0:100:30000`), an assignment with at most one operator (`V1=V2+1`,
+`HSPD=20000`), a condition with one comparison of two operands (`IF DI1=1`, `WHILE V3<5`), a
+comment, nothing. A line of one of these shapes is matched by one regular expression and its
+syntax nodes are made from the groups of the match, exactly as the parser's callbacks
+(`parser.Builder`) make them from the tokens: the same words, numbers and spans. That costs about
+a quarter of the parse (docs/PERFORMANCE.md).
 
-Any other line (colon operands, `~`, `<<`, AND/OR, a chain of operators or comparisons, a
-character the grammar does not know, a syntax error) is left to the parser: each run of such lines
-in one `parse` call, positioned where the run stands, and line by line (with recovery) when that
-call fails, as `recovery.parse_lines` does for a whole text. The grammar is what defines a line:
+Any other line (`~`, `<<`, AND/OR, a chain of operators or comparisons, a character the grammar
+does not know, a syntax error) is left to the parser: each run of such lines in one `parse` call,
+positioned where the run stands, and line by line (with recovery) when that call fails, as
+`recovery.parse_lines` does for a whole text. The grammar is what defines a line:
 `tests/arcus/test_arcus_lines.py` compares what this module reads with what the parser reads on
 generated lines, and checks that the grammar's terminals are still the ones written below.
 """
@@ -51,10 +52,13 @@ def _operand(k: int) -> str:
             rf"|(?P<word{k}>{_WORD}){_WS}(?P<number{k}>{_NUMBER})?)")
 
 
-# Parts of a command: a word, then optionally a sign, then optionally a number (`part`).
+# Parts of a command: a word, then optionally a sign, then optionally a number (`part`); then
+# optionally `:` operands (`colon_args`: ARCP0:100:30000, CIRN0:2000).
 _PART = rf"{_WORD}{_WS}(?:[-+]{_WS})?(?:{_NUMBER}{_WS})?"
 PART = re.compile(rf"({_WORD}){_WS}(?:([-+]){_WS})?({_NUMBER})?")
-COMMAND = re.compile(rf"{_WS}(?P<body>(?:{_PART})+){_COMMENT}")
+_COLON_OPERAND = rf":{_WS}{_operand(0)}"
+COLON_OPERAND = re.compile(_COLON_OPERAND)
+COMMAND = re.compile(rf"{_WS}(?P<body>(?:{_PART})+)(?P<colon>(?:{_COLON_OPERAND}{_WS})+)?{_COMMENT}")
 # A target without a sign, "=", one operand or two with one binary operator (not << or >>).
 ASSIGNMENT = re.compile(rf"{_WS}(?P<word>{_WORD}){_WS}(?P<number>{_NUMBER})?{_WS}={_WS}{_operand(1)}"
                         rf"(?:{_WS}(?P<op>[-+*/%&|]){_WS}{_operand(2)})?{_WS}{_COMMENT}")
@@ -119,7 +123,13 @@ class LineReader:
             if not parts:
                 first = begin
             parts.append(word)
-        return st.Command(parts, [], span(number, start, first, last))
+        colon = []
+        if found.start("colon") >= 0:
+            operand = self.operand
+            colon = [operand(number, start, item, 0)
+                     for item in COLON_OPERAND.finditer(text, found.start("colon"), found.end("colon"))]
+            last = colon[-1].span.end - start
+        return st.Command(parts, colon, span(number, start, first, last))
 
     def part(self, number: int, start: int, found: re.Match, word: str, digits: str) -> st.Part:
         """A word with the number glued to it, if any (groups `word` and `digits` of the match)."""

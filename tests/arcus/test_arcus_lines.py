@@ -98,7 +98,7 @@ def test_the_common_shapes_are_read_without_the_parser() -> None:
     reader = lines.LineReader("t.prg")
     for text in ["X1000Y-2000 ;move", "JOGX+", "GOSUB 1", "ENDIF", "V1=V2+1", "HSPD = 20000", "DO1=1 'set",
                  "V3=-5", "V3=+5", "V1=V2--3", "IF DI1=1", "elseif V2>=7", "WHILE V3 < 5", "IF1=2", "", "  ",
-                 "; only a comment"]:
+                 "; only a comment", "ARCP0:100:30000", "CIRN 0 : -2000 ;c", "ARCN V1:V2:+90000"]:
         found = reader.read(text, 3, 40)
         assert found is not None, text
         assert found == lark_line(text, 3, 40), text
@@ -107,11 +107,14 @@ def test_the_common_shapes_are_read_without_the_parser() -> None:
     assert [p.key for p in line.statement.parts] == ["X1000", "Y-2000"]
     assert line.comment.text == ";move"
     assert reader.read("IF1=2", 1, 0).statement.keyword == "IF"
+    arc = reader.read("ARCP0:100:-30000 ;arc", 1, 0).statement
+    assert [n.text for n in arc.colon] == ["100", "-30000"]
+    assert arc.span == Span("t.prg", 1, 1, 1, 17, 0, 16)
 
 
 def test_other_lines_are_left_to_the_parser() -> None:
     reader = lines.LineReader("t.prg")
-    for text in ["ARCP0:100:30000", "V1=~V2", "V1=V2<<2", "IF V1=1 AND V2=2", "V1=V2+V3+V4", "IF V1=V2=V3",
+    for text in ["ARCP0:~1", "V1=~V2", "V1=V2<<2", "IF V1=1 AND V2=2", "V1=V2+V3+V4", "IF V1=V2=V3",
                  "IF V1+1=2", "IF", "WHILE", "X1000 5", "V1=(V2)", "IFX", "ELSEIF"]:
         assert reader.read(text, 1, 0) is None or text == "IFX", text
     assert reader.read("IFX", 1, 0) == lark_line("IFX")  # a command named IFX: not a condition
