@@ -98,7 +98,7 @@ class LineReader:
         """The span of the characters `begin`..`end` of line `number` (which starts at `start`)."""
         return Span(self.path, number, begin + 1, number, end + 1, start + begin, start + end)
 
-    def line(self, number: int, statement, text: str, start: int, found: re.Match) -> st.Line:
+    def line(self, number: int, statement: st.Statement | None, text: str, start: int, found: re.Match) -> st.Line:
         begin = found.start("comment")
         if begin < 0:
             return st.Line(number, statement)
@@ -140,7 +140,7 @@ class LineReader:
             part.number, part.number_span = found.group(digits), self.span(number, start, begin, end)
         return part
 
-    def operand(self, number: int, start: int, found: re.Match, k: int):
+    def operand(self, number: int, start: int, found: re.Match, k: int) -> st.Node:
         """The operand `k` of a match, as `Builder.number`, `negative`, `number_plus` or `ref`."""
         begin, end = found.span(f"digits{k}")
         if begin < 0:
