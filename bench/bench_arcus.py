@@ -3,11 +3,12 @@ bare Lark parse of the same text, measured in the same run.
 
     .venv/bin/python bench/bench_arcus.py [--statements N] [--repeat R]
 
-The bare parse is the grammar's LALR parser with no callbacks (`parser.bare_parser()`): the floor any frontend built on
-this grammar pays. The check is what `mcc check` does for one file (`driver.check_file`): parse with
-the tree builder, resolve against the catalog, lower to the IR, check, and price the program memory
-with the backend's passes and the cost model (A201/A204/A240 are reported by check); target (issue
-12): at most 2x the bare parse. The compile is what `mcc compile` does for one file: the check,
+The bare parse is the grammar's LALR parser with no callbacks (`parser.bare_parser()`): what parsing
+the file with the grammar costs. The check is what `mcc check` does for one file
+(`driver.check_file`): parse (the common line shapes by compiler/arcus/lines.py, the others with the
+grammar's parser and the tree builder), resolve against the catalog, lower to the IR, check, and
+price the program memory with the backend's passes and the cost model (A201/A204/A240 are
+reported by check); target (issue 12): at most 2x the bare parse. The compile is what `mcc compile` does for one file: the check,
 then legalize, structure, lay out and count the assembly lines. Each figure is the best of R runs
 (the least disturbed by the machine), in CPU time of this process (`time.process_time`), so that
 other work on a shared machine does not count. See docs/PERFORMANCE.md.

@@ -16,6 +16,7 @@ from lark import Lark, Token
 from lark.exceptions import LarkError, UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
 
 from mcc.compiler.arcus import syntax as st
+from mcc.compiler.arcus.lines import parse_lines
 from mcc.compiler import limits, recovery
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import SourceFile
@@ -203,6 +204,6 @@ def parse(source: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
         return line
 
     text, refused = limits.readable(source, ";'", diags)
-    lines = recovery.parse_lines(text, parser, builder, bad_line)
+    lines = parse_lines(text, parser, builder, bad_line)
     limits.refuse_deep(source, lines, refused, diags)
     return st.SyntaxTree(source.path, lines)
