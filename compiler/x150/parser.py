@@ -218,9 +218,9 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
     count = len(pieces)
     while index < count:
         text, start = pieces[index]
-        command = reader.read(Piece(text, start), spans)
+        command = reader.read_token(text, start, spans)
         if index + 1 < count and _may_take_next(command):
-            following = reader.read(Piece(*pieces[index + 1]), spans)
+            following = reader.read_token(*pieces[index + 1], spans)
             joined = _rejoin(reader, spans, command, following, pieces[index], pieces[index + 1])
             if joined is not None:
                 gap = spans.at(start + len(text), pieces[index + 1][1])
