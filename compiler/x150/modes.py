@@ -37,9 +37,6 @@ DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
 MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
-# The only operations that can read or set a distance register (`Resolver.op_reads`): the others
-# are skipped by their exact class (the IR's operation classes have no subclasses).
-READERS = frozenset((ir.Native, ir.Move, ir.Assign))
 # The factory defaults (L2608, L2520; D4000, L810): MPI, MN, and a positive distance register, so a
 # G in MC before any D runs forward. Assumed where the file shows nothing else (see resolve).
 DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN", ("sign", ir.ALL_AXES): 1}
@@ -404,19 +401,25 @@ class Resolver:
         """Assignments to a %D that no move, native G or later H can read (backward liveness; a call,
         a transfer and the end of a routine read every %D something in the module reads) are dropped,
         and so is a %D variable nothing reads."""
-        read = self.distance_reads()
+        # Each block's operations that read or assign a register, or call (`liveness_ops`): one pass
+        # over the module; everything below looks at these only.
+        relevant = {id(block): liveness_ops(block.ops) for routine in self.module.routines
+                    for block in routine.blocks}
+        op_reads = self.op_reads
         if self.module.externals:
             read = {n for n in self.module.variables if is_distance(n)}
+        else:
+            read = {name for ops in relevant.values() for op in ops if type(op) is not ir.Call
+                    for name in op_reads(op)}
         for routine in self.module.routines:
-            self.drop_dead_in(routine, read)
+            self.drop_dead_in(routine, read, relevant)
         used: set[str] = set()
-        for routine in self.module.routines:
-            for block in routine.blocks:
-                for op in block.ops:
-                    if type(op) in READERS:
-                        used |= self.op_reads(op)
-                        if type(op) is ir.Assign and op.target.name.startswith(DISTANCE):
-                            used.add(op.target.name)
+        for ops in relevant.values():
+            for op in ops:
+                if type(op) is not ir.Call:
+                    used |= op_reads(op)
+                    if type(op) is ir.Assign:  # to a %D (liveness_ops)
+                        used.add(op.target.name)
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
 
@@ -432,16 +435,13 @@ class Resolver:
             return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
         return NOTHING
 
-    def distance_reads(self) -> set[str]:
-        return {name for routine in self.module.routines for block in routine.blocks for op in block.ops
-                if type(op) in READERS for name in self.op_reads(op)}
-
-    def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
-        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name)
-                   for b in routine.blocks for op in self.ops_of(b)):  # ops_of holds every %D assignment
+    def drop_dead_in(self, routine: ir.Routine, read: set[str], relevant: dict[int, list]) -> None:
+        """`relevant`: each block's `liveness_ops`, kept up to date when assignments are dropped."""
+        if not any(type(op) is ir.Assign for b in routine.blocks for op in relevant[id(b)]):
             return
         blocks = {b.label: b for b in routine.blocks}
         live_in: dict[str, set[str]] = {label: set() for label in blocks}
+        op_reads = self.op_reads
 
         def live_out(block) -> set[str] | frozenset[str]:
             """Not to be changed by the caller (it may be `read` itself)."""
@@ -453,60 +453,92 @@ class Resolver:
                 out |= live_in[succ] if succ in live_in else read
             return out
 
-        def through(block, live: set[str], drop: bool) -> set[str]:
-            kept = []
-            for op in reversed(block.ops):
+        def through(block, live: set[str]) -> None:
+            """The block without the assignments to a %D that nothing reads after them."""
+            dropped = []
+            for op in reversed(relevant[id(block)]):
                 kind = type(op)
-                if kind is ir.Assign and op.target.name.startswith(DISTANCE):
-                    if op.target.name not in live and drop:
+                if kind is ir.Assign:  # to a %D (liveness_ops)
+                    if op.target.name not in live:
+                        dropped.append(op)
                         continue
-                    live = (live - {op.target.name}) | self.op_reads(op)
+                    live = (live - {op.target.name}) | op_reads(op)
                 elif kind is ir.Call:
                     live = live | read
-                elif kind in READERS:  # the others read no register
-                    live = live | self.op_reads(op)
-                kept.append(op)
-            if drop:
-                block.ops = kept[::-1]
-            return live
+                else:
+                    live = live | op_reads(op)
+            if dropped:
+                gone = {id(op) for op in dropped}
+                block.ops = [op for op in block.ops if id(op) not in gone]
+                relevant[id(block)] = [op for op in relevant[id(block)] if id(op) not in gone]
 
         def summary(block) -> tuple[set[str], set[str]]:
-            """`through(block, live, False)` is `(live - kill) | gen`: the block's operations composed
-            once, so that each round of the fixed point costs a set operation per block."""
+            """The block's effect on the live registers, `(live - kill) | gen`: its operations
+            composed once, so that each round of the fixed point costs a set operation per block."""
             kill: set[str] = set()
             gen: set[str] = set()
-            for op in reversed(block.ops):
+            for op in reversed(relevant[id(block)]):
                 kind = type(op)
-                if kind is ir.Assign and op.target.name.startswith(DISTANCE):
+                if kind is ir.Assign:  # to a %D (liveness_ops)
                     gen.discard(op.target.name)
                     kill.add(op.target.name)
-                    gen |= self.op_reads(op)
+                    gen |= op_reads(op)
                 elif kind is ir.Call:
                     gen |= read
-                elif kind in READERS:  # the others read no register
-                    gen |= self.op_reads(op)
+                else:
+                    gen |= op_reads(op)
             return kill, gen
 
         summaries = {id(block): summary(block) for block in routine.blocks}
+        # Each block as (label, kill, gen, the labels after it, what its exits read): `live_out`
+        # worked out once, so that a round of the fixed point is set operations only.
+        plan = []
+        for block in reversed(routine.blocks):
+            term = block.terminator
+            if isinstance(term, (ir.FallOff, ir.Return, ir.GotoRoutine, ir.End)) or term is None:
+                after: tuple[str, ...] = ()
+                beyond = NOTHING if isinstance(term, ir.End) else read
+            else:
+                following = ir.successors(term)
+                after = tuple(succ for succ in following if succ in live_in)
+                beyond = read if len(after) < len(following) else NOTHING
+            plan.append((block.label, *summaries[id(block)], after, beyond))
         changed = True
         rounds = 0
         while changed and rounds < 4 * len(blocks) + 4:
             changed = False
             rounds += 1
-            for block in reversed(routine.blocks):
-                kill, gen = summaries[id(block)]
-                new = (live_out(block) - kill) | gen
-                if new != live_in[block.label]:
-                    live_in[block.label] = new
+            for label, kill, gen, after, beyond in plan:
+                out = beyond
+                for succ in after:
+                    out = out | live_in[succ]
+                new = (out - kill) | gen
+                if new != live_in[label]:
+                    live_in[label] = new
                     changed = True
         for block in routine.blocks:
             if summaries[id(block)][0]:  # a block that assigns no %D keeps its operations
-                through(block, live_out(block), True)
+                through(block, live_out(block))
 
     def report(self, span, why: str) -> None:
         if span is not None:
             self.diags.add("X142", span, f"{why}: mcc keeps this G as X150 text, so it compiles to X150 only; "
                                          "set the mode (MN/MC, MPA/MPI) and D on every path before G")
+
+
+def liveness_ops(ops: list) -> list:
+    """The operations of a block that the register liveness looks at: assignments to a %D, calls
+    (which read every register), moves, and a G kept as text; every other operation reads no
+    register and assigns none (`Resolver.op_reads`)."""
+    out = []
+    for op in ops:
+        kind = type(op)  # the IR's operation classes have no subclasses
+        if kind is ir.Assign:
+            if op.target.name.startswith(DISTANCE):
+                out.append(op)
+        elif kind is ir.Call or kind is ir.Move or (kind is ir.Native and op.mnemonic == "G"):
+            out.append(op)
+    return out
 
 
 def identical(a: State | None, b: State | None) -> bool:

@@ -269,31 +269,37 @@ class CommandReader:
         return st.VarRef(whole(match.group(1)), sub(pos, len(text)))
 
     def read_number(self, cmd: st.Command, text: str, pos: int, sub):
-        if pos == len(text):
+        size = len(text)
+        if pos == size:
             return None
-        found = self.read_subst(cmd, text, pos, sub)
-        if found is not None:
-            return found
-        match = NUMBER.match(text, pos)
-        if match is None or match.end() != len(text):
+        if text[pos] == "(":  # only then can it be (VARn)
+            found = self.read_subst(cmd, text, pos, sub)
+            if found is not None:
+                return found
+        if NUMBER.fullmatch(text, pos) is None:
+            match = NUMBER.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a number (10, -2.5, 1.2E-3)"
                            + (f" or (VARn)" if cmd.info and cmd.info.var_subst else "")
-                           + f"; '{text[bad:]}' is not part of one", bad, len(text))
-        return st.Number(match.group(), number_value(match.group()), sub(pos, len(text)))
+                           + f"; '{text[bad:]}' is not part of one", bad, size)
+        written = text[pos:]
+        return st.Number(written, number_value(written), sub(pos, size))
 
     def read_int(self, cmd: st.Command, text: str, pos: int, sub):
-        if pos == len(text):
+        size = len(text)
+        if pos == size:
             return None
-        found = self.read_subst(cmd, text, pos, sub)
-        if found is not None:
-            return found
-        match = DIGITS.match(text, pos)
-        if match is None or match.end() != len(text):
+        if text[pos] == "(":  # only then can it be (VARn)
+            found = self.read_subst(cmd, text, pos, sub)
+            if found is not None:
+                return found
+        if DIGITS.fullmatch(text, pos) is None:
+            match = DIGITS.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a whole number; '{text[bad:]}' is not part of one",
-                           bad, len(text))
-        return st.Number(match.group(), whole(match.group()), sub(pos, len(text)))
+                           bad, size)
+        written = text[pos:]
+        return st.Number(written, int(written) if size - pos <= 18 else whole(written), sub(pos, size))
 
     def pattern17(self, text: str, pos: int, end: int, sub, what: str) -> st.Pattern:
         bits = text[pos:end].upper()
