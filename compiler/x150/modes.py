@@ -160,6 +160,7 @@ class Resolver:
         self.memo: dict[int, tuple] = {}
         self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
         self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
+        self.plans: dict[int, tuple] = {}  # id(routine) -> what its walks look at (`plan`)
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
         self.names = {routine.name for routine in module.routines}  # `module.routine` is a linear search
 
@@ -234,9 +235,9 @@ class Resolver:
                 and all(identical(a, b) for a, b in zip(memo[1], called)) and memo[4] == known:
             end, reached = memo[2], memo[3]
         else:
-            for block in routine.blocks:  # a new walk: the states it no longer reaches are not kept
-                for op in self.ops_of(block):
-                    self.before.pop(id(op), None)
+            before = self.before
+            for op in self.plan(routine)[1]:  # a new walk: the states it no longer reaches are not kept
+                before.pop(id(op), None)
             reached = []
             end = self.routine(routine, start, reached)
             self.memo[id(routine)] = (dict(start), called, end, reached, known)
@@ -257,42 +258,73 @@ class Resolver:
         the state as it is)."""
         found = self.relevant.get(id(block))
         if found is None:
-            found = [op for op in block.ops
-                     if (isinstance(op, ir.Native) and op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS)
-                     or (isinstance(op, ir.Assign) and is_distance(op.target.name)) or isinstance(op, ir.Call)
-                     or (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL)]
+            found = []
+            for op in block.ops:
+                kind = type(op)  # the IR's operation classes have no subclasses
+                if kind is ir.Native:
+                    if op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS:
+                        found.append(op)
+                elif kind is ir.Assign:
+                    if op.target.name.startswith(DISTANCE):
+                        found.append(op)
+                elif kind is ir.Call or (kind is ir.Move and op.mode is ir.MoveMode.MODAL):
+                    found.append(op)
             self.relevant[id(block)] = found
+        return found
+
+    def plan(self, routine: ir.Routine) -> tuple[dict[str, tuple], list]:
+        """What a walk of the routine looks at, found once (the walks do not change the blocks):
+        each block's label -> (its `ops_of`, the routine its GotoRoutine names or None, whether
+        the routine ends there (FallOff, Return, no terminator), the labels after it that are in
+        the routine); and the routine's modal moves (the operations `before` keeps states for)."""
+        found = self.plans.get(id(routine))
+        if found is None:
+            labels = {block.label for block in routine.blocks}
+            steps: dict[str, tuple] = {}
+            moves = []
+            for block in routine.blocks:
+                ops = self.ops_of(block)
+                moves += [op for op in ops if type(op) is ir.Move]
+                term = block.terminator
+                steps[block.label] = (ops, term.routine if isinstance(term, ir.GotoRoutine) else None,
+                                      isinstance(term, (ir.FallOff, ir.Return)) or term is None,
+                                      tuple(succ for succ in ir.successors(term) if succ in labels))
+            found = self.plans[id(routine)] = (steps, moves)
         return found
 
     def routine(self, routine: ir.Routine, start: State, reached: list) -> State | None:
         if not routine.blocks:
             return None
-        blocks = {b.label: b for b in routine.blocks}
-        entry: dict[str, State | None] = {b.label: None for b in routine.blocks}
-        entry[routine.blocks[0].label] = dict(start)
-        work = [routine.blocks[0].label]
+        steps = self.plan(routine)[0]
+        first = routine.blocks[0].label
+        entry: dict[str, State | None] = {first: dict(start)}
+        work = [first]
         end: State | None = None
         visits: dict[str, int] = {}
+        before = self.before
+        touched = self.touched
+        names = self.names
+        analysed = self.analysed
         while work:
             label = work.pop()
             visits[label] = visits.get(label, 0) + 1
-            block = blocks[label]
+            ops, goto, exits, after = steps[label]
             state = entry[label] or {}
             # Copy on write: `state` is shared (the block's entry, or kept for a G or a call site,
             # which only read it) until an operation changes it, and copied only then.
             shared = True
             waiting = False
-            for op in self.ops_of(block):  # a modal Move, a Call, a mode command or a %D assignment
+            for op in ops:  # a modal Move, a Call, a mode command or a %D assignment
                 kind = type(op)
                 if kind is ir.Move:  # only a G needs its state; a move changes none
-                    self.before[id(op)] = state
+                    before[id(op)] = state
                     shared = True
                     continue
                 if kind is ir.Call:
                     reached.append((op.routine, state))
                     shared = True
-                    touches = self.touched.get(op.routine, True)
-                    if touches and op.routine in self.names and op.routine not in self.analysed:
+                    touches = touched.get(op.routine, True)
+                    if touches and op.routine in names and op.routine not in analysed:
                         waiting = True  # what it leaves is not known yet: the next round goes on from here
                         break
                     if not touches:
@@ -300,18 +332,15 @@ class Resolver:
                 if shared:
                     state = dict(state)
                     shared = False
-                state = transfer(state, op, self.touched, self.exits)
+                state = transfer(state, op, touched, self.exits)
             if waiting:
                 continue
-            term = block.terminator
-            if isinstance(term, ir.GotoRoutine):
-                reached.append((term.routine, state))
-            if isinstance(term, (ir.FallOff, ir.Return)) or term is None:
+            if goto is not None:
+                reached.append((goto, state))
+            if exits:
                 end = meet(end, state)
-            for succ in ir.successors(term):
-                if succ not in blocks:
-                    continue
-                old = entry[succ]
+            for succ in after:
+                old = entry.get(succ)
                 new = meet(old, state)
                 if old is None or not states_equal(old, new):
                     entry[succ] = new
