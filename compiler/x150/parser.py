@@ -219,7 +219,9 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
     while index < count:
         text, start = pieces[index]
         command = reader.read_token(text, start, spans)
-        if index + 1 < count and _may_take_next(command):
+        # A command with a value (most: `arg` set, and not a bare VARn) takes no next word.
+        if index + 1 < count and (command.arg is None or type(command.arg) is st.VarStatement) \
+                and _may_take_next(command):
             following = reader.read_token(*pieces[index + 1], spans)
             joined = _rejoin(reader, spans, command, following, pieces[index], pieces[index + 1])
             if joined is not None:
@@ -232,8 +234,9 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
         commands.append(command)
         index += 1
     for command in commands:
-        for problem in command.problems:
-            diags.add(problem.code, problem.span, problem.message)
+        if command.problems:
+            for problem in command.problems:
+                diags.add(problem.code, problem.span, problem.message)
     return commands
 
 
