@@ -150,13 +150,13 @@ def parse(original: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
         if isinstance(tokens, st.Line):  # a line that failed, already built
             lines.append(tokens)
             continue
-        line = st.Line(number)
         if tokens or comment is not None:
             spans = LineSpans(path, number, starts[number - 1])
-            if tokens:
-                line.commands = read_commands(reader, spans, tokens, diags)
+            line = st.Line(number, read_commands(reader, spans, tokens, diags) if tokens else [])
             if comment is not None:
                 line.comment = st.Comment(comment[0], spans.at(comment[1], comment[2]))
+        else:
+            line = st.Line(number)
         lines.append(line)
     limits.refuse_deep(original, tree.lines, refused, diags, bounded=(st.Condition,))
     return tree

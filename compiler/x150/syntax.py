@@ -167,7 +167,7 @@ class Command:
     arg_span: Span | None = None
     host: bool = False  # `!number`: the host's reply to VARn=RSIN, data rather than a command
     rejoined: bool = False  # a space inside the command was removed (IF (..), 1OUTL XX10X1)
-    problems: list[Problem] = field(default_factory=list)
+    problems: tuple[Problem, ...] = ()  # a tuple: most commands have none, and share the empty one
 
     @property
     def address_span(self) -> Span | None:

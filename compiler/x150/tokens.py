@@ -117,6 +117,10 @@ def number_value(text: str) -> int | float:
     return whole(text)
 
 
+def add_problem(cmd: st.Command, problem: st.Problem) -> None:
+    cmd.problems += (problem,)  # a tuple: most commands have none, and share the empty one
+
+
 class CommandReader:
     """Reads command tokens against the catalog. One instance per catalog (cached by the parser)."""
 
@@ -175,7 +179,7 @@ class CommandReader:
             else:
                 cmd.address_span = sub(0, pos)
             if pos == len(text):
-                cmd.problems.append(st.Problem("X003", cmd.span,
+                add_problem(cmd, st.Problem("X003", cmd.span,
                                                f"'{text}' is a device address with no command after it; "
                                                "write the command right after the address (1A10)"))
                 return cmd
@@ -207,7 +211,7 @@ class CommandReader:
         try:
             arg = ARG_READERS.get(kind, CommandReader.read_none)(self, cmd, text, end, sub)
         except ArgError as exc:
-            cmd.problems.append(st.Problem("X002", sub(exc.begin, max(exc.end, exc.begin)), exc.message))
+            add_problem(cmd, st.Problem("X002", sub(exc.begin, max(exc.end, exc.begin)), exc.message))
             return cmd
         if arg is not None:
             cmd.arg = arg
@@ -222,14 +226,14 @@ class CommandReader:
             cmd.arg = st.Number(text[1:], number_value(text[1:]), sub(1, len(text)))
             cmd.arg_span = cmd.arg.span
         else:
-            cmd.problems.append(st.Problem("X002", sub(1, len(text)),
+            add_problem(cmd, st.Problem("X002", sub(1, len(text)),
                                            "host data for VARn=RSIN is '!' followed by a number (!12.34, L3604)"))
         return cmd
 
     def unknown(self, cmd: st.Command, text: str, pos: int, sub) -> None:
         word = WORD.match(text, pos)
         if word is None:
-            cmd.problems.append(st.Problem(
+            add_problem(cmd, st.Problem(
                 "X003", sub(pos, len(text)),
                 f"'{text[pos:]}' is not an X150 command: a command starts with its mnemonic (after an optional "
                 "device address)"))
@@ -239,7 +243,7 @@ class CommandReader:
         cmd.mnemonic_span = sub(pos, word.end())
         close = difflib.get_close_matches(name.upper(), self.names, n=3, cutoff=0.6)
         hint = f" (did you mean {', '.join(close)}?)" if close else ""
-        cmd.problems.append(st.Problem("X101", cmd.mnemonic_span,
+        add_problem(cmd, st.Problem("X101", cmd.mnemonic_span,
                                        f"'{name}' is not an X150 command{hint}; see the command list in "
                                        "docs/dialects/x150.md"))
 
