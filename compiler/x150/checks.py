@@ -73,6 +73,7 @@ class Checker:
         case = self.case_policy != "ignore"
         products = self.profile.product in PRODUCT_NAMES
         low, high = self.addresses
+        notes = self.product_notes
         for command in outside + body:
             info = command.info
             host = command.host
@@ -88,7 +89,8 @@ class Checker:
                         self.check_address(command, device)
                 elif info.address == "D":
                     self.check_address(command, device)
-            if products and info is not None and info.products is not None:
+            # (a command whose note is known to be None has nothing to report)
+            if products and info is not None and info.products is not None and notes.get(info, "") is not None:
                 self.check_product(command)
             if info is not None and command.arg is not None:
                 self.check_values(command)
@@ -97,8 +99,8 @@ class Checker:
         if unit.erase is None and unit.number is not None:
             self.missing_erase(unit)
         if unit.address is not None:
-            for command in body:
-                if command.info is not None and not command.host:
+            for command in body:  # (nothing to say about a command for the sequence's own device)
+                if command.info is not None and not command.host and command.address != unit.address:
                     self.check_device(command, unit)
         for command in unit.commands:
             if command.host or (command.info is not None and not command.buffered

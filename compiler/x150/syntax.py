@@ -9,7 +9,10 @@ lowering and the checks give it meaning.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
+from itertools import chain
+from operator import attrgetter
 from typing import Union
 
 from mcc.compiler.span import Span
@@ -229,6 +232,6 @@ class SyntaxTree:
     path: str
     lines: list[Line] = field(default_factory=list)
 
-    def commands(self):
-        for line in self.lines:
-            yield from line.commands
+    def commands(self) -> Iterator[Command]:
+        """Every command, in order (an iterator chained in C: a check goes over them several times)."""
+        return chain.from_iterable(map(attrgetter("commands"), self.lines))
