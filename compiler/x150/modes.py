@@ -129,17 +129,19 @@ def register_sign(op: ir.Assign, state: State, value) -> int | None:
 
 
 def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State | None]) -> State:
-    if isinstance(op, ir.Native) and op.dialect == DIALECT:
-        if op.mnemonic in POSITION_MODES:
-            set_key(state, "pos", op.axis, op.mnemonic)
-        elif op.mnemonic in MOVE_MODES:
-            set_key(state, "move", op.axis, op.mnemonic)
-    elif isinstance(op, ir.Assign) and is_distance(op.target.name):
+    kind = type(op)  # the IR's operation classes have no subclasses
+    if kind is ir.Native:
+        if op.dialect == DIALECT:
+            if op.mnemonic in POSITION_MODES:
+                set_key(state, "pos", op.axis, op.mnemonic)
+            elif op.mnemonic in MOVE_MODES:
+                set_key(state, "move", op.axis, op.mnemonic)
+    elif kind is ir.Assign and is_distance(op.target.name):
         axis = op.target.name[len(DISTANCE):]
         value = register_value(op, state)
         set_key(state, "sign", axis, register_sign(op, state, value))
         set_key(state, "D", axis, value)
-    elif isinstance(op, ir.Call) and touched.get(op.routine, True):
+    elif kind is ir.Call and touched.get(op.routine, True):
         end = exits.get(op.routine)
         state.clear()
         if end:
@@ -337,12 +339,19 @@ class Resolver:
                 continue
             if goto is not None:
                 reached.append((goto, state))
+            # A state reached for the first time is kept as it is, not copied (`meet(None, state)`):
+            # no state is changed once made (the walk copies one before an operation changes it).
             if exits:
-                end = meet(end, state)
+                end = state if end is None else meet(end, state)
             for succ in after:
                 old = entry.get(succ)
+                if old is None:
+                    entry[succ] = state
+                    if visits.get(succ, 0) < 64:
+                        work.append(succ)
+                    continue
                 new = meet(old, state)
-                if old is None or not states_equal(old, new):
+                if not states_equal(old, new):
                     entry[succ] = new
                     if visits.get(succ, 0) < 64:
                         work.append(succ)
@@ -469,7 +478,7 @@ class Resolver:
         if not any(type(op) is ir.Assign for b in routine.blocks for op in relevant[id(b)]):
             return
         blocks = {b.label: b for b in routine.blocks}
-        live_in: dict[str, set[str]] = {label: set() for label in blocks}
+        live_in: dict[str, set[str] | frozenset[str]] = dict.fromkeys(blocks, NOTHING)  # replaced, never changed
         op_reads = self.op_reads
 
         def live_out(block) -> set[str] | frozenset[str]:
@@ -518,7 +527,8 @@ class Resolver:
                     gen |= op_reads(op)
             return kill, gen
 
-        summaries = {id(block): summary(block) for block in routine.blocks}
+        nothing = (NOTHING, NOTHING)  # the summary of a block without register operations
+        summaries = {id(block): summary(block) if relevant[id(block)] else nothing for block in routine.blocks}
         # Each block as (label, kill, gen, the labels after it, what its exits read): `live_out`
         # worked out once, so that a round of the fixed point is set operations only.
         plan = []
