@@ -362,6 +362,7 @@ class Resolver:
         modal = ir.MoveMode.MODAL
         kept_go = False
         with_modes: list[ir.Block] = []  # the blocks holding a mode command (MPA MPI MN MC MQ)
+        liveness: dict[int, list] = {}  # id(block) -> its `liveness_ops` (no mode command among them)
         for routine in self.module.routines:
             checkpoint()
             for block in routine.blocks:
@@ -374,7 +375,9 @@ class Resolver:
                         else:
                             out.append(op)
                     block.ops = out
-                kept_go = kept_go or any(type(op) is ir.Native and op.mnemonic == "G" for op in block.ops)
+                # the block's register operations for the liveness, a G kept as text among them
+                registers = liveness[id(block)] = liveness_ops(block.ops)
+                kept_go = kept_go or any(type(op) is ir.Native for op in registers)
                 if any(isinstance(op, ir.Native) for op in relevant):
                     with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
@@ -382,7 +385,7 @@ class Resolver:
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
                                                             and op.mnemonic in MODE_COMMANDS)]
         checkpoint()
-        self.drop_unread_distances()
+        self.drop_unread_distances(liveness)
 
     def rewrite_op(self, op, ops: list, done: list) -> list:
         if not (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL):
@@ -435,14 +438,14 @@ class Resolver:
         if name not in self.module.variables:
             self.module.variables[name] = ir.Variable(name, ir.VarType.INT32, None, "global")
 
-    def drop_unread_distances(self) -> None:
+    def drop_unread_distances(self, relevant: dict[int, list] | None = None) -> None:
         """Assignments to a %D that no move, native G or later H can read (backward liveness; a call,
         a transfer and the end of a routine read every %D something in the module reads) are dropped,
-        and so is a %D variable nothing reads."""
-        # Each block's operations that read or assign a register, or call (`liveness_ops`): one pass
-        # over the module; everything below looks at these only.
-        relevant = {id(block): liveness_ops(block.ops) for routine in self.module.routines
-                    for block in routine.blocks}
+        and so is a %D variable nothing reads. `relevant`: each block's `liveness_ops` when the
+        caller has them (found in one pass over the module); everything below looks at these only."""
+        if relevant is None:
+            relevant = {id(block): liveness_ops(block.ops) for routine in self.module.routines
+                        for block in routine.blocks}
         op_reads = self.op_reads
         if self.module.externals:
             read = {n for n in self.module.variables if is_distance(n)}
