@@ -243,8 +243,9 @@ class Resolver:
             reached = []
             end = self.routine(routine, start, reached)
             self.memo[id(routine)] = (dict(start), called, end, reached, known)
-        for name, state in reached:
-            sites[name] = meet(sites.get(name), state)
+        for name, state in reached:  # (the first state met is kept as it is: no state is changed once made)
+            earlier = sites.get(name)
+            sites[name] = state if earlier is None else meet(earlier, state)
         return end
 
     def calls(self, routine: ir.Routine) -> list:
