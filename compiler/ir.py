@@ -64,16 +64,22 @@ class VarType(str, Enum):
 
 # ---------------------------------------------------------------------------------------------
 # Expressions
+#
+# Expressions are values: never changed once made, so they are shared (by operations, by the mode
+# states of a frontend, by a backend's copies of a program). They are not declared `frozen` for the
+# same reason as `Span`: a frozen dataclass sets each field through `object.__setattr__`, which made
+# making one about four times as slow, and a check makes one or more per command
+# (docs/PERFORMANCE.md). `unsafe_hash` keeps them hashable, as they were.
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Const:
     value: int | float
     unit: Unit = Unit.NONE
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Var:
     """A program variable: a user variable or a general-purpose register (R1, F1, V10, VAR3)."""
 
@@ -81,7 +87,7 @@ class Var:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class DeviceRef:
     """A device register in the dialect's own spelling (MCode `P`, Arcus `MSTX`, X150 `POS`).
 
@@ -97,7 +103,7 @@ class DeviceRef:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Status:
     """A neutral device reading: `meaning` is one of `ir_names.STATUS` (position, velocity,
     moving, input, output, error, ...), `axis` the logical axis, `index` an input/output number or
@@ -110,7 +116,7 @@ class Status:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class LabelRef:
     """A reference to a code location by name or address (MCode `BR K1`, `TP=100,K2`, `EX 100`)."""
 
@@ -118,13 +124,13 @@ class LabelRef:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Text:
     value: str
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class BinOp:
     op: str  # + - * / % & | ^ << >>
     left: "Expr"
@@ -132,21 +138,21 @@ class BinOp:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class UnOp:
     op: str  # - (negate)  ! or ~ (bitwise not)
     operand: "Expr"
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Func:
     name: str  # abs cos sin tan acos asin atan sqrt log log10 pi (neutral names)
     args: tuple["Expr", ...]
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Pattern:
     """An input/output bit pattern over 0, 1 and X (don't care), most significant last."""
 
@@ -157,7 +163,7 @@ class Pattern:
 Expr = Union[Const, Var, Status, DeviceRef, LabelRef, Text, BinOp, UnOp, Func, Pattern]
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Compare:
     op: str  # = != < <= > >=
     left: Expr
@@ -165,7 +171,7 @@ class Compare:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Logic:
     op: str  # and | or
     left: "Cond"
@@ -173,7 +179,7 @@ class Logic:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Truth:
     """An expression used as a condition: true when non-zero (MCode `BR Q1, AF&2`)."""
 
@@ -181,7 +187,7 @@ class Truth:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class InputMatch:
     """Inputs match a pattern (X150 `IN_XX1`)."""
 
@@ -189,7 +195,7 @@ class InputMatch:
     span: Span | None = None
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(slots=True, unsafe_hash=True)
 class Not:
     cond: "Cond"
     span: Span | None = None

@@ -24,6 +24,7 @@ from mcc.compiler.span import SourceFile, Span
 MAX_DIGITS = 40
 MAX_DEPTH = 100  # nesting of one statement; a list of n items counts n levels (X150 reads terms in a row)
 LONG_NUMBER = re.compile(r"\d{%d,}" % (MAX_DIGITS + 1))
+LONG_LINE = re.compile(r"[^\n]{%d,}" % (MAX_DEPTH // 2 + 1))  # a line that may nest too deep (refuse_deep)
 
 
 def outside_text(line: str, position: int, comment_chars: str) -> bool:
@@ -116,8 +117,14 @@ def refuse_deep(source: SourceFile, lines: list, refused: set[int], diags: Diagn
     deep, so a normal file costs one length test per line."""
     short = MAX_DEPTH // 2
     starts = source.line_starts
+    # The lines to look at, found by one search: those refused and those longer than `short`.
+    candidates = refused | {bisect.bisect_right(starts, match.start()) for match in LONG_LINE.finditer(source.text)}
+    if not candidates:
+        return
     for line in lines:
         number = line.number
+        if number not in candidates:
+            continue
         if line.error or number < 1 or number > len(starts):
             continue
         end = starts[number] - 1 if number < len(starts) else len(source.text)

@@ -135,7 +135,10 @@ class Command:
         intervals = self.intervals
         if intervals is None:
             return True
-        return any(low <= value <= high for low, high in intervals)
+        for low, high in intervals:
+            if low <= value <= high:
+                return True
+        return False
 
 
 @lru_cache(maxsize=None)

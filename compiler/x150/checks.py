@@ -72,16 +72,25 @@ class Checker:
         # in the same order: a program has tens of thousands of commands.
         case = self.case_policy != "ignore"
         products = self.profile.product in PRODUCT_NAMES
+        low, high = self.addresses
+        notes = self.product_notes
         for command in outside + body:
             info = command.info
             host = command.host
             if info is None and not host:
                 continue
-            if case and not host:
+            # An upper-case text is its own canonical form (`canonical_case` upper-cases parts of it).
+            if case and not host and command.text != command.text.upper():
                 self.check_case(command)
-            if not host and (command.address is not None or info.address == "D"):
-                self.check_address(command, device)
-            if products and info is not None and info.products is not None:
+            if not host:
+                address = command.address
+                if address is not None:  # nothing to say about an address in range on a command that takes one
+                    if not (low <= address <= high and info.address != "none"):
+                        self.check_address(command, device)
+                elif info.address == "D":
+                    self.check_address(command, device)
+            # (a command whose note is known to be None has nothing to report)
+            if products and info is not None and info.products is not None and notes.get(info, "") is not None:
                 self.check_product(command)
             if info is not None and command.arg is not None:
                 self.check_values(command)
@@ -90,8 +99,8 @@ class Checker:
         if unit.erase is None and unit.number is not None:
             self.missing_erase(unit)
         if unit.address is not None:
-            for command in body:
-                if command.info is not None and not command.host:
+            for command in body:  # (nothing to say about a command for the sequence's own device)
+                if command.info is not None and not command.host and command.address != unit.address:
                     self.check_device(command, unit)
         for command in unit.commands:
             if command.host or (command.info is not None and not command.buffered
@@ -166,12 +175,17 @@ class Checker:
         arg = command.arg
         if arg is None or info is None:
             return
-        if isinstance(arg, st.Number) and info.arg == "sequence":
-            self.check_sequence_number(command, arg)
-        elif isinstance(arg, st.Number) and info.arg in ("number", "int") and not info.in_range(arg.value):
-            self.diags.add("X122", arg.span, f"{info.name}{arg.text} is out of range: {self.describe_range(info)}"
-                                             + (f" ({info.manual})" if info.manual else ""))
-        elif isinstance(arg, st.Fields):
+        kind = type(arg)
+        if kind is st.Number:  # the most common argument, which names no variable
+            if info.arg == "sequence":
+                self.check_sequence_number(command, arg)
+            elif info.arg in ("number", "int") and not info.in_range(arg.value):
+                self.diags.add("X122", arg.span, f"{info.name}{arg.text} is out of range: {self.describe_range(info)}"
+                                                 + (f" ({info.manual})" if info.manual else ""))
+            return
+        if kind is st.Pattern or kind is st.IoFunction:  # nothing to check in the value
+            return
+        if isinstance(arg, st.Fields):
             for spec, value, span in zip(info.fields, arg.values, arg.spans):
                 if not spec.low <= value <= spec.high:
                     self.diags.add("X122", span, f"{info.name}: the {spec.name} {value} is outside {spec.low}-{spec.high}")
@@ -398,18 +412,20 @@ class Checker:
         address in front, the B prefix on an immediate `*` command) and its delimiter, XT included
         (L241). The X150 backend writes sequences in the same form."""
         from mcc.compiler.x150.format import command_text  # format imports this module's canonical_case
-        total = len("XT") + 1 + (len(str(unit.address)) if unit.address is not None else 0)
+        own = len(str(unit.address)) if unit.address is not None else 0  # the unit's address, written in front
+        total = len("XT") + 1 + own
         for command in unit.commands:
-            if command.info is None and not command.host:
+            info = command.info
+            if info is None and not command.host:
                 continue
-            text = command_text(command)
-            address = command.address_text()
-            body = text[len(address):] if text.startswith(address) else text
-            if unit.address is not None and not address:
-                address = str(unit.address)
-            if command.info is not None and command.info.b_prefixable and not command.buffered:
-                body = "B" + body
-            total += len(address) + len(body) + 1
+            written = command.text
+            text = written if written == written.upper() else command_text(command)  # upper case: canonical
+            address = str(command.address) if command.address is not None else ""
+            # the address, then the body (the text after the address, if it starts with it), then the delimiter
+            size = (len(address) or own) + (len(text) - len(address) if text.startswith(address) else len(text)) + 1
+            if info is not None and info.b_prefixable and not command.buffered:
+                size += 1  # the B prefix
+            total += size
         return total
 
     def check_memory(self) -> None:

@@ -263,7 +263,10 @@ class Lowering:
         return self.block
 
     def emit(self, op) -> None:
-        self.live_block(op.span).ops.append(op)
+        block = self.block  # `live_block`, without a call for each of the program's operations
+        if block.terminator is not None:
+            block = self.new_block(op.span)
+        block.ops.append(op)
 
     def terminate(self, term) -> None:
         self.live_block(term.span).terminator = term
@@ -294,8 +297,13 @@ class Lowering:
         info = command.info
         if info is None and not command.host:
             return
-        token = self.cat.lookup(command.mnemonic) if info is not None else None
-        role = token.ir if token is not None else ""
+        if info is None:
+            role = ""
+        elif info.name == command.mnemonic:  # the catalog entry the token was read as: `lookup` would find it
+            role = info.ir
+        else:  # VARn=FUN and the like: the entry of the statement, the role of the token (VAR)
+            token = self.cat.lookup(command.mnemonic)
+            role = token.ir if token is not None else ""
         structural = role in OPENERS or role in CLOSERS
         if command.problems and not structural:
             return

@@ -37,9 +37,6 @@ DISTANCE = "%D"
 POSITION_MODES = {"MPA": ir.MoveMode.ABSOLUTE, "MPI": ir.MoveMode.RELATIVE}
 MOVE_MODES = ("MN", "MC", "MQ")
 MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
-# The only operations that can read or set a distance register (`Resolver.op_reads`): the others
-# are skipped by their exact class (the IR's operation classes have no subclasses).
-READERS = frozenset((ir.Native, ir.Move, ir.Assign))
 # The factory defaults (L2608, L2520; D4000, L810): MPI, MN, and a positive distance register, so a
 # G in MC before any D runs forward. Assumed where the file shows nothing else (see resolve).
 DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN", ("sign", ir.ALL_AXES): 1}
@@ -132,17 +129,19 @@ def register_sign(op: ir.Assign, state: State, value) -> int | None:
 
 
 def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State | None]) -> State:
-    if isinstance(op, ir.Native) and op.dialect == DIALECT:
-        if op.mnemonic in POSITION_MODES:
-            set_key(state, "pos", op.axis, op.mnemonic)
-        elif op.mnemonic in MOVE_MODES:
-            set_key(state, "move", op.axis, op.mnemonic)
-    elif isinstance(op, ir.Assign) and is_distance(op.target.name):
+    kind = type(op)  # the IR's operation classes have no subclasses
+    if kind is ir.Native:
+        if op.dialect == DIALECT:
+            if op.mnemonic in POSITION_MODES:
+                set_key(state, "pos", op.axis, op.mnemonic)
+            elif op.mnemonic in MOVE_MODES:
+                set_key(state, "move", op.axis, op.mnemonic)
+    elif kind is ir.Assign and is_distance(op.target.name):
         axis = op.target.name[len(DISTANCE):]
         value = register_value(op, state)
         set_key(state, "sign", axis, register_sign(op, state, value))
         set_key(state, "D", axis, value)
-    elif isinstance(op, ir.Call) and touched.get(op.routine, True):
+    elif kind is ir.Call and touched.get(op.routine, True):
         end = exits.get(op.routine)
         state.clear()
         if end:
@@ -163,6 +162,7 @@ class Resolver:
         self.memo: dict[int, tuple] = {}
         self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
         self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
+        self.plans: dict[int, tuple] = {}  # id(routine) -> what its walks look at (`plan`)
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
         self.names = {routine.name for routine in module.routines}  # `module.routine` is a linear search
 
@@ -237,14 +237,15 @@ class Resolver:
                 and all(identical(a, b) for a, b in zip(memo[1], called)) and memo[4] == known:
             end, reached = memo[2], memo[3]
         else:
-            for block in routine.blocks:  # a new walk: the states it no longer reaches are not kept
-                for op in self.ops_of(block):
-                    self.before.pop(id(op), None)
+            before = self.before
+            for op in self.plan(routine)[1]:  # a new walk: the states it no longer reaches are not kept
+                before.pop(id(op), None)
             reached = []
             end = self.routine(routine, start, reached)
             self.memo[id(routine)] = (dict(start), called, end, reached, known)
-        for name, state in reached:
-            sites[name] = meet(sites.get(name), state)
+        for name, state in reached:  # (the first state met is kept as it is: no state is changed once made)
+            earlier = sites.get(name)
+            sites[name] = state if earlier is None else meet(earlier, state)
         return end
 
     def calls(self, routine: ir.Routine) -> list:
@@ -260,42 +261,73 @@ class Resolver:
         the state as it is)."""
         found = self.relevant.get(id(block))
         if found is None:
-            found = [op for op in block.ops
-                     if (isinstance(op, ir.Native) and op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS)
-                     or (isinstance(op, ir.Assign) and is_distance(op.target.name)) or isinstance(op, ir.Call)
-                     or (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL)]
+            found = []
+            for op in block.ops:
+                kind = type(op)  # the IR's operation classes have no subclasses
+                if kind is ir.Native:
+                    if op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS:
+                        found.append(op)
+                elif kind is ir.Assign:
+                    if op.target.name.startswith(DISTANCE):
+                        found.append(op)
+                elif kind is ir.Call or (kind is ir.Move and op.mode is ir.MoveMode.MODAL):
+                    found.append(op)
             self.relevant[id(block)] = found
+        return found
+
+    def plan(self, routine: ir.Routine) -> tuple[dict[str, tuple], list]:
+        """What a walk of the routine looks at, found once (the walks do not change the blocks):
+        each block's label -> (its `ops_of`, the routine its GotoRoutine names or None, whether
+        the routine ends there (FallOff, Return, no terminator), the labels after it that are in
+        the routine); and the routine's modal moves (the operations `before` keeps states for)."""
+        found = self.plans.get(id(routine))
+        if found is None:
+            labels = {block.label for block in routine.blocks}
+            steps: dict[str, tuple] = {}
+            moves = []
+            for block in routine.blocks:
+                ops = self.ops_of(block)
+                moves += [op for op in ops if type(op) is ir.Move]
+                term = block.terminator
+                steps[block.label] = (ops, term.routine if isinstance(term, ir.GotoRoutine) else None,
+                                      isinstance(term, (ir.FallOff, ir.Return)) or term is None,
+                                      tuple(succ for succ in ir.successors(term) if succ in labels))
+            found = self.plans[id(routine)] = (steps, moves)
         return found
 
     def routine(self, routine: ir.Routine, start: State, reached: list) -> State | None:
         if not routine.blocks:
             return None
-        blocks = {b.label: b for b in routine.blocks}
-        entry: dict[str, State | None] = {b.label: None for b in routine.blocks}
-        entry[routine.blocks[0].label] = dict(start)
-        work = [routine.blocks[0].label]
+        steps = self.plan(routine)[0]
+        first = routine.blocks[0].label
+        entry: dict[str, State | None] = {first: dict(start)}
+        work = [first]
         end: State | None = None
         visits: dict[str, int] = {}
+        before = self.before
+        touched = self.touched
+        names = self.names
+        analysed = self.analysed
         while work:
             label = work.pop()
             visits[label] = visits.get(label, 0) + 1
-            block = blocks[label]
+            ops, goto, exits, after = steps[label]
             state = entry[label] or {}
             # Copy on write: `state` is shared (the block's entry, or kept for a G or a call site,
             # which only read it) until an operation changes it, and copied only then.
             shared = True
             waiting = False
-            for op in self.ops_of(block):  # a modal Move, a Call, a mode command or a %D assignment
+            for op in ops:  # a modal Move, a Call, a mode command or a %D assignment
                 kind = type(op)
                 if kind is ir.Move:  # only a G needs its state; a move changes none
-                    self.before[id(op)] = state
+                    before[id(op)] = state
                     shared = True
                     continue
                 if kind is ir.Call:
                     reached.append((op.routine, state))
                     shared = True
-                    touches = self.touched.get(op.routine, True)
-                    if touches and op.routine in self.names and op.routine not in self.analysed:
+                    touches = touched.get(op.routine, True)
+                    if touches and op.routine in names and op.routine not in analysed:
                         waiting = True  # what it leaves is not known yet: the next round goes on from here
                         break
                     if not touches:
@@ -303,20 +335,24 @@ class Resolver:
                 if shared:
                     state = dict(state)
                     shared = False
-                state = transfer(state, op, self.touched, self.exits)
+                state = transfer(state, op, touched, self.exits)
             if waiting:
                 continue
-            term = block.terminator
-            if isinstance(term, ir.GotoRoutine):
-                reached.append((term.routine, state))
-            if isinstance(term, (ir.FallOff, ir.Return)) or term is None:
-                end = meet(end, state)
-            for succ in ir.successors(term):
-                if succ not in blocks:
+            if goto is not None:
+                reached.append((goto, state))
+            # A state reached for the first time is kept as it is, not copied (`meet(None, state)`):
+            # no state is changed once made (the walk copies one before an operation changes it).
+            if exits:
+                end = state if end is None else meet(end, state)
+            for succ in after:
+                old = entry.get(succ)
+                if old is None:
+                    entry[succ] = state
+                    if visits.get(succ, 0) < 64:
+                        work.append(succ)
                     continue
-                old = entry[succ]
                 new = meet(old, state)
-                if old is None or not states_equal(old, new):
+                if not states_equal(old, new):
                     entry[succ] = new
                     if visits.get(succ, 0) < 64:
                         work.append(succ)
@@ -327,6 +363,7 @@ class Resolver:
         modal = ir.MoveMode.MODAL
         kept_go = False
         with_modes: list[ir.Block] = []  # the blocks holding a mode command (MPA MPI MN MC MQ)
+        liveness: dict[int, list] = {}  # id(block) -> its `liveness_ops` (no mode command among them)
         for routine in self.module.routines:
             checkpoint()
             for block in routine.blocks:
@@ -339,7 +376,9 @@ class Resolver:
                         else:
                             out.append(op)
                     block.ops = out
-                kept_go = kept_go or any(type(op) is ir.Native and op.mnemonic == "G" for op in block.ops)
+                # the block's register operations for the liveness, a G kept as text among them
+                registers = liveness[id(block)] = liveness_ops(block.ops)
+                kept_go = kept_go or any(type(op) is ir.Native for op in registers)
                 if any(isinstance(op, ir.Native) for op in relevant):
                     with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
@@ -347,7 +386,7 @@ class Resolver:
                 block.ops = [op for op in block.ops if not (isinstance(op, ir.Native) and op.dialect == DIALECT
                                                             and op.mnemonic in MODE_COMMANDS)]
         checkpoint()
-        self.drop_unread_distances()
+        self.drop_unread_distances(liveness)
 
     def rewrite_op(self, op, ops: list, done: list) -> list:
         if not (isinstance(op, ir.Move) and op.mode is ir.MoveMode.MODAL):
@@ -400,23 +439,29 @@ class Resolver:
         if name not in self.module.variables:
             self.module.variables[name] = ir.Variable(name, ir.VarType.INT32, None, "global")
 
-    def drop_unread_distances(self) -> None:
+    def drop_unread_distances(self, relevant: dict[int, list] | None = None) -> None:
         """Assignments to a %D that no move, native G or later H can read (backward liveness; a call,
         a transfer and the end of a routine read every %D something in the module reads) are dropped,
-        and so is a %D variable nothing reads."""
-        read = self.distance_reads()
+        and so is a %D variable nothing reads. `relevant`: each block's `liveness_ops` when the
+        caller has them (found in one pass over the module); everything below looks at these only."""
+        if relevant is None:
+            relevant = {id(block): liveness_ops(block.ops) for routine in self.module.routines
+                        for block in routine.blocks}
+        op_reads = self.op_reads
         if self.module.externals:
             read = {n for n in self.module.variables if is_distance(n)}
+        else:
+            read = {name for ops in relevant.values() for op in ops if type(op) is not ir.Call
+                    for name in op_reads(op)}
         for routine in self.module.routines:
-            self.drop_dead_in(routine, read)
+            self.drop_dead_in(routine, read, relevant)
         used: set[str] = set()
-        for routine in self.module.routines:
-            for block in routine.blocks:
-                for op in block.ops:
-                    if type(op) in READERS:
-                        used |= self.op_reads(op)
-                        if type(op) is ir.Assign and op.target.name.startswith(DISTANCE):
-                            used.add(op.target.name)
+        for ops in relevant.values():
+            for op in ops:
+                if type(op) is not ir.Call:
+                    used |= op_reads(op)
+                    if type(op) is ir.Assign:  # to a %D (liveness_ops)
+                        used.add(op.target.name)
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
 
@@ -432,16 +477,13 @@ class Resolver:
             return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
         return NOTHING
 
-    def distance_reads(self) -> set[str]:
-        return {name for routine in self.module.routines for block in routine.blocks for op in block.ops
-                if type(op) in READERS for name in self.op_reads(op)}
-
-    def drop_dead_in(self, routine: ir.Routine, read: set[str]) -> None:
-        if not any(isinstance(op, ir.Assign) and is_distance(op.target.name)
-                   for b in routine.blocks for op in self.ops_of(b)):  # ops_of holds every %D assignment
+    def drop_dead_in(self, routine: ir.Routine, read: set[str], relevant: dict[int, list]) -> None:
+        """`relevant`: each block's `liveness_ops`, kept up to date when assignments are dropped."""
+        if not any(type(op) is ir.Assign for b in routine.blocks for op in relevant[id(b)]):
             return
         blocks = {b.label: b for b in routine.blocks}
-        live_in: dict[str, set[str]] = {label: set() for label in blocks}
+        live_in: dict[str, set[str] | frozenset[str]] = dict.fromkeys(blocks, NOTHING)  # replaced, never changed
+        op_reads = self.op_reads
 
         def live_out(block) -> set[str] | frozenset[str]:
             """Not to be changed by the caller (it may be `read` itself)."""
@@ -453,60 +495,93 @@ class Resolver:
                 out |= live_in[succ] if succ in live_in else read
             return out
 
-        def through(block, live: set[str], drop: bool) -> set[str]:
-            kept = []
-            for op in reversed(block.ops):
+        def through(block, live: set[str]) -> None:
+            """The block without the assignments to a %D that nothing reads after them."""
+            dropped = []
+            for op in reversed(relevant[id(block)]):
                 kind = type(op)
-                if kind is ir.Assign and op.target.name.startswith(DISTANCE):
-                    if op.target.name not in live and drop:
+                if kind is ir.Assign:  # to a %D (liveness_ops)
+                    if op.target.name not in live:
+                        dropped.append(op)
                         continue
-                    live = (live - {op.target.name}) | self.op_reads(op)
+                    live = (live - {op.target.name}) | op_reads(op)
                 elif kind is ir.Call:
                     live = live | read
-                elif kind in READERS:  # the others read no register
-                    live = live | self.op_reads(op)
-                kept.append(op)
-            if drop:
-                block.ops = kept[::-1]
-            return live
+                else:
+                    live = live | op_reads(op)
+            if dropped:
+                gone = {id(op) for op in dropped}
+                block.ops = [op for op in block.ops if id(op) not in gone]
+                relevant[id(block)] = [op for op in relevant[id(block)] if id(op) not in gone]
 
         def summary(block) -> tuple[set[str], set[str]]:
-            """`through(block, live, False)` is `(live - kill) | gen`: the block's operations composed
-            once, so that each round of the fixed point costs a set operation per block."""
+            """The block's effect on the live registers, `(live - kill) | gen`: its operations
+            composed once, so that each round of the fixed point costs a set operation per block."""
             kill: set[str] = set()
             gen: set[str] = set()
-            for op in reversed(block.ops):
+            for op in reversed(relevant[id(block)]):
                 kind = type(op)
-                if kind is ir.Assign and op.target.name.startswith(DISTANCE):
+                if kind is ir.Assign:  # to a %D (liveness_ops)
                     gen.discard(op.target.name)
                     kill.add(op.target.name)
-                    gen |= self.op_reads(op)
+                    gen |= op_reads(op)
                 elif kind is ir.Call:
                     gen |= read
-                elif kind in READERS:  # the others read no register
-                    gen |= self.op_reads(op)
+                else:
+                    gen |= op_reads(op)
             return kill, gen
 
-        summaries = {id(block): summary(block) for block in routine.blocks}
+        nothing = (NOTHING, NOTHING)  # the summary of a block without register operations
+        summaries = {id(block): summary(block) if relevant[id(block)] else nothing for block in routine.blocks}
+        # Each block as (label, kill, gen, the labels after it, what its exits read): `live_out`
+        # worked out once, so that a round of the fixed point is set operations only.
+        plan = []
+        for block in reversed(routine.blocks):
+            term = block.terminator
+            if isinstance(term, (ir.FallOff, ir.Return, ir.GotoRoutine, ir.End)) or term is None:
+                after: tuple[str, ...] = ()
+                beyond = NOTHING if isinstance(term, ir.End) else read
+            else:
+                following = ir.successors(term)
+                after = tuple(succ for succ in following if succ in live_in)
+                beyond = read if len(after) < len(following) else NOTHING
+            plan.append((block.label, *summaries[id(block)], after, beyond))
         changed = True
         rounds = 0
         while changed and rounds < 4 * len(blocks) + 4:
             changed = False
             rounds += 1
-            for block in reversed(routine.blocks):
-                kill, gen = summaries[id(block)]
-                new = (live_out(block) - kill) | gen
-                if new != live_in[block.label]:
-                    live_in[block.label] = new
+            for label, kill, gen, after, beyond in plan:
+                out = beyond
+                for succ in after:
+                    out = out | live_in[succ]
+                new = (out - kill) | gen
+                if new != live_in[label]:
+                    live_in[label] = new
                     changed = True
         for block in routine.blocks:
             if summaries[id(block)][0]:  # a block that assigns no %D keeps its operations
-                through(block, live_out(block), True)
+                through(block, live_out(block))
 
     def report(self, span, why: str) -> None:
         if span is not None:
             self.diags.add("X142", span, f"{why}: mcc keeps this G as X150 text, so it compiles to X150 only; "
                                          "set the mode (MN/MC, MPA/MPI) and D on every path before G")
+
+
+def liveness_ops(ops: list) -> list:
+    """The operations of a block that the register liveness looks at: assignments to a %D, calls
+    (which read every register), moves, and a G kept as text; every other operation reads no
+    register and assigns none (`Resolver.op_reads`)."""
+    out = []
+    for op in ops:
+        kind = type(op)  # the IR's operation classes have no subclasses
+        if kind is ir.Assign:
+            if op.target.name.startswith(DISTANCE):
+                out.append(op)
+        elif kind is ir.Call or kind is ir.Move or (kind is ir.Native and op.mnemonic == "G"):
+            out.append(op)
+    return out
 
 
 def identical(a: State | None, b: State | None) -> bool:

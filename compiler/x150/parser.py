@@ -68,49 +68,55 @@ def bare_parser() -> Lark:
 
 @lru_cache(maxsize=1)
 def _scanner() -> re.Pattern:
-    """One regular expression of the grammar's own terminals (CMD, COMMENT, NL and the ignored
-    blanks), taken from the Lark parser so that grammars/x150.lark stays their one definition.
+    """One regular expression of the grammar's own terminals, taken from the Lark parser so that
+    grammars/x150.lark stays their one definition: four groups, CMD, COMMENT, NL and the ignored
+    blanks, one of which holds each match (no terminal matches an empty text, and no two begin
+    with the same character).
 
     The grammar is regular (a line is command tokens, then an optional comment, then its end), so
     a text in which this expression matches every character, one terminal after the other, is a
-    text the LALR parser accepts with the same tokens: the common case is read with one `finditer`,
+    text the LALR parser accepts with the same tokens: the common case is read with one `findall`,
     and Lark's parser runs only for a text it would reject (to report the bad line and recover)."""
     parser, _ = _parser()
-    alternatives = []
+    groups: dict[str, list[str]] = {"CMD": [], "COMMENT": [], "NL": [], "IGNORE": []}
     for terminal in parser.terminals:
         if terminal.pattern.flags:  # pragma: no cover - the grammar has no flagged terminal
             raise ValueError(f"x150 terminal {terminal.name} has flags")
         name = terminal.name if terminal.name in ("CMD", "COMMENT", "NL") else "IGNORE"
         if name == "IGNORE" and terminal.name not in parser.ignore_tokens:  # pragma: no cover
             raise ValueError(f"unexpected x150 terminal {terminal.name}")
-        alternatives.append(f"(?P<{name}>{terminal.pattern.to_regexp()})")
-    return re.compile("|".join(alternatives))
+        groups[name].append(terminal.pattern.to_regexp())
+    return re.compile("|".join(f"((?:{'|'.join(patterns)}))" for patterns in groups.values()))
 
 
 def _scan(text: str) -> list | None:
     """The lines of `text` (which ends with a line end) as (number, [(token, offset)], comment)
-    with comment (text, start, end) or None; None when a character matches no terminal."""
+    with comment (text, start, end) or None; None when a character matches no terminal.
+
+    `findall` gives the matches' texts only (which costs much less than a match object each):
+    they follow one another, so each one's offset is the sum of the lengths before it, and a
+    character no terminal matches is skipped by the search, which the total length shows."""
     out: list = []
     tokens: list[tuple[str, int]] = []
     comment = None
     number = 1
-    done = 0
-    for match in _scanner().finditer(text):
-        start = match.start()
-        if start != done:
-            return None
-        done = match.end()
-        kind = match.lastgroup
-        if kind == "CMD":
-            tokens.append((match.group(), start))
-        elif kind == "NL":
+    pos = 0
+    for command, remark, newline, blank in _scanner().findall(text):
+        if command:
+            tokens.append((command, pos))
+            pos += len(command)
+        elif newline:
             out.append((number, tokens, comment))
             number += 1
             tokens = []
             comment = None
-        elif kind == "COMMENT":
-            comment = (match.group(), start, done)
-    if done != len(text):
+            pos += len(newline)
+        elif blank:
+            pos += len(blank)
+        else:
+            comment = (remark, pos, pos + len(remark))
+            pos += len(remark)
+    if pos != len(text):
         return None
     return out
 
@@ -146,17 +152,21 @@ def parse(original: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
     reader = _reader()
     path = source.path
     lines = tree.lines
+    # One LineSpans for every line, moved to each in turn: what is read from a line keeps its own
+    # spans, not this object (making one per line cost about 2 % of a check).
+    spans = LineSpans(path, 0, 0)
     for number, tokens, comment in raw_lines:
         if isinstance(tokens, st.Line):  # a line that failed, already built
             lines.append(tokens)
             continue
-        line = st.Line(number)
         if tokens or comment is not None:
-            spans = LineSpans(path, number, starts[number - 1])
-            if tokens:
-                line.commands = read_commands(reader, spans, tokens, diags)
+            spans.line = number
+            spans.line_start = starts[number - 1]
+            line = st.Line(number, read_commands(reader, spans, tokens, diags) if tokens else [])
             if comment is not None:
                 line.comment = st.Comment(comment[0], spans.at(comment[1], comment[2]))
+        else:
+            line = st.Line(number)
         lines.append(line)
     limits.refuse_deep(original, tree.lines, refused, diags, bounded=(st.Condition,))
     return tree
@@ -218,9 +228,11 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
     count = len(pieces)
     while index < count:
         text, start = pieces[index]
-        command = reader.read(Piece(text, start), spans)
-        if index + 1 < count and _may_take_next(command):
-            following = reader.read(Piece(*pieces[index + 1]), spans)
+        command = reader.read_token(text, start, spans)
+        # A command with a value (most: `arg` set, and not a bare VARn) takes no next word.
+        if index + 1 < count and (command.arg is None or type(command.arg) is st.VarStatement) \
+                and _may_take_next(command):
+            following = reader.read_token(*pieces[index + 1], spans)
             joined = _rejoin(reader, spans, command, following, pieces[index], pieces[index + 1])
             if joined is not None:
                 gap = spans.at(start + len(text), pieces[index + 1][1])
@@ -232,8 +244,9 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
         commands.append(command)
         index += 1
     for command in commands:
-        for problem in command.problems:
-            diags.add(problem.code, problem.span, problem.message)
+        if command.problems:
+            for problem in command.problems:
+                diags.add(problem.code, problem.span, problem.message)
     return commands
 
 

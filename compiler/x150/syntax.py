@@ -9,7 +9,10 @@ lowering and the checks give it meaning.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import dataclass, field
+from itertools import chain
+from operator import attrgetter
 from typing import Union
 
 from mcc.compiler.span import Span
@@ -167,7 +170,7 @@ class Command:
     arg_span: Span | None = None
     host: bool = False  # `!number`: the host's reply to VARn=RSIN, data rather than a command
     rejoined: bool = False  # a space inside the command was removed (IF (..), 1OUTL XX10X1)
-    problems: list[Problem] = field(default_factory=list)
+    problems: tuple[Problem, ...] = ()  # a tuple: most commands have none, and share the empty one
 
     @property
     def address_span(self) -> Span | None:
@@ -229,6 +232,6 @@ class SyntaxTree:
     path: str
     lines: list[Line] = field(default_factory=list)
 
-    def commands(self):
-        for line in self.lines:
-            yield from line.commands
+    def commands(self) -> Iterator[Command]:
+        """Every command, in order (an iterator chained in C: a check goes over them several times)."""
+        return chain.from_iterable(map(attrgetter("commands"), self.lines))

@@ -117,6 +117,10 @@ def number_value(text: str) -> int | float:
     return whole(text)
 
 
+def add_problem(cmd: st.Command, problem: st.Problem) -> None:
+    cmd.problems += (problem,)  # a tuple: most commands have none, and share the empty one
+
+
 class CommandReader:
     """Reads command tokens against the catalog. One instance per catalog (cached by the parser)."""
 
@@ -128,85 +132,90 @@ class CommandReader:
         self.relational = frozenset(cat.relational)
         self.sources = {name.upper() for name in cat.sources}
         self.arithmetic = {name.upper() for name in cat.arithmetic_sources}
-        self.arg_readers: dict[str, Callable] = {
-            "none": self.read_none, "query": self.read_none,
-            "number": self.read_number, "int": self.read_int, "sequence": self.read_int,
-            "pattern17": self.read_pattern17, "pattern6": self.read_bits, "led8": self.read_bits,
-            "bits8": self.read_bits, "bits6": self.read_bits,
-            "in_func": self.read_in_function, "out_func": self.read_out_function,
-            "composite": self.read_fields, "raw": self.read_fields, "string": self.read_string,
-            "variable": self.read_variable, "condition": self.read_condition,
-        }
 
     # -- the token -------------------------------------------------------------------------------
     def read(self, piece: Piece, spans: LineSpans) -> st.Command:
+        """The command a token is, its argument written after a space re-joined or not."""
         text = piece.text
         size = len(text)
+        if piece.gap >= size:
+            return self.read_token(text, piece.start, spans)
         at = spans.at
-        if piece.gap >= size:  # the common case, a token without a re-joined space: offsets by addition
-            base = piece.start
-            path = spans.path
-            line = spans.line
-            column = base - spans.line_start + 1  # of the token's first character
 
-            def sub(begin: int, end: int) -> Span:
-                start = begin if begin < size else size
-                stop = (end if end < size else size) if end > begin else start
-                return Span(path, line, column + start, line, column + stop, base + start, base + stop)
+        def sub(begin: int, end: int) -> Span:
+            start = piece.offset(begin) if begin < size else piece.end_offset(size)
+            return at(start, piece.end_offset(end) if end > begin else start)
 
-            span = Span(path, line, column, line, column + size, base, base + size)
-            lazy = True  # the address and mnemonic spans are characters of `span` (st.Command)
-        else:
-            lazy = False
-            def sub(begin: int, end: int) -> Span:
-                start = piece.offset(begin) if begin < size else piece.end_offset(size)
-                return at(start, piece.end_offset(end) if end > begin else start)
+        return self.read_command(st.Command(text, at(piece.start, piece.end_offset(size))), text, sub, False)
 
-            span = at(piece.start, piece.end_offset(size))
-        cmd = st.Command(text=text, span=span)
+    def read_token(self, text: str, base: int, spans: LineSpans) -> st.Command:
+        """The command a contiguous token is, `base` the offset of its first character: the common
+        case (no re-joined space), whose spans are made by addition."""
+        size = len(text)
+        path = spans.path
+        line = spans.line
+        column = base - spans.line_start + 1  # of the token's first character
 
-        if text.startswith("!"):
+        def sub(begin: int, end: int) -> Span:
+            start = begin if begin < size else size
+            stop = (end if end < size else size) if end > begin else start
+            return Span(path, line, column + start, line, column + stop, base + start, base + stop)
+
+        # The address and mnemonic spans are characters of the command's span (st.Command): lazy.
+        return self.read_command(st.Command(text, Span(path, line, column, line, column + size, base, base + size)),
+                                 text, sub, True)
+
+    def read_command(self, cmd: st.Command, text: str, sub, lazy: bool) -> st.Command:
+        first = text[0]
+        if first == "!":
             return self.read_host(cmd, text, sub)
         pos = 0
-        digits = DIGITS.match(text)
-        if digits:
-            pos = digits.end()
-            cmd.address = whole(digits.group())
+        if "0" <= first <= "9":
+            digits = DIGITS.match(text).group()
+            pos = len(digits)
+            cmd.address = int(digits) if pos <= 18 else whole(digits)
             if lazy:
-                cmd.address_chars = pos  # sub(0, pos): pos > 0, and the token is longer
+                cmd.address_chars = pos  # sub(0, pos): pos > 0
             else:
                 cmd.address_span = sub(0, pos)
-        if pos == len(text):
-            cmd.problems.append(st.Problem("X003", span, f"'{text}' is a device address with no command after it; "
-                                                         "write the command right after the address (1A10)"))
-            return cmd
+            if pos == len(text):
+                add_problem(cmd, st.Problem("X003", cmd.span,
+                                               f"'{text}' is a device address with no command after it; "
+                                               "write the command right after the address (1A10)"))
+                return cmd
+        cat = self.cat
         info = None
         if text[pos] in "Bb":
-            prefixed = self.cat.match(text, pos + 1)
+            prefixed = cat.match(text, pos + 1)
             if prefixed is not None and prefixed.b_prefixable:
                 cmd.buffered = True
                 info = prefixed
                 pos += 1
         if info is None:
-            info = self.cat.match(text, pos)
-        if info is None:
-            self.unknown(cmd, text, pos, sub)
-            return cmd
+            info = cat.match(text, pos)
+            if info is None:
+                self.unknown(cmd, text, pos, sub)
+                return cmd
         end = pos + len(info.name)
         cmd.info = info
         cmd.mnemonic = info.name
         cmd.written = text[pos:end]
         if lazy:  # sub(begin, end): the mnemonic is inside the token, and not empty
-            cmd.mnemonic_from = pos - (1 if cmd.buffered else 0)
+            cmd.mnemonic_from = pos - 1 if cmd.buffered else pos
             cmd.mnemonic_to = end
         else:
             cmd.mnemonic_span = sub(pos - (1 if cmd.buffered else 0), end)
+        kind = info.arg
+        if end == len(text) and kind in EMPTY_IS_NONE:  # no argument, and none needed
+            return cmd
         try:
-            cmd.arg = self.arg_readers.get(info.arg, self.read_none)(cmd, text, end, sub)
+            arg = ARG_READERS.get(kind, CommandReader.read_none)(self, cmd, text, end, sub)
         except ArgError as exc:
-            cmd.problems.append(st.Problem("X002", sub(exc.begin, max(exc.end, exc.begin)), exc.message))
-        if cmd.arg is not None:
-            cmd.arg_span = cmd.arg.span
+            add_problem(cmd, st.Problem("X002", sub(exc.begin, max(exc.end, exc.begin)), exc.message))
+            return cmd
+        if arg is not None:
+            cmd.arg = arg
+            cmd.arg_span = arg.span
         return cmd
 
     def read_host(self, cmd: st.Command, text: str, sub) -> st.Command:
@@ -217,14 +226,14 @@ class CommandReader:
             cmd.arg = st.Number(text[1:], number_value(text[1:]), sub(1, len(text)))
             cmd.arg_span = cmd.arg.span
         else:
-            cmd.problems.append(st.Problem("X002", sub(1, len(text)),
+            add_problem(cmd, st.Problem("X002", sub(1, len(text)),
                                            "host data for VARn=RSIN is '!' followed by a number (!12.34, L3604)"))
         return cmd
 
     def unknown(self, cmd: st.Command, text: str, pos: int, sub) -> None:
         word = WORD.match(text, pos)
         if word is None:
-            cmd.problems.append(st.Problem(
+            add_problem(cmd, st.Problem(
                 "X003", sub(pos, len(text)),
                 f"'{text[pos:]}' is not an X150 command: a command starts with its mnemonic (after an optional "
                 "device address)"))
@@ -234,7 +243,7 @@ class CommandReader:
         cmd.mnemonic_span = sub(pos, word.end())
         close = difflib.get_close_matches(name.upper(), self.names, n=3, cutoff=0.6)
         hint = f" (did you mean {', '.join(close)}?)" if close else ""
-        cmd.problems.append(st.Problem("X101", cmd.mnemonic_span,
+        add_problem(cmd, st.Problem("X101", cmd.mnemonic_span,
                                        f"'{name}' is not an X150 command{hint}; see the command list in "
                                        "docs/dialects/x150.md"))
 
@@ -264,31 +273,37 @@ class CommandReader:
         return st.VarRef(whole(match.group(1)), sub(pos, len(text)))
 
     def read_number(self, cmd: st.Command, text: str, pos: int, sub):
-        if pos == len(text):
+        size = len(text)
+        if pos == size:
             return None
-        found = self.read_subst(cmd, text, pos, sub)
-        if found is not None:
-            return found
-        match = NUMBER.match(text, pos)
-        if match is None or match.end() != len(text):
+        if text[pos] == "(":  # only then can it be (VARn)
+            found = self.read_subst(cmd, text, pos, sub)
+            if found is not None:
+                return found
+        if NUMBER.fullmatch(text, pos) is None:
+            match = NUMBER.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a number (10, -2.5, 1.2E-3)"
                            + (f" or (VARn)" if cmd.info and cmd.info.var_subst else "")
-                           + f"; '{text[bad:]}' is not part of one", bad, len(text))
-        return st.Number(match.group(), number_value(match.group()), sub(pos, len(text)))
+                           + f"; '{text[bad:]}' is not part of one", bad, size)
+        written = text[pos:]
+        return st.Number(written, number_value(written), sub(pos, size))
 
     def read_int(self, cmd: st.Command, text: str, pos: int, sub):
-        if pos == len(text):
+        size = len(text)
+        if pos == size:
             return None
-        found = self.read_subst(cmd, text, pos, sub)
-        if found is not None:
-            return found
-        match = DIGITS.match(text, pos)
-        if match is None or match.end() != len(text):
+        if text[pos] == "(":  # only then can it be (VARn)
+            found = self.read_subst(cmd, text, pos, sub)
+            if found is not None:
+                return found
+        if DIGITS.fullmatch(text, pos) is None:
+            match = DIGITS.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a whole number; '{text[bad:]}' is not part of one",
-                           bad, len(text))
-        return st.Number(match.group(), whole(match.group()), sub(pos, len(text)))
+                           bad, size)
+        written = text[pos:]
+        return st.Number(written, int(written) if size - pos <= 18 else whole(written), sub(pos, size))
 
     def pattern17(self, text: str, pos: int, end: int, sub, what: str) -> st.Pattern:
         bits = text[pos:end].upper()
@@ -529,3 +544,21 @@ class CommandReader:
             right = st.Number(number.group(), number_value(number.group()), sub(cursor, number.end()))
             end = number.end()
         return st.Comparison(left, rel.group(), right, sub(pos, end)), end
+
+
+# The reader of each argument class (catalog `arg`); a class not listed takes no value. Plain
+# functions, not bound methods kept by the reader (a reference cycle: tests/test_no_cycles.py).
+ARG_READERS: dict[str, Callable] = {
+    "none": CommandReader.read_none, "query": CommandReader.read_none,
+    "number": CommandReader.read_number, "int": CommandReader.read_int, "sequence": CommandReader.read_int,
+    "pattern17": CommandReader.read_pattern17, "pattern6": CommandReader.read_bits, "led8": CommandReader.read_bits,
+    "bits8": CommandReader.read_bits, "bits6": CommandReader.read_bits,
+    "in_func": CommandReader.read_in_function, "out_func": CommandReader.read_out_function,
+    "composite": CommandReader.read_fields, "raw": CommandReader.read_fields, "string": CommandReader.read_string,
+    "variable": CommandReader.read_variable, "condition": CommandReader.read_condition,
+}
+# The argument classes whose reader finds nothing, and nothing wrong, in an empty argument: a
+# command written without a value (`1G`, `1A`) is not sent to its reader.
+EMPTY_IS_NONE = frozenset(kind for kind, reader in ARG_READERS.items()
+                          if reader not in (CommandReader.read_fields, CommandReader.read_string,
+                                            CommandReader.read_variable, CommandReader.read_condition))
