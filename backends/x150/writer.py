@@ -526,6 +526,16 @@ class Writer:
             self.nodes(node.body)
             self.emit(self.address() + "N", node.end_span or node.span)
             return
+        if kind == "WHILE" and isinstance(node.cond, ir.Not) and not self.writable(node.cond) \
+                and self.writable(node.cond.cond):
+            # X150 has no NOT: WHILE(NOT c) B runs as IF(c) ELSE REPEAT B UNTIL(c) NIF
+            test, prefix = self.cond(node.cond.cond), self.address()
+            for text in (f"IF({test})", "ELSE", "REPEAT"):
+                self.emit(prefix + text, node.span)
+            self.nodes(node.body)
+            for text in (f"UNTIL({test})", "NIF"):
+                self.emit(prefix + text, node.end_span or node.span)
+            return
         if kind == "WHILE":
             try:
                 self.emit(f"{self.address()}WHILE({self.cond(node.cond)})", node.span)

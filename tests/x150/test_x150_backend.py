@@ -229,3 +229,17 @@ def test_a_continuous_g_after_a_computed_distance_keeps_its_unknown_direction():
     ops = [op for _, block in module.blocks() for op in block.ops]
     assert not any(isinstance(op, ir.Slew) for op in ops)
     assert any(isinstance(op, ir.Native) and op.mnemonic == "G" for op in ops)
+
+
+def test_a_while_on_a_negated_condition_x150_cannot_write_is_an_if_around_a_repeat():
+    """Found by the generated-program property: an L loop left from its middle whose exit test is
+    NOT(IN_X01 OR VAR1>5) (X150 has no NOT); WHILE(NOT c) B is written IF(c) ELSE REPEAT B UNTIL(c) NIF."""
+    text = ("1XE54\n1XD54\n1L(VAR2)\n1IF(IN_X01 OR VAR1>5)\n1REPEAT\n1UNTIL(IN_X01 OR VAR2<3)\n1XRT\n1NIF\n1G\n1N\n"
+            "1VAR3=VAR1+2\n1XRT\n1XST0\n1XT\n")
+    result = driver.compile_file("w.x150", "x150", text=text, opt_level="O0")
+    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
+    lines = result.listing.text.splitlines()
+    start = lines.index("1IF(IN_X01 OR VAR1>5)")
+    assert lines[start + 1:start + 3] == ["1ELSE", "1REPEAT"] and "1UNTIL(IN_X01 OR VAR1>5)" in lines
+    again = driver.compile_file("w2.x150", "x150", text=result.listing.text, opt_level="O0")
+    assert not again.has_errors and again.listing.text == result.listing.text
