@@ -79,6 +79,10 @@ class Options:
     spin: int = 2000  # steps without any change before a loop counts as polling
     poll: float = 0.001  # seconds a polling loop advances while an axis moves
     samples: bool = True  # record sampled motion for the trace and plots
+    # Where a polling loop pauses for time to pass: 0 where it goes round (a jump back); n > 0 n
+    # steps after that, or where it goes round when a round is shorter (sim/verify.py tries the
+    # points of a round to tell a race on an input from a changed program)
+    poll_offset: int = 0
 
 
 @dataclass
@@ -146,6 +150,7 @@ class Simulator:
         self.block_of = {b.label: b for _, b in module.blocks()}
         self.block_index = {b.label: n for r in module.routines for n, b in enumerate(r.blocks)}
         self.went_back = False  # the last terminator jumped back (to a block at or before its own)
+        self.since_back = -1  # steps since the last jump back (-1: none yet)
         self.machine = Machine(inputs=dict(self.scenario.inputs), analog=dict(self.scenario.analog))
         self.machine.shared["defaults"] = defaults(module.steps_per_rev)
         for axis in (profile.axes if profile is not None else ()):
@@ -368,11 +373,22 @@ class Simulator:
                 # a polling loop pauses where it goes round (a jump back), never between two reads
                 # of one round: a translation that splits a condition over several statements
                 # then sees the inputs change at the same point of the loop as its source
-                if quiet >= threshold and self.stack and self.went_back:
+                if quiet >= threshold and self.stack and self._poll_point():
                     self.stack[-1].wait = Wait("poll", line=self._line_now())
                     self.polling, self.poll_changes = True, self.changes
                     return
         self.polling = False
+
+    def _poll_point(self) -> bool:
+        """Whether a quiet loop pauses here: where it goes round, or `poll_offset` steps later."""
+        offset = self.options.poll_offset
+        if self.went_back:
+            short = 0 <= self.since_back < offset  # a whole round ended before the offset was reached
+            self.since_back = 0
+            return offset == 0 or short
+        if self.since_back >= 0:
+            self.since_back += 1
+        return offset > 0 and self.since_back == offset
 
     def _wait_over(self, wait: Wait) -> bool:
         if wait.kind == "delay":
