@@ -21,7 +21,7 @@ from typing import Callable, Iterable
 from mcc.compiler import dialects, driver
 from mcc.compiler.config import Resolver, Settings, load_profile
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Kind
-from mcc.compiler.lint import files, fixes, suppress
+from mcc.compiler.lint import files, fixes, flow, suppress
 from mcc.compiler.lint.rules import Context, rules_for
 from mcc.compiler.span import SourceFile
 
@@ -120,16 +120,17 @@ def settle(checked: Checked, settings: Settings, rules: bool = True,
 def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, diags: Diagnostics,
               stop: Callable[[], bool] | None = None) -> None:
     ctx = Context(analysis, profile or load_profile(dialects.get(dialect).default_profile), dialect, diags)
-    for rule in rules_for(dialect):
-        if not settings.enabled(rule.code, path):
-            continue
-        if stop is not None and stop():
-            return
-        ctx.code = rule.code
-        try:
-            rule.check(ctx)
-        except Exception as exc:  # noqa: BLE001 - a broken rule must not hide the others
-            driver.internal_error(diags, path, exc, f"running lint rule {rule.code}")
+    with flow.shared_shapes():  # the rules read the module, never change it: one graph walk per routine
+        for rule in rules_for(dialect):
+            if not settings.enabled(rule.code, path):
+                continue
+            if stop is not None and stop():
+                return
+            ctx.code = rule.code
+            try:
+                rule.check(ctx)
+            except Exception as exc:  # noqa: BLE001 - a broken rule must not hide the others
+                driver.internal_error(diags, path, exc, f"running lint rule {rule.code}")
 
 
 def lint_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:

@@ -9,7 +9,9 @@ each routine is analysed from its own entry, and calls are summarised by the rul
 from __future__ import annotations
 
 import heapq
+import threading
 from collections import deque
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Callable, Hashable, Iterable, Iterator, TypeVar
 
@@ -165,6 +167,50 @@ def term_reads(term) -> Iterator:
         yield from ir.walk_expr(expr)
 
 
+@dataclass(frozen=True)
+class Shape:
+    """A routine's graph as the forward walks need it: successors, the blocks by label, and the
+    reachable labels in reverse postorder from the entry with their ranks."""
+
+    succ: dict[str, list[ir.Block]]
+    blocks: dict[str, ir.Block]
+    order: list[str]
+    rank: dict[str, int]
+
+
+_shared = threading.local()  # the shapes shared within `shared_shapes` (per thread: the editor's worker)
+
+
+@contextmanager
+def shared_shapes() -> Iterator[None]:
+    """Within it, each routine's shape is computed once and shared by every walk. For analyses of
+    a module that does not change meanwhile (the lint rules of one file, engine.run_rules), never
+    for passes that rewrite it."""
+    outer = getattr(_shared, "shapes", None)
+    if outer is None:
+        _shared.shapes = {}
+    try:
+        yield
+    finally:
+        if outer is None:
+            _shared.shapes = None
+
+
+def shape_of(routine: ir.Routine, start: ir.Block) -> Shape:
+    cache = getattr(_shared, "shapes", None)
+    if cache is not None:
+        found = cache.get(id(routine))
+        if found is not None and found[0] is routine:
+            return found[1]
+    succ = successor_map(routine)
+    order = reverse_postorder(start.label, succ)
+    shape = Shape(succ, {block.label: block for block in reversed(routine.blocks)}, order,
+                  {label: i for i, label in enumerate(order)})
+    if cache is not None:
+        cache[id(routine)] = (routine, shape)  # the routine kept: its id is not reused meanwhile
+    return shape
+
+
 def forward(routine: ir.Routine, entry: State, transfer: Callable[[State, object], State],
             join: Callable[[State, State], State],
             edge: Callable[[State, ir.Block, ir.Block], State] | None = None) -> dict[str, State]:
@@ -177,15 +223,13 @@ def forward(routine: ir.Routine, entry: State, transfer: Callable[[State, object
     start = routine.entry
     if start is None:
         return {}
-    succ = successor_map(routine)
-    rank = {label: i for i, label in enumerate(reverse_postorder(start.label, succ))}
+    shape = shape_of(routine, start)
+    succ, rank, blocks, order = shape.succ, shape.rank, shape.blocks, shape.order
     states: dict[str, State] = {start.label: entry}
-    blocks = {block.label: block for block in reversed(routine.blocks)}
     # A worklist in reverse postorder: a block waits until its forward predecessors are done, so a
     # loop nest settles in a few passes instead of one pass per queued change.
     queue = [rank[start.label]]
     queued = {start.label}
-    order = list(rank)
     while queue:
         label = order[heapq.heappop(queue)]
         queued.discard(label)
