@@ -163,3 +163,10 @@ def test_nesting_summed_across_calls_is_an_inferred_warning_not_an_error() -> No
     assert len(found) == 1 and found[0].severity.value == "warning"
     assert "inferred" in found[0].message and "L1750" in found[0].message
     assert compile_(text).listing is not None  # a warning: the program still compiles
+
+
+@pytest.mark.parametrize("text,expected", [("1GH0\n", ["X122"]), ("1GH0.005\n", ["X122"]), ("1GH-0.01\n", []),
+                                           ("1GH100\n", []), ("1GH-100.5\n", ["X122"])])
+def test_gh_speed_has_a_hole_around_zero(text, expected):
+    """GH n: n from 0.01 to 100 rev/s in either direction (L1706); GH0 homes nowhere."""
+    assert codes(text) == expected
