@@ -19,7 +19,8 @@
   H- → assignments to the hidden distance register `%D<device>`; G → a placeholder Move that
   modes.py resolves by data flow into Move(ABSOLUTE|RELATIVE) + WaitMotion, or Slew in MC (the
   mode commands disappear into the moves); T → Delay (s); TRE/TRN → WaitInput(InputMatch) /
-  WaitInput(Not(...)); TRIP → WaitMotion; PZ → SetPosition(0); O → SetOutput; HALT → End;
+  WaitInput(Not(...)); TRIP → WaitMotion; PZ → SetPosition(0); GH n → Home(speed) + WaitMotion;
+  O → SetOutput; HALT → End; the configuration commands of neutral.SETTINGS → Setting;
   the quote command → Print; VARn= → Assign (left to right; POS/ABS are Status readings); SV → Save.
   Everything else is Native("x150", mnemonic, args as written, form="B" when B-prefixed, axis).
 - Device addresses are axes "1".."32", "*" for none. Operations without an axis field (Assign,
@@ -363,7 +364,8 @@ class Lowering:
         elif role == "home" and isinstance(arg, st.Number) and arg.value != 0 and axis_ok:
             # GH n: seek the home input at |n| rev/s in the sign's direction (L1711-L1713); the next
             # command runs once homing has ended ("use the SP command after the GH is complete", L1715)
-            speed = self.value(st.Number(arg.text.lstrip("+-"), abs(arg.value), arg.span), info)
+            speed = ir.Const(units.revs_to_steps(abs(arg.value), self.module.steps_per_rev), ir.Unit.STEPS_PER_S,
+                             arg.span)
             self.emit(ir.Home(axis, "switch", 1 if arg.value > 0 else -1, span=span, speed=speed))
             self.emit(ir.WaitMotion(axis, span))
         elif name == "PZ" and arg is None and axis_ok:
