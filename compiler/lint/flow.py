@@ -167,6 +167,25 @@ def term_reads(term) -> Iterator:
         yield from ir.walk_expr(expr)
 
 
+def stream_entries(module: ir.Module, transfer: Callable[[State, object], State],
+                   join: Callable[[State, State], State], subroutines: bool) -> dict[str, State]:
+    """Entry facts per routine. The controller keeps its settings between commands: each stretch of
+    commands sent outside a program starts with what the stretches before it left, and a program
+    starts with what the whole stream left (it runs after the download). `subroutines`: a
+    subroutine starts with that too (else it has no entry here, and the caller decides)."""
+    carried: State = frozenset()
+    entries: dict[str, State] = {}
+    for routine in module.routines:
+        if routine.kind is ir.RoutineKind.IMMEDIATE:
+            entries[routine.name] = carried
+            end = exit_state(routine, forward(routine, carried, transfer, join), transfer, join)
+            carried = carried if end is None else end
+    for routine in module.routines:
+        if subroutines or routine.kind is not ir.RoutineKind.SUBROUTINE:
+            entries.setdefault(routine.name, carried)
+    return entries
+
+
 @dataclass(frozen=True)
 class Shape:
     """A routine's graph as the forward walks need it: successors, the blocks by label, and the

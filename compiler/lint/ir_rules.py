@@ -218,23 +218,6 @@ def position_read_while_moving(ctx: Context, voice: Voice) -> None:
 
 # move-before-speed ---------------------------------------------------------------------------------
 
-def stream_entries(module: ir.Module, transfer, join) -> dict[str, frozenset]:
-    """Entry facts per routine. The controller keeps its settings between commands: each stretch of
-    commands sent outside a program starts with what the stretches before it left, and a program
-    starts with what the whole stream left (it runs after the download)."""
-    carried: frozenset = frozenset()
-    entries: dict[str, frozenset] = {}
-    for routine in module.routines:
-        if routine.kind is ir.RoutineKind.IMMEDIATE:
-            entries[routine.name] = carried
-            end = flow.exit_state(routine, flow.forward(routine, carried, transfer, join), transfer, join)
-            carried = carried if end is None else end
-    for routine in module.routines:
-        if routine.kind is not ir.RoutineKind.SUBROUTINE:
-            entries.setdefault(routine.name, carried)
-    return entries
-
-
 @shared("move-before-speed")
 def move_before_speed(ctx: Context, voice: Voice) -> None:
     """Option `params`: the motion settings a move needs (`ir.MotionParam`s), `kinds`: the operations
@@ -254,7 +237,7 @@ def move_before_speed(ctx: Context, voice: Voice) -> None:
         return facts + list(extra_facts(item))
 
     facts = flow.MustFacts(ctx.module, gen)
-    entries = stream_entries(ctx.module, facts.transfer, frozenset.intersection)
+    entries = flow.stream_entries(ctx.module, facts.transfer, frozenset.intersection, subroutines=False)
     for name, states in facts.states(entries).items():
         routine = ctx.module.routine(name)
         for item, state in walk(routine, states, facts.transfer):

@@ -60,24 +60,10 @@ def axis_of(item) -> str:
     return getattr(item, "axis", "")
 
 
-def stream_entries(module: ir.Module, transfer, join=frozenset.union) -> dict[str, frozenset]:
-    """Each stretch of the stream starts where the previous one ended; a sequence starts with the
-    state the whole stream leaves (the controller keeps settings between commands)."""
-    carried: frozenset = frozenset()
-    entries: dict[str, frozenset] = {}
-    for routine in module.routines:
-        if routine.kind is ir.RoutineKind.IMMEDIATE:
-            entries[routine.name] = carried
-            end = flow.exit_state(routine, flow.forward(routine, carried, transfer, join), transfer, join)
-            carried = carried if end is None else end
-    for routine in module.routines:
-        entries.setdefault(routine.name, carried)
-    return entries
-
 
 def forward_all(module: ir.Module, transfer):
     """(routine, item, state before it) for every reachable operation, with the stream's state."""
-    entries = stream_entries(module, transfer)
+    entries = flow.stream_entries(module, transfer, frozenset.union, subroutines=True)
     for routine in module.routines:
         states = flow.forward(routine, entries[routine.name], transfer, frozenset.union)
         for block in routine.blocks:

@@ -284,7 +284,7 @@ class CommandReader:
             match = NUMBER.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a number (10, -2.5, 1.2E-3)"
-                           + (f" or (VARn)" if cmd.info and cmd.info.var_subst else "")
+                           + (" or (VARn)" if cmd.info and cmd.info.var_subst else "")
                            + f"; '{text[bad:]}' is not part of one", bad, size)
         written = text[pos:]
         return st.Number(written, number_value(written), sub(pos, size))
