@@ -124,8 +124,8 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("--target", type=click.Choice(DIALECT_NAMES), help="Dialect to generate (default: the source dialect).")
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension).")
 @click.option("-o", "--output", "output", type=click.Path(dir_okay=False),
-              help="Write the device-ready program here (default: print it on stdout; with --format json it is "
-                   "returned in the \"text\" field).")
+              help="Write the device-ready program here (default, or `-`: print it on stdout; with --format json "
+                   "it is returned in the \"text\" field).")
 @click.option("--listing", type=click.Path(dir_okay=False),
               help="Also write a listing: every output line numbered, with the source lines it came from.")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
@@ -163,6 +163,8 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
     """
     from mcc.compiler import driver
 
+    if output == "-":  # the usual spelling of "stdout", which is the default anyway
+        output = None
     check_outputs(file, profile, output, listing, overwrite_input)
     prof = load_profile(profile)
     if passes:

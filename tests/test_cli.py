@@ -92,6 +92,12 @@ def test_compile_prints_program_and_refuses_errors(tmp_path):
     assert refused.returncode == 1 and not out.exists()
 
 
+def test_compile_to_dash_prints_the_program_and_writes_no_file(tmp_path):
+    printed = run_mcc("compile", SAMPLE, "-o", "-", cwd=tmp_path)
+    assert printed.returncode == 0 and "PG 1\n" in printed.stdout
+    assert list(tmp_path.iterdir()) == []
+
+
 def test_explain_known_and_unknown_codes():
     page = run_mcc("explain", "M106")
     assert page.returncode == 0
