@@ -395,6 +395,38 @@ class Save:
 
 
 @dataclass(slots=True)
+class Pause:
+    """Suspend the program here until the host resumes it (X150 `PS` until `C`, MCode `PS` until
+    `RS`). With `stop_motion` a move in progress ramps down at the pause and restarts when the
+    program resumes (MCode, L4931-L4959); without it the move runs on while the program waits
+    (X150's PS pauses command execution only, L3146-L3159)."""
+
+    axis: str
+    stop_motion: bool = False
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Resume:
+    """The host ends a pause (X150 `C`, L291-L300; MCode `RS`, L5193-L5222); no effect when the
+    program is not paused."""
+
+    axis: str
+    span: Span | None = None
+
+
+@dataclass(slots=True)
+class Step:
+    """The host lets the next `count` commands run while single-step mode (the `single_step`
+    setting) holds the program (X150 `#n`, L5548-L5560; MCode steps a line per space typed in its
+    single-step mode, which a listing cannot send). No effect when single-step mode is off."""
+
+    axis: str
+    count: Expr
+    span: Span | None = None
+
+
+@dataclass(slots=True)
 class Native:
     """A construct with no neutral meaning, kept verbatim for its own backend."""
 
@@ -407,7 +439,8 @@ class Native:
 
 
 Op = Union[Assign, SetMotion, Move, Arc, Slew, Home, Stop, SetPosition, WaitMotion, Delay,
-           SetOutput, WaitInput, Print, DriveEnable, Call, SetHandler, Setting, Save, Native]
+           SetOutput, WaitInput, Print, DriveEnable, Call, SetHandler, Setting, Save, Pause, Resume, Step,
+           Native]
 
 
 # ---------------------------------------------------------------------------------------------
@@ -564,6 +597,31 @@ def callers_of(seeds: set[str], calls: dict[str, set[str]]) -> set[str]:
     return result
 
 
+def settled_ops(module: Module) -> set[int]:
+    """The operations (by id) before which no move can still be running: in a program's entry
+    block until its first motion (nothing ran before it), and after a wait for the axes that moved.
+    Conservative: a block other than the entry, a call or a native command may leave anything
+    running. Backends use it where their dialects differ only for a move in progress (a pause
+    that stops motion or lets it run on)."""
+    found: set[int] = set()
+    starts = (RoutineKind.MAIN, RoutineKind.IMMEDIATE, RoutineKind.POWERUP)
+    for routine in module.routines:
+        for index, block in enumerate(routine.blocks):
+            moving: set[str] = set() if index == 0 and routine.kind in starts else {ALL_AXES}
+            for op in block.ops:
+                if not moving:
+                    found.add(id(op))
+                if isinstance(op, WaitMotion):
+                    moving = set() if op.axis == ALL_AXES else moving - {op.axis}
+                elif isinstance(op, Move):
+                    moving |= {axis for axis, _ in op.targets}
+                elif isinstance(op, (Slew, Home)):
+                    moving.add(op.axis)
+                elif isinstance(op, (Arc, Call, Native)):
+                    moving.add(ALL_AXES)
+    return found
+
+
 def retarget(term: Terminator | None, old: str, new: str) -> None:
     """Point a terminator's transfers to block `old` at block `new` instead."""
     if isinstance(term, Jump) and term.target == old:
@@ -621,6 +679,8 @@ def op_exprs(op: Op) -> tuple:
         return op.items
     if isinstance(op, DriveEnable):
         return (op.on,)
+    if isinstance(op, Step):
+        return (op.count,)
     if isinstance(op, Call):
         return (op.cond,) if op.cond is not None else ()
     if isinstance(op, (SetHandler, Native)):

@@ -106,6 +106,10 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("stop_input"),  # 1 while the dedicated stop input is active
     Reading("enable_input"),  # 1 while the dedicated drive-enable (energise) input is active
     Reading("index_input"),  # 1 while the encoder's index (marker) input is active
+    # settings read back (a report of the value in force: X150's 1FOL, 1INL, 1OUTL queries)
+    Reading("following_ratio", Unit.PERCENT),  # the `following_ratio` setting in force
+    Reading("input_levels"),  # the active level of every input (1 active high), input 1 in bit 0
+    Reading("output_levels"),  # the active level of every output (1 active high), output 1 in bit 0
 )}
 
 # SetHandler events: what makes the handler run.

@@ -100,6 +100,12 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
         return f"setting {op.name}{line} {op.axis} = {expr_text(op.value)}"
     if isinstance(op, ir.Save):
         return "save"
+    if isinstance(op, ir.Pause):
+        return f"pause {op.axis}{' stop motion' if op.stop_motion else ''}"
+    if isinstance(op, ir.Resume):
+        return f"resume {op.axis}"
+    if isinstance(op, ir.Step):
+        return f"step {op.axis} {expr_text(op.count)}"
     if isinstance(op, ir.Native):
         args = ", ".join(_any_text(a) for a in op.args)
         axis = f" axis={op.axis}" if op.axis else ""

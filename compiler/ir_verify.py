@@ -132,6 +132,8 @@ class _Checker:
                 self._unit(op.angle, ANGLE, where, "arc angle", op.span)
         elif isinstance(op, ir.Home) and op.speed is not None:
             self._unit(op.speed, frozenset({ir.Unit.STEPS_PER_S}), where, "homing speed", op.span)
+        elif isinstance(op, ir.Step):
+            self._unit(op.count, frozenset({ir.Unit.NONE}), where, "step count", op.span)
         elif isinstance(op, ir.Slew) and op.velocity is not None:
             self._unit(op.velocity, frozenset({ir.Unit.STEPS_PER_S}), where, "slew velocity", op.span)
         elif isinstance(op, ir.SetHandler) and op.event not in ir_names.EVENTS:

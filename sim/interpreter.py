@@ -55,6 +55,11 @@ UNMODELLED = {"following_mode": "the axis follows an external input instead of r
               "single_step": "a stored program runs one command per step request from the host"}
 
 
+# Readings that report a setting: the setting they read and its value before the program sets it.
+SETTING_READINGS = {"following_ratio": ("following_ratio", 100), "input_levels": ("input_active_high", 0),
+                    "output_levels": ("output_active_high", 0)}
+
+
 class ContractError(Exception):
     """The module does not keep the IR contract: the simulator will not guess what it means."""
 
@@ -170,6 +175,8 @@ class Simulator:
         self.changes = 0  # bumped by anything a polling loop could be waiting for
         self.natives: set[str] = set()
         self.unmodelled: set[str] = set()  # settings reported once each (S014)
+        self.settings: dict[tuple[str, int | None], values.Number] = {}  # the settings set in this run
+        self.paused_once = False  # S015 is reported once
         self.fixed_watches: dict[str, list] = {}
         self.read_continuous = False  # the running stretch read something that changes with time
         self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
@@ -488,13 +495,16 @@ class Simulator:
         return None
 
     def _do_slew(self, op) -> Wait | None:
-        self._slew(op)
+        for name in self._each(op.axis):
+            self._slew(op, name)
         return None
 
     def _do_home(self, op) -> Wait | None:
-        if self._axis(op.axis).moving(self.now):
-            return Wait("busy", axes=(op.axis,), retry=True)
-        self._home(op)
+        names = self._each(op.axis)
+        if any(self._axis(name).moving(self.now) for name in names):
+            return Wait("busy", axes=tuple(names), retry=True)
+        for name in names:
+            self._home(op, name)
         return None
 
     def _do_stop(self, op) -> Wait | None:
@@ -561,7 +571,11 @@ class Simulator:
         return None
 
     def _do_setting(self, op) -> Wait | None:
-        """The settings the model has: which handlers are enabled, which input captures."""
+        """The settings the model has: which handlers are enabled, which input captures; every
+        setting's value is kept for the readings that report it (SETTING_READINGS)."""
+        value = self._eval_quiet(op.value) if not isinstance(op.value, ir.Text) else None
+        if value is not None:
+            self.settings[(op.name, op.index)] = value
         if op.name == "home_accel":
             value = self._eval_quiet(op.value)
             for name in self._expand((op.axis,)):
@@ -579,6 +593,36 @@ class Simulator:
                            f"the setting {op.name} changes how the machine runs ({UNMODELLED[op.name]}), which the "
                            "simulator does not model: it goes on as if the setting were 0")
         return None
+
+    def _do_pause(self, op) -> Wait | None:
+        """The host resumes at once (X150 C, MCode RS): what the program does after the pause is the
+        same whenever the resume comes. A move a stopping pause catches runs on (S015 says so)."""
+        moving = op.stop_motion and any(self._axis(name).moving(self.now) for name in self._expand((op.axis,)))
+        self._event(op, "pause", axis=op.axis)
+        if not self.paused_once or moving:
+            self.paused_once = True
+            what = " A move in progress would ramp down and restart on resume; here it runs on." if moving else ""
+            self.diags.add("S015", op.span or _file_span(self.module.path),
+                           "the program pauses here until the host resumes it; the simulator resumes at once." + what)
+        return None
+
+    def _do_resume(self, op) -> Wait | None:
+        self._event(op, "resume", axis=op.axis)
+        return None
+
+    def _do_step(self, op) -> Wait | None:
+        """Single-step mode is not modelled (S014 at its setting): a step request changes nothing."""
+        self._event(op, "step", axis=op.axis, value=values.plain(self._eval(op.count)))
+        return None
+
+    def _setting_reading(self, meaning: str) -> values.Number:
+        """A setting read back: the value this run set; before that, the factory default (X150:
+        following at 100 %, L1461; every input and output active low, L2120, L3023)."""
+        name, default = SETTING_READINGS[meaning]
+        if name == "following_ratio":
+            return self.settings.get((name, None), default)
+        return sum(1 << (index - 1) for (setting, index), value in self.settings.items()
+                   if setting == name and index and value)
 
     def _do_native(self, op) -> Wait | None:
         args = [values.plain(v) if (v := self._eval_quiet(a)) is not None else ir_print.expr_text(a)
@@ -602,6 +646,11 @@ class Simulator:
     def _axis(self, name: str) -> Axis:
         found = self.machine.axes.get(name)
         return found if found is not None else self.machine.axis(name)
+
+    def _each(self, name: str) -> list[str]:
+        """The axes an operation on `name` drives: every axis of the machine for ALL_AXES (an
+        unaddressed X150 command reaches each device), else the one named."""
+        return self._expand((name,)) or [name]
 
     def _expand(self, axes) -> list[str]:
         out: list[str] = []
@@ -648,16 +697,16 @@ class Simulator:
         self._begin(op, path, self._axis(ax).limits(self.machine.shared), targets={ax: end[0], ay: end[1]},
                     plan_length=length)
 
-    def _slew(self, op: ir.Slew) -> None:
-        axis = self._axis(op.axis)
+    def _slew(self, op: ir.Slew, name: str) -> None:
+        axis = self._axis(name)
         lim = axis.limits(self.machine.shared)
         velocity = float(self._eval(op.velocity)) if op.velocity is not None else op.direction * lim.maximum
         current = axis.speed(self.now)
         # the same slew again (a loop that keeps commanding it) changes nothing: no event, so a
         # loop doing only that is recognised as polling and time can pass
-        if velocity == self.slewing.get(op.axis, 0.0 if not axis.moving(self.now) else None):
+        if velocity == self.slewing.get(name, 0.0 if not axis.moving(self.now) else None):
             return
-        self._event(op, "slew", axis=op.axis, velocity=velocity)
+        self._event(op, "slew", axis=name, velocity=velocity)
         start = axis.at(self.now)
         self._cut(axis)
         if velocity == 0:
@@ -671,28 +720,28 @@ class Simulator:
             length = INF
         if not segments:
             return
-        path = Path({op.axis: start}, length, {op.axis: direction})
+        path = Path({name: start}, length, {name: direction})
         self._install(op, path, segments, None)
-        self.slewing[op.axis] = velocity
+        self.slewing[name] = velocity
 
-    def _home(self, op: ir.Home) -> None:
-        axis = self._axis(op.axis)
-        switch = self.scenario.switches(op.axis).home
+    def _home(self, op: ir.Home, name: str) -> None:
+        axis = self._axis(name)
+        switch = self.scenario.switches(name).home
         target = switch - axis.offset
-        self._event(op, "home", axis=op.axis, method=op.method)
+        self._event(op, "home", axis=name, method=op.method)
         start = axis.position
         if target == start:
             axis.position, axis.offset = 0.0, switch
-            self._event(op, "home_end", axis=op.axis)
+            self._event(op, "home_end", axis=name)
             return
         delta = target - start
-        path = Path({op.axis: start}, abs(delta), {op.axis: 1.0 if delta > 0 else -1.0})
+        path = Path({name: start}, abs(delta), {name: 1.0 if delta > 0 else -1.0})
         limits = axis.limits(self.machine.shared)
         if op.speed is not None:  # X150 GH n seeks at a speed of its own, not at the max speed
             limits = dataclasses.replace(limits, maximum=abs(float(self._eval(op.speed))))
         if axis.home_accel is not None:  # and ramps at GA (0: at once)
             limits = dataclasses.replace(limits, accel=axis.home_accel, decel=axis.home_accel)
-        self._begin(op, path, limits, targets={op.axis: target}, plan_length=abs(delta))
+        self._begin(op, path, limits, targets={name: target}, plan_length=abs(delta))
         axis.on_end = "home"
 
     def _begin(self, op, path: Path, lim: Limits, targets: dict[str, float], plan_length: float) -> None:
@@ -1047,7 +1096,9 @@ class Simulator:
         if meaning == "timer":
             self.read_continuous = True
             return self.now
-        axis = self._axis(status.axis or self._handler_axis())
+        if meaning in SETTING_READINGS:
+            return self._setting_reading(meaning)
+        axis = self._axis(self._each(status.axis or self._handler_axis())[0])  # '*': the first device's
         if meaning in CONTINUOUS:
             self.read_continuous = True
         if meaning in ("position", "encoder"):
@@ -1143,6 +1194,9 @@ OP_METHODS = {
     ir.SetHandler: Simulator._do_sethandler,
     ir.Native: Simulator._do_native,
     ir.Setting: Simulator._do_setting,
+    ir.Pause: Simulator._do_pause,
+    ir.Resume: Simulator._do_resume,
+    ir.Step: Simulator._do_step,
 }
 
 

@@ -32,7 +32,7 @@ TIME_ABS = 0.01  # seconds
 TIME_REL = 0.01  # share of the event's time
 POSITION_TOLERANCE = 1.0  # output steps
 OBSERVABLE = ("move", "arc", "slew", "stop", "home", "home_end", "set_position", "output", "print", "limit",
-              "error", "move_end")
+              "error", "move_end", "pause", "resume", "step")
 # A stricter comparison for transformations that keep the program's structure of device commands
 # (the optimizer, a backend reading back its own dialect): also the native commands in order, the
 # handlers installed and removed, the drive switched on and off.

@@ -737,7 +737,10 @@ def input_match(cond: ir.InputMatch) -> ir.Cond:
 def describe(op) -> str:
     """An operation as a user reads it in a refusal."""
     names = {"WaitInput": "waiting for an input", "Print": "printing", "SetHandler": "an event handler",
-             "Save": "saving to non-volatile memory", "Slew": "a slew"}
+             "Save": "saving to non-volatile memory", "Slew": "a slew",
+             "Pause": "pausing the program (the PMX-4EX-SA is paused from the PC only, SR=2, L1631)",
+             "Resume": "resuming a paused program (the PC sends SR=3, L1634)",
+             "Step": "a single step (the PMX-4EX-SA has no single-step mode)"}
     name = type(op).__name__
     if isinstance(op, ir.SetHandler):
         return f"an event handler (on {op.event})"

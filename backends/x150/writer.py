@@ -131,6 +131,7 @@ class Writer:
         self.cat = cat.load()
         self.out = Written()
         self.native = module.dialect == DIALECT
+        self._settled: set[int] | None = None
         self.source_spr = module.steps_per_rev or profile.steps_per_rev
         self.resolution = profile.steps_per_rev or self.source_spr
         self.cur = self.device_resolutions()
@@ -663,12 +664,41 @@ class Writer:
         elif isinstance(op, ir.SetHandler):
             self.handler(op)
         elif isinstance(op, ir.Print):
-            prefix = "" if is_position_report(op) else self.address(op.axis) if op.axis else self.address()
+            prefix = "" if report_command(op) else self.address(op.axis) if op.axis else self.address()
             self.emit(prefix + self.print_text(op), span)
         elif isinstance(op, ir.Setting):
             self.emit(self.setting(op), span)
+        elif isinstance(op, (ir.Pause, ir.Resume, ir.Step)):
+            self.emit(self.host_control(op), span)
         else:
             raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
+
+    def settled(self) -> set[int]:
+        """The operations before which no move can run (ir.settled_ops), computed once."""
+        if self._settled is None:
+            self._settled = ir.settled_ops(self.module)
+        return self._settled
+
+    def host_control(self, op: ir.Pause | ir.Resume | ir.Step) -> str:
+        """PS (buffered, pauses command execution, L3151), C and #n (immediate, never saved: only
+        the host stream sends them, L291, L5548)."""
+        address = self.address(op.axis)
+        if isinstance(op, ir.Pause):
+            if op.stop_motion and id(op) not in self.settled():
+                raise CannotWrite("X150's PS pauses command execution and lets a move in progress run on; the source "
+                                  "stops the move at the pause: wait for the move to end before the pause", "G003")
+            return address + "PS"
+        what = "C (continue, L291)" if isinstance(op, ir.Resume) else "# (single step, L5548)"
+        if self.in_sequence:
+            raise CannotWrite(f"X150 never saves {what} in a sequence: only the host sends it", "G003")
+        if isinstance(op, ir.Resume):
+            return address + "C"
+        if not isinstance(op.count, ir.Const) or not float(op.count.value).is_integer() \
+                or not 1 <= op.count.value <= 255:
+            raise CannotWrite(f"X150 steps 1-255 commands with #n (L5548); {expr_text(op.count)} has no "
+                              "equivalent", "G003")
+        count = int(op.count.value)
+        return address + "#" + (str(count) if count != 1 else "")
 
     def home(self, op: ir.Home) -> list[str]:
         """GH n: seek the home input at n rev/s, the sign giving the direction (L1701-L1715). X150
@@ -988,11 +1018,12 @@ class Writer:
     def print_text(self, op: ir.Print) -> str:
         """The quote command sends ASCII 33-126 as written, '_' as a space (L5589), no line end."""
         item = op.items[0] if len(op.items) == 1 else None
-        if is_position_report(op):
-            if self.factor_of(item.axis or ir.ALL_AXES) != 1:
+        report = report_command(op)
+        if report is not None:
+            if report == "PR" and self.factor_of(item.axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
-            return self.address(op.axis or item.axis or ir.ALL_AXES) + "PR"  # the counter as *<value> (L3115)
+            return self.address(op.axis or item.axis or ir.ALL_AXES) + report
         text = item.value if isinstance(item, ir.Text) else ""
         if text and not op.newline and len(text) <= 50 and all(c == " " or 33 <= ord(c) <= 126 for c in text) \
                 and '"' not in text and "_" not in text:
@@ -1312,10 +1343,16 @@ def level_run(nodes: list, index: int) -> list:
     return group
 
 
-def is_position_report(op: ir.Print) -> bool:
-    """A line with the position alone: X150's PR."""
-    return len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].meaning == "position" \
-        and op.items[0].index is None and op.newline
+# The readings X150 reports with a command of their own, a line each: PR (*-25600, L3115), the
+# setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
+REPORTS = {"position": "PR", "following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
+
+
+def report_command(op: ir.Print) -> str | None:
+    """The X150 report a print is, when it is a line with one such reading alone."""
+    if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline:
+        return REPORTS.get(op.items[0].meaning)
+    return None
 
 
 def describe_setting(name: str) -> str:

@@ -421,6 +421,10 @@ class Lowering:
             if args:
                 return ir.Delay(units.to_ir(self.expr(args[0]), MS_TO_S, ir.Unit.S), span)
             return ir.WaitMotion(axis, span)
+        if name == "PS" and not args:  # pauses with the normal decel ramp; RS resumes the move (L4931-L4959)
+            return ir.Pause(axis, True, span)
+        if name == "RS" and not args:
+            return ir.Resume(axis, span)
         if kind == "set_position" and args:
             return ir.SetPosition(axis, self.expr(args[0], ir.Unit.STEPS), span)
         if kind == "output" and args and command.index is not None:

@@ -102,8 +102,9 @@ def handler_writes(module: ir.Module) -> tuple[set[str], bool]:
 
 def clobbers_everything(op) -> bool:
     """An operation after which no variable's value is known: a call (the callee may assign any
-    variable) or a native command (its effect is not modelled)."""
-    return isinstance(op, (ir.Call, ir.Native))
+    variable), a native command (its effect is not modelled) or a pause (the host may send commands
+    while the program waits, MCode L4935)."""
+    return isinstance(op, (ir.Call, ir.Native, ir.Pause))
 
 
 def assigned(op) -> str | None:

@@ -34,7 +34,9 @@ NEEDS = ()
 MIN_RUN, MAX_RUN = 3, 24
 ROUNDS = 3
 ELIGIBLE = (ir.RoutineKind.MAIN, ir.RoutineKind.SUBROUTINE, ir.RoutineKind.POWERUP)
-NOT_OUTLINED = (ir.Call, ir.Native, ir.SetHandler, ir.Save)
+# host controls stay where they are: X150 never saves C or # in a sequence, and a pause moved into a
+# subroutine could no longer be shown to follow the end of a move (ir.settled_ops)
+NOT_OUTLINED = (ir.Call, ir.Native, ir.SetHandler, ir.Save, ir.Pause, ir.Resume, ir.Step)
 ERROR_SUB = 31  # Arcus: SUB 31 runs when an error occurs
 
 

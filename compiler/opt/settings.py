@@ -53,7 +53,7 @@ def local(module: ir.Module) -> int:
                 last[slot] = value
             elif isinstance(op, (ir.SetMotion, ir.Setting)):
                 last = {k: v for k, v in last.items() if k[0] != slot_of(op)[0]}
-            elif isinstance(op, (ir.Call, ir.Native)):
+            elif isinstance(op, (ir.Call, ir.Native, ir.Pause)):  # the host may set anything while paused
                 last.clear()
             kept.append(op)
         block.ops[:] = kept

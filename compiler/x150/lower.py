@@ -21,7 +21,8 @@
   mode commands disappear into the moves); T → Delay (s); TRE/TRN → WaitInput(InputMatch) /
   WaitInput(Not(...)); TRIP → WaitMotion; PZ → SetPosition(0); GH n → Home(speed) + WaitMotion;
   O → SetOutput; HALT → End; the configuration commands of neutral.SETTINGS → Setting;
-  the quote command → Print; VARn= → Assign (left to right; POS/ABS are Status readings); SV → Save.
+  the quote command and the reports PR, 1FOL, 1INL, 1OUTL → Print (of a Status reading); PS →
+  Pause (motion runs on), C → Resume, #n → Step; VARn= → Assign (left to right; POS/ABS are Status readings); SV → Save.
   Everything else is Native("x150", mnemonic, args as written, form="B" when B-prefixed, axis).
 - Device addresses are axes "1".."32", "*" for none. Operations without an axis field (Assign,
   Delay, WaitInput, Save, Call, ...) take the routine's device; where a command's address differs
@@ -58,7 +59,10 @@ KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKin
 NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "home", "delay", "wait_input", "assign", "save", "return",
                            "when"))
 NEUTRAL_NAMES = frozenset((*DIRECTION, "CUR", "O", "TRIP", "PZ", '"', "PR", "SB", "ST", *neutral.SETTINGS,
-                           "IN", "OUT", "INL", "OUTL", "HALT"))
+                           "IN", "OUT", "INL", "OUTL", "HALT", "PS", "C", "#"))
+# Queries that report a setting in force (`1FOL` -> FOLLOWING PERCENT = n%, L1569; `1INL` ->
+# *0000000_0000000000, L2134): a print of the setting's reading
+SETTING_REPORTS = {"FOL": "following_ratio", "INL": "input_levels", "OUTL": "output_levels"}
 OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
 CLOSERS = {"loop_end": "L", "endif": "IF", "endwhile": "WHILE", "until": "REPEAT", "else": "IF"}
 CLOSER_NAMES = {"L": "N", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL(...)"}
@@ -411,6 +415,17 @@ class Lowering:
             for index, bit in enumerate(bits.upper(), 1):  # X leaves a level as it is: one setting per level set
                 if bit in "01":
                     self.emit(ir.Setting(setting, axis, ir.Const(int(bit), ir.Unit.NONE, arg.span), span, index))
+        elif name in SETTING_REPORTS and arg is None and not command.buffered:
+            self.emit(ir.Print((ir.Status(SETTING_REPORTS[name], axis, None, span),), True, span, self.sender(command)))
+        elif name == "PS" and arg is None and axis_ok:  # pauses command execution, not motion (L3151)
+            self.emit(ir.Pause(axis, False, span))
+        elif name == "C" and arg is None and axis_ok:
+            self.emit(ir.Resume(axis, span))
+        elif name == "#" and (arg is None or isinstance(arg, st.Fields) and len(arg.values) == 1
+                              and arg.tail is None) and axis_ok:  # '#' alone runs one command (L5557)
+            count = ir.Const(arg.values[0], ir.Unit.NONE, arg.span) if arg is not None \
+                else ir.Const(1, ir.Unit.NONE, span)
+            self.emit(ir.Step(axis, count, span))
         elif name == "HALT" and arg is None and fits:
             self.terminate(ir.End(span))  # stops execution and clears the buffer (L1883)
         elif role == "return" and fits:

@@ -1,0 +1,101 @@
+"""X150's host controls and setting reports are neutral operations: PS/C are Pause/Resume (MCode
+PS/RS), #n is Step, and the queries 1FOL, 1INL and 1OUTL print a reading of the setting."""
+
+from __future__ import annotations
+
+from mcc.compiler import driver, ir, profiles
+from mcc.sim import verify
+from mcc.sim.interpreter import simulate
+
+from x150_helpers import module, output
+
+
+def ops_of(text: str) -> list:
+    return [op for _, block in module(text).blocks() for op in block.ops]
+
+
+def test_pause_continue_and_single_steps_are_neutral_and_written_back_as_written():
+    text = "1XST1\nPS\n1C\n#\n#3\n2#2\n"
+    pause, resume, *steps = ops_of(text)[1:]
+    assert isinstance(pause, ir.Pause) and (pause.axis, pause.stop_motion) == ("*", False)
+    assert isinstance(resume, ir.Resume) and resume.axis == "1"
+    assert [(type(s), s.axis, s.count.value) for s in steps] == [(ir.Step, "*", 1), (ir.Step, "*", 3),
+                                                                 (ir.Step, "2", 2)]
+    assert output(text) == text.splitlines()
+
+
+def test_setting_queries_print_a_reading_of_the_setting_and_are_written_back():
+    text = "1FOL\n1INL\n1OUTL\n1PR\n"
+    meanings = [(type(op), op.items[0].meaning) for op in ops_of(text)]
+    assert meanings == [(ir.Print, "following_ratio"), (ir.Print, "input_levels"), (ir.Print, "output_levels"),
+                        (ir.Print, "position")]
+    assert output(text) == text.splitlines()
+
+
+def test_continue_and_step_stay_with_the_host_a_sequence_cannot_hold_them():
+    source = "PG 1\nMR 51200\nH\nPS\nRS\nE\nPG\n"  # MCode: a program that resumes itself
+    result = driver.compile_file("p.mxt", "mcode", target="x150", text=source)
+    [refusal] = [d for d in result.diagnostics if d.severity.value == "error"]
+    assert refusal.code == "G003" and "C (continue" in refusal.message and refusal.span.line == 5
+
+
+def test_a_pause_converts_where_no_move_runs_and_is_refused_where_one_may():
+    """X150's PS lets a move run on; MCode's ramps it down and restarts it. Only a pause no move
+    can reach means the same in both."""
+    settled = driver.compile_file("p.x150", "x150", target="mcode", text="1A10\n1V1\n1D4000\n1G\nPS\n1G\nC\n")
+    assert not settled.has_errors, [(d.code, d.message) for d in settled.diagnostics]
+    lines = settled.listing.text.splitlines()
+    assert lines.index("PS") == lines.index("H") + 1 and "RS" in lines
+    running = driver.compile_file("p.x150", "x150", target="mcode", text="1A10\n1V1\n1MC\n1G\nPS\n")
+    [refusal] = [d for d in running.diagnostics if d.severity.value == "error"]
+    assert refusal.code == "G003" and "run on" in refusal.message and refusal.span.line == 5
+    back = driver.compile_file("p.mxt", "mcode", target="x150", text="PG 1\nMR 51200\nPS\nE\nPG\n")
+    assert any(d.code == "G003" and "PS pauses command execution" in d.message and d.span.line == 3
+               for d in back.diagnostics)
+
+
+def test_other_dialects_refuse_single_steps_and_arcus_refuses_pauses():
+    for target, words in (("mcode", "single step"), ("arcus", "single step")):
+        result = driver.compile_file("s.x150", "x150", target=target, text="1A10\n1V1\n#2\n")
+        assert any(d.code == "G003" and words in d.message and d.span.line == 3 for d in result.diagnostics)
+    result = driver.compile_file("s.x150", "x150", target="arcus", text="1A10\n1V1\nPS\n1D4000\n1G\nC\n")
+    assert any(d.code == "G003" and "SR=2" in d.message and d.span.line == 3 for d in result.diagnostics)
+
+
+def test_the_simulator_records_pauses_and_steps_and_resumes_at_once():
+    trace = simulate(module("1A10\n1V1\nPS\n1D4000\n1G\nC\n#2\n"))
+    kinds = [(e.kind, e.line) for e in trace.events if e.kind in ("pause", "move", "resume", "step")]
+    assert kinds == [("pause", 3), ("move", 4), ("resume", 6), ("step", 7)]  # a move is told at its D
+    assert [e.data["value"] for e in trace.events if e.kind == "step"] == [2]
+    assert [d.code for d in trace.diagnostics] == ["S015"]
+
+
+def test_the_simulator_says_when_a_stopping_pause_catches_a_move():
+    result = driver.check_file("p.mxt", "mcode", text="PG 1\nVM=51200\nMR 51200\nPS\nH\nE\nPG\n")
+    trace = simulate(result.analysis.module)
+    [note] = [d for d in trace.diagnostics if d.code == "S015"]
+    assert "runs on" in note.message and note.span.line == 4
+
+
+def test_setting_reports_print_the_value_in_force_or_the_factory_default():
+    trace = simulate(module("1FOL\n1FOL50\n1FOL\n1INL\n1INL_X1\n1INL\n"))
+    assert [text.strip() for _, text in trace.prints] == ["100", "50", "0", "2"]
+
+
+def test_an_unaddressed_jog_moves_the_device_not_a_phantom_axis():
+    trace = simulate(module("1A10\n1V1\nMC\nG\nT1\nSB\n"), profile=profiles.load("x150-pdhx"))
+    assert set(trace.axes) == {"1"} and trace.axes["1"] > 0
+
+
+def test_a_pause_keeps_its_place_in_the_behaviour_oracle():
+    source = module("1A10\n1V1\nPS\n1D4000\n1G\nC\n")
+    moved = module("1A10\n1V1\n1D4000\n1G\nPS\nC\n")
+    assert verify.compare(source, moved) is not None
+    assert verify.compare(source, module("1A10\n1V1\nPS\n1D4000\n1G\nC\n")) is None
+
+
+def test_settled_operations_are_those_no_move_can_reach():
+    mod = module("PS\n1A10\n1V1\n1D4000\n1G\nPS\n1MC\n1G\nPS\n")
+    pauses = [op for _, block in mod.blocks() for op in block.ops if isinstance(op, ir.Pause)]
+    settled = ir.settled_ops(mod)
+    assert [id(p) in settled for p in pauses] == [True, True, False]
