@@ -889,9 +889,10 @@ class Simulator:
                 self.slewing.pop(name, None)
 
     def _stop_axis(self, axis: Axis, ramp: bool, op, record: bool = True) -> None:
+        moving = axis.moving(self.now)
         if record:
-            self._event(op, "stop", axis=axis.name, ramp=ramp)
-        if not axis.moving(self.now):
+            self._event(op, "stop", axis=axis.name, ramp=ramp, **({} if moving else {"idle": True}))
+        if not moving:
             return
         speed = axis.motion.speed(self.now)
         names = list(axis.motion.path.start)

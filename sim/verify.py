@@ -212,6 +212,8 @@ def _observable(trace: Trace, cut: float | None, kinds: tuple[str, ...] = OBSERV
             continue
         if event.kind == "move" and event.data["from"] == event.data["to"]:
             continue  # a move to where the axis already is does nothing
+        if event.kind == "stop" and event.data.get("idle"):
+            continue  # nor does a stop of an axis at standstill (a target's STOP of every axis)
         out.append(event)
     return out
 

@@ -63,3 +63,12 @@ def test_every_optimization_level_behaves_like_the_source(dialect, path, level):
     if problem.startswith("cannot verify"):
         pytest.skip(problem)
     assert problem == ""
+
+
+def test_a_stop_of_an_axis_at_standstill_is_no_difference():
+    """X150 `SB` unaddressed stops device 1; Arcus `STOP` stops all four axes. Stopping an axis that
+    does not move does nothing, so the oracle does not count it (like a move to where it is)."""
+    compiled = driver.compile_file("s.x150", "x150", "arcus", text="1A10\n1V1\n1D4000\n1G\nSB\n")
+    assert not compiled.has_errors, [(d.code, d.message) for d in compiled.diagnostics]
+    moving = driver.compile_file("s.x150", "x150", "arcus", text="1A10\n1V1\n1MC\n1G\nT1\nSB\nT1\n")
+    assert not moving.has_errors, [(d.code, d.message) for d in moving.diagnostics]
