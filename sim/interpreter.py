@@ -175,7 +175,8 @@ class Simulator:
         self.changes = 0  # bumped by anything a polling loop could be waiting for
         self.natives: set[str] = set()
         self.unmodelled: set[str] = set()  # settings reported once each (S014)
-        self.settings: dict[tuple[str, int | None], values.Number] = {}  # the settings set in this run
+        # the settings set in this run: (name, axis, input/output number) -> value
+        self.settings: dict[tuple[str, str, int | None], values.Number] = {}
         self.paused_once = False  # S015 is reported once
         self.fixed_watches: dict[str, list] = {}
         self.read_continuous = False  # the running stretch read something that changes with time
@@ -575,9 +576,10 @@ class Simulator:
         setting's value is kept for the readings that report it (SETTING_READINGS)."""
         value = self._eval_quiet(op.value) if not isinstance(op.value, ir.Text) else None
         if value is not None:
-            self.settings[(op.name, op.index)] = value
+            if op.axis == ir.ALL_AXES:  # every device now has this value
+                self.settings = {k: v for k, v in self.settings.items() if (k[0], k[2]) != (op.name, op.index)}
+            self.settings[(op.name, op.axis, op.index)] = value
         if op.name == "home_accel":
-            value = self._eval_quiet(op.value)
             for name in self._expand((op.axis,)):
                 self._axis(name).home_accel = float(value) if value is not None else None
         elif op.name == "handler_enable":
@@ -615,14 +617,21 @@ class Simulator:
         self._event(op, "step", axis=op.axis, value=values.plain(self._eval(op.count)))
         return None
 
-    def _setting_reading(self, meaning: str) -> values.Number:
-        """A setting read back: the value this run set; before that, the factory default (X150:
-        following at 100 %, L1461; every input and output active low, L2120, L3023)."""
+    def _setting_reading(self, meaning: str, axis: str) -> values.Number:
+        """A setting read back: the value this run set for the axis (or for every axis); before
+        that, the factory default (X150: following at 100 %, L1461; every input and output active
+        low, L2120, L3023)."""
         name, default = SETTING_READINGS[meaning]
+
+        def value(index: int | None):
+            found = self.settings.get((name, axis, index))
+            return found if found is not None else self.settings.get((name, ir.ALL_AXES, index))
+
         if name == "following_ratio":
-            return self.settings.get((name, None), default)
-        return sum(1 << (index - 1) for (setting, index), value in self.settings.items()
-                   if setting == name and index and value)
+            found = value(None)
+            return found if found is not None else default
+        indices = {index for setting, _, index in self.settings if setting == name and index}
+        return sum(1 << (index - 1) for index in indices if value(index))
 
     def _do_native(self, op) -> Wait | None:
         args = [values.plain(v) if (v := self._eval_quiet(a)) is not None else ir_print.expr_text(a)
@@ -1098,7 +1107,7 @@ class Simulator:
             self.read_continuous = True
             return self.now
         if meaning in SETTING_READINGS:
-            return self._setting_reading(meaning)
+            return self._setting_reading(meaning, status.axis or ir.ALL_AXES)
         axis = self._axis(self._each(status.axis or self._handler_axis())[0])  # '*': the first device's
         if meaning in CONTINUOUS:
             self.read_continuous = True

@@ -99,3 +99,8 @@ def test_settled_operations_are_those_no_move_can_reach():
     pauses = [op for _, block in mod.blocks() for op in block.ops if isinstance(op, ir.Pause)]
     settled = ir.settled_ops(mod)
     assert [id(p) in settled for p in pauses] == [True, True, False]
+
+
+def test_setting_reports_are_per_device():
+    trace = simulate(module("FOL50\n2FOL20\n1FOL\n2FOL\nFOL70\n2FOL\n2INL_1\n1INL\n2INL\n"))
+    assert [text.strip() for _, text in trace.prints] == ["50", "20", "70", "0", "1"]
