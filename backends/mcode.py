@@ -85,7 +85,7 @@ class Writer:
         self.listing = Listing(DIALECT)
         self.diags: Diagnostics = self.listing.diagnostics
         self.limit = int(profile.get("limits.line_length", 64))
-        self._settled: set[int] | None = None
+        self.settled = ir.settled_ops(module)  # where no move can run: a pause means the same in both dialects
         self.foreign = module.dialect != DIALECT
         self.factor = units.ratio(module.steps_per_rev, profile.steps_per_rev) if self.foreign else Fraction(1)
         self.drive = profile.axes[0] if profile.axes else "1"
@@ -532,7 +532,7 @@ class Writer:
                 return f"{self.prefix(op.axis)}SL 0"
             raise Unsupported("an abort without deceleration (MCode stops with ESC, not a statement)")
         if isinstance(op, ir.Pause):
-            if not op.stop_motion and id(op) not in self.settled():
+            if not op.stop_motion and id(op) not in self.settled:
                 raise Unsupported("a pause that lets a move in progress run on (MCode's PS ramps the move down, "
                                   "L4931; wait for the move to end before the pause)")
             return f"{self.prefix(op.axis)}PS"
@@ -542,12 +542,6 @@ class Writer:
             raise Unsupported("a single step sent by the host (MCode steps with a space typed in EX mode 2, which "
                               "a program cannot hold)")
         raise Unsupported(f"the operation {type(op).__name__}")
-
-    def settled(self) -> set[int]:
-        """The operations before which no move can run (ir.settled_ops), computed once."""
-        if self._settled is None:
-            self._settled = ir.settled_ops(self.module)
-        return self._settled
 
     def motion_setting(self, op: ir.SetMotion) -> str | None:
         if op.param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME):

@@ -131,7 +131,7 @@ class Writer:
         self.cat = cat.load()
         self.out = Written()
         self.native = module.dialect == DIALECT
-        self._settled: set[int] | None = None
+        self.settled = ir.settled_ops(module)  # where no move can run: a pause means the same in both dialects
         self.source_spr = module.steps_per_rev or profile.steps_per_rev
         self.resolution = profile.steps_per_rev or self.source_spr
         self.cur = self.device_resolutions()
@@ -673,18 +673,12 @@ class Writer:
         else:
             raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
 
-    def settled(self) -> set[int]:
-        """The operations before which no move can run (ir.settled_ops), computed once."""
-        if self._settled is None:
-            self._settled = ir.settled_ops(self.module)
-        return self._settled
-
     def host_control(self, op: ir.Pause | ir.Resume | ir.Step) -> str:
         """PS (buffered, pauses command execution, L3151), C and #n (immediate, never saved: only
         the host stream sends them, L291, L5548)."""
         address = self.address(op.axis)
         if isinstance(op, ir.Pause):
-            if op.stop_motion and id(op) not in self.settled():
+            if op.stop_motion and id(op) not in self.settled:
                 raise CannotWrite("X150's PS pauses command execution and lets a move in progress run on; the source "
                                   "stops the move at the pause: wait for the move to end before the pause", "G003")
             return address + "PS"
