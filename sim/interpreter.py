@@ -88,6 +88,9 @@ class Options:
     # steps after that, or where it goes round when a round is shorter (sim/verify.py tries the
     # points of a round to tell a race on an input from a changed program)
     poll_offset: int = 0
+    # Jump over the rounds of a delay-paced polling loop that cannot differ from the last one
+    # (Simulator._went_round); off, every round runs (the tests compare the two)
+    skip_rounds: bool = True
 
 
 @dataclass
@@ -117,6 +120,21 @@ class Handler:
     armed: bool = True
     last: bool = False  # "when": the condition's value at the last check (fires on a rising edge)
     fired_at: float = -1.0
+
+
+@dataclass(slots=True)
+class RoundMark:
+    """Where and when a loop last went round, and what the run had done by then."""
+
+    frame: Frame
+    label: str
+    depth: int
+    now: float
+    quiet_changes: int  # changes other than delays ending
+    delays: list[float]  # the delays of the round that ended here
+    events: int
+    prints: int
+    steps: int
 
 
 class Stop(Exception):
@@ -184,6 +202,11 @@ class Simulator:
         self.polling = False
         self.poll_changes = 0
         self.poll_steps = 0
+        self.wakes = 0  # delays that ended: a round of a delay-paced loop changes nothing else
+        self.round: RoundMark | None = None  # the last time the running loop went round
+        self.round_reads: set[tuple[str, str]] = set()  # readings that change with time, this round
+        self.round_delays: list[float] = []  # the delays this round waited, in order
+        self.skipped = 0  # operations of the rounds jumped over (counted in trace.steps, never run)
         self.enable_mask = 0  # `handler_enable` (MCode TE): the events allowed to fire
         self.capture_input = self.scenario.capture  # None: the program's, else DEFAULT_CAPTURE_INPUT
 
@@ -309,7 +332,9 @@ class Simulator:
             if self._stale(item):
                 continue
             self.changes += 1
-            if item.kind == "input":
+            if item.kind == "wake":
+                self.wakes += 1
+            elif item.kind == "input":
                 self._set_input(item.payload[0], item.payload[1])
             elif item.kind == "motion_end":
                 self._motion_end(self.machine.axes[item.payload[0]])
@@ -369,6 +394,8 @@ class Simulator:
                     self._terminator(frame)
                 except RuntimeFault as fault:
                     self._fault(fault, frame.block.terminator)
+                if self.went_back and self.options.skip_rounds and self.stack and self.stack[-1] is frame:
+                    self._went_round(frame)
             if self.handlers:
                 self._check_when()
                 self._fire_pending()
@@ -397,6 +424,63 @@ class Simulator:
         if self.since_back >= 0:
             self.since_back += 1
         return offset > 0 and self.since_back == offset
+
+    def _went_round(self, frame: Frame) -> None:
+        """Skip the rounds of a delay-paced loop that cannot differ from the one just run.
+
+        A loop that polls with a delay (`WHILE DI1=0 / DELAY=5 / ENDWHILE`) goes round hundreds of
+        times a second of virtual time; run one by one, an hour of it costs millions of operations
+        though nothing happens. When a round took time but changed nothing (no variable, output,
+        print, motion or event other than its own delays ending, and read nothing that changes with
+        time, such as a moving position or the timer), the next round starts from the same state and
+        does exactly the same: so time jumps over the whole rounds that end before anything else can
+        happen (the next scheduled event, the time limit, a ramp ending under a speed reading), and the
+        loop runs on normally from there. The jump keeps the loop's phase, so the program sees an input
+        change at the same round as when every round runs; a polling round costs the same whatever its
+        period (docs/SIMULATOR.md, "Time").
+        """
+        mark = RoundMark(frame, frame.block.label, len(self.stack), self.now, self.changes - self.wakes,
+                         self.round_delays, len(self.trace.events), len(self.trace.prints), self.trace.steps)
+        last, self.round = self.round, mark
+        reads, self.round_reads, self.round_delays = self.round_reads, set(), []
+        if (last is None or last.frame is not frame or last.label != mark.label or last.depth != mark.depth
+                or (last.quiet_changes, last.events, last.prints) != (mark.quiet_changes, mark.events, mark.prints)
+                or self.pending or frame.wait is not None or not mark.delays):
+            return
+        period, steps = mark.now - last.now, mark.steps - last.steps
+        if period <= 0 or steps <= 0:
+            return  # no time passed: a spinning loop is the polling detector's (`Options.spin`)
+        horizon = min(self._next_event_time(), self.options.until, self._stable_until(reads))
+        rounds = int((horizon - self.now) / period) - 1
+        budget = self.options.max_steps - (self.trace.steps - self.poll_steps)
+        rounds = min(rounds, budget // steps - 1)  # a run that would hit the step limit still does
+        if rounds < 1:
+            return
+        now = self.now
+        for _ in range(rounds):  # the same additions as round by round: the same times to the last bit
+            for seconds in mark.delays:
+                now += seconds
+        self.now = now
+        self.trace.steps += rounds * steps
+        self.skipped += rounds * steps
+        mark.now, mark.steps = self.now, self.trace.steps
+
+    def _stable_until(self, reads: set[tuple[str, str]]) -> float:
+        """Until when the readings a round made keep their values (now: they change with time)."""
+        until = INF
+        for meaning, name in reads:
+            if meaning == "timer":
+                return self.now
+            axis = self.machine.axes.get(name)
+            if meaning == "moving" or axis is None or not axis.moving(self.now):
+                continue  # a motion's end is a scheduled event, which bounds the jump anyway
+            if meaning != "velocity" or axis.motion.path.arc is not None:
+                return self.now  # a position of a moving axis, or a speed along an arc
+            segment = axis.motion.segment_at(self.now)
+            if segment.v0 != segment.v1:
+                return self.now  # ramping
+            until = min(until, segment.t1)
+        return until
 
     def _wait_over(self, wait: Wait) -> bool:
         if wait.kind == "delay":
@@ -533,6 +617,7 @@ class Simulator:
     def _do_delay(self, op) -> Wait | None:
         seconds = float(self._eval(op.duration))
         if seconds > 0:
+            self.round_delays.append(seconds)
             self._schedule(self.now + seconds, "wake")
             return Wait("delay", until=self.now + seconds)
         return None
@@ -1105,12 +1190,14 @@ class Simulator:
             return m.analog.get(index or 0, 0)
         if meaning == "timer":
             self.read_continuous = True
+            self.round_reads.add((meaning, ""))
             return self.now
         if meaning in SETTING_READINGS:
             return self._setting_reading(meaning, status.axis or ir.ALL_AXES)
         axis = self._axis(self._each(status.axis or self._handler_axis())[0])  # '*': the first device's
         if meaning in CONTINUOUS:
             self.read_continuous = True
+            self.round_reads.add((meaning, axis.name))
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
         if meaning == "velocity":
@@ -1124,6 +1211,7 @@ class Simulator:
         if meaning == "error":
             return 1 if axis.fault else 0
         if meaning == "home_switch":
+            self.round_reads.add(("position", axis.name))
             return 1 if abs(axis.at(self.now) + axis.offset - self.scenario.switches(axis.name).home) < 0.5 else 0
         if meaning in ("limit_plus", "limit_minus"):
             return 0 if not axis.fault else 1
