@@ -700,11 +700,20 @@ class Writer:
 
     def handler(self, op: ir.SetHandler) -> str:
         label = self.call_label(op.routine) if op.routine else ""
+        if op.takes_over:
+            raise Unsupported(f"a '{op.event}' handler that takes over the program (MCode's handlers interrupt it "
+                              "and return)")
         if op.event == "error":
+            if op.once or op.gated:
+                raise Unsupported("an error handler that fires once or only when enabled (MCode's OE runs on every "
+                                  "error, L4538)")
             return f"OE {label}"
         name = TRIPS.get(op.event)
         if name is None:
             raise Unsupported(f"a '{op.event}' event handler")
+        if op.routine and not (op.once and op.gated):
+            raise Unsupported(f"a '{op.event}' handler that stays armed (an MCode trip {name} fires once, while its TE "
+                              "bit is set, L5667)")
         args = [self.trip_arg(name, i, a) for i, a in enumerate(op.args)]
         if name == "TI":
             return f"TI {','.join(args[:1] + [label])}"

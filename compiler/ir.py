@@ -368,12 +368,22 @@ class SetHandler:
 
     `event` is a neutral name (input, position, capture, time, relative, hmt, power, error, fault,
     when); `args` are the event's parameters.
+
+    How the handler behaves is a fact of the operation, set by the frontend from its manual, so the
+    simulator runs every dialect's handlers from the IR alone (docs/IR.md, "Handlers"):
+    `once`: it fires once and is disarmed until installed again (MCode trips, L5657); `gated`: it
+    fires only while its bit of the `handler_enable` setting is set (MCode TE); `takes_over`: a fault
+    handler replaces the program instead of interrupting it (X150 XFK, "program control will pass
+    to a fault sequence", L2305). Time and position handlers fire once whatever `once` says.
     """
 
     event: str
     routine: str | None
     args: tuple[Expr, ...] = ()
     span: Span | None = None
+    once: bool = False
+    gated: bool = False
+    takes_over: bool = False
 
 
 @dataclass(slots=True)

@@ -94,7 +94,9 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
     if isinstance(op, ir.SetHandler):
         args = ", ".join(_any_text(a) for a in op.args)
         target = f" -> {op.routine}" if op.routine else " off"
-        return f"on {op.event}({args}){target}"
+        facts = "".join(f" {word}" for word, on in (("once", op.once), ("gated", op.gated),
+                                                     ("takes-over", op.takes_over)) if on)
+        return f"on {op.event}({args}){target}{facts}"
     if isinstance(op, ir.Setting):
         line = f"[{op.index}]" if op.index is not None else ""  # the input or output the setting is for
         return f"setting {op.name}{line} {op.axis} = {expr_text(op.value)}"

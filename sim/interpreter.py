@@ -33,17 +33,13 @@ from mcc.sim.trace import Event, Trace
 # The type of a variable the module does not declare (registers used without a declaration).
 DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": ir.VarType.DECIMAL}
 DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
-# Events that make a handler fire once and disarm (MCode trips are one-shot until re-armed).
-ONE_SHOT_DIALECTS = {"mcode"}
-# Dialects whose handlers fire only while their bit of the `handler_enable` setting is set (MCode TE).
+# The bit of the `handler_enable` setting (MCode TE) that lets a gated handler of each event fire.
 ENABLE_BITS = {event: bit for bit, event in ir_names.HANDLER_ENABLE_BITS.items()}
-GATED_DIALECTS = {"mcode"}
+# Events whose handlers fire once in every dialect: a time elapses once, a position is passed once.
+ONCE_EVENTS = frozenset({"time", "position"})
 # Which handlers a runtime fault may run, the first installed one wins (docs/SIMULATOR.md).
 HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("stall", "fault", "error"),
                  "power": ("power_loss",)}
-# Dialects in which a fault handler takes over the program instead of interrupting it: X150 "program
-# control will pass to a fault sequence" (XFK, L2305).
-FAULT_TAKES_OVER = {"x150"}
 DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
@@ -120,6 +116,9 @@ class Handler:
     armed: bool = True
     last: bool = False  # "when": the condition's value at the last check (fires on a rising edge)
     fired_at: float = -1.0
+    once: bool = False  # the IR's SetHandler facts, from the last installation
+    gated: bool = False
+    takes_over: bool = False
 
 
 @dataclass(slots=True)
@@ -539,7 +538,7 @@ class Simulator:
         if handler is not None:
             self.diags.add(fault.code, span or _file_span(self.module.path),
                            f"{fault} (handled by '{handler.routine}')", severity=_severity("warning"))
-            if handler.event == "fault" and self.module.dialect in FAULT_TAKES_OVER:
+            if handler.takes_over:
                 self.stack.clear()  # the fault sequence replaces the program (a kill ends loops and waits)
                 self.pending = [p for p in self.pending if p[0] != "fault"]
             self._trigger(handler.event, handler)
@@ -1067,7 +1066,8 @@ class Simulator:
             handler.routine = op.routine
         if op.args:
             handler.args = op.args
-        handler.armed = self._enabled(op.event)
+        handler.once, handler.gated, handler.takes_over = op.once, op.gated, op.takes_over
+        handler.armed = self._enabled(handler)
         handler.last = False
         self._event(op, "handler_on", event=op.event, routine=handler.routine)
         if op.event == "time" and handler.args:
@@ -1080,18 +1080,18 @@ class Simulator:
         elif op.event == "when":
             self._check_when()
 
-    def _enabled(self, event: str) -> bool:
-        """Whether a handler for `event` may fire: in MCode a trip fires only while its TE bit is set."""
-        if self.module.dialect not in GATED_DIALECTS or event not in ENABLE_BITS:
+    def _enabled(self, handler: Handler) -> bool:
+        """Whether a handler may fire: a gated one (an MCode trip) only while its TE bit is set."""
+        if not handler.gated or handler.event not in ENABLE_BITS:
             return True
-        return bool(self.enable_mask & ENABLE_BITS[event])
+        return bool(self.enable_mask & ENABLE_BITS[handler.event])
 
     def _set_enable_mask(self, op, mask: int) -> None:
         self.enable_mask = mask
         for event, handler in self.handlers.items():
             if event in ENABLE_BITS and handler.routine:
                 was = handler.armed
-                handler.armed = self._enabled(event)
+                handler.armed = self._enabled(handler)
                 if handler.armed and not was:
                     if event == "position":
                         axis = self.machine.axes.get(self._handler_axis())
@@ -1105,9 +1105,9 @@ class Simulator:
     def _trigger(self, event: str, handler: Handler) -> None:
         if not handler.routine:
             return
-        if self.module.dialect in ONE_SHOT_DIALECTS or event in ("time", "position"):
+        if handler.once or event in ONCE_EVENTS:
             handler.armed = False
-            if event in ENABLE_BITS:
+            if handler.gated and event in ENABLE_BITS:
                 self.enable_mask &= ~ENABLE_BITS[event]  # a fired trip clears its TE bit (L5657)
         self.pending.append((event, handler))
 

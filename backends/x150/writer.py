@@ -928,6 +928,9 @@ class Writer:
         command = HANDLER_COMMANDS.get(op.event)
         if command is None:
             raise CannotWrite(f"X150 has no '{op.event}' handler (only power-up XP, fault XFK and WHEN)", "G003")
+        if op.once or op.gated or op.takes_over != (op.event == "fault"):
+            raise CannotWrite(f"a '{op.event}' handler that behaves otherwise than X150's {command} (which stays "
+                              "armed; a fault sequence takes over the program, L2305)", "G003")
         if op.routine is not None:
             prefix, n = self.target(op.routine)
             self.emit(f"{prefix}{command}{n}", op.span)

@@ -28,6 +28,9 @@ from mcc.compiler.profiles import Profile
 DIALECT = "mcode"
 TRIP_EVENTS = {"TI": "input", "TP": "position", "TC": "capture", "TT": "time", "TR": "relative",
                "TA": "hmt", "TM": "power_loss"}
+# A trip fires once and must be re-enabled ("only the activated trip function needs to be
+# re-enabled", TE, L5667), and fires only while its TE bit is set (TE default 0, disabled, L5670).
+HANDLER_FACTS = {"once": True, "gated": True}
 HOME_METHODS = {"HM": "switch", "HI": "index", "HF": "offset"}
 HOME_TYPES = {1: (-1, +1), 2: (-1, -1), 3: (+1, -1), 4: (+1, +1)}  # type -> (seek, creep) (L3206-L3210)
 MOTION_PARAMS = {"accel": ir.MotionParam.ACCEL, "decel": ir.MotionParam.DECEL,
@@ -454,12 +457,13 @@ class Lowering:
         if kind == "save" or name == "S":
             return ir.Save(span)
         if kind == "on_error" or name == "OE":
+            # OE runs "when an error code ER is asserted" (L4538): every time, with no TE bit (not `once`)
             return ir.SetHandler("error", self.target_label(args[0]) if args else None, (), span)
         if name in TRIP_EVENTS:
             label_node = handler_label(res)
             others = tuple(self.trip_arg(name, i, a) for i, a in enumerate(a for a in args if a is not label_node))
             label = self.target_label(label_node) if label_node is not None else None
-            return ir.SetHandler(TRIP_EVENTS[name], label, others, span)
+            return ir.SetHandler(TRIP_EVENTS[name], label, others, span, **HANDLER_FACTS)
         return ir.Native(DIALECT, name, tuple(self.native_arg(command, a) for a in args),
                          form="=" if stmt.form == "assign" else (" " if args else ""), axis=axis, span=span)
 

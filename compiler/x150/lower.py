@@ -467,7 +467,7 @@ class Lowering:
             self.emit(self.native(command))
         elif number == 0:  # XP0 / XFK0 / XWHEN0: no sequence selected
             if role in HANDLERS and self.fits(command):
-                self.emit(ir.SetHandler(HANDLERS[role], None, (), span))
+                self.emit(ir.SetHandler(HANDLERS[role], None, (), span, takes_over=HANDLERS[role] == "fault"))
             else:
                 self.emit(self.native(command))
         else:
@@ -479,7 +479,7 @@ class Lowering:
             elif role == "goto":
                 self.terminate(ir.GotoRoutine(name, span))
             else:
-                self.emit(ir.SetHandler(HANDLERS[role], name, (), span))
+                self.emit(ir.SetHandler(HANDLERS[role], name, (), span, takes_over=HANDLERS[role] == "fault"))
 
     def target_name(self, command: st.Command, number: int, targets: tuple[str, ...]) -> str | None:
         """The routine name for a transfer, or None when the IR cannot keep the command's address."""

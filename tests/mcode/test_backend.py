@@ -86,3 +86,18 @@ def test_an_x150_program_starts_from_standstill_so_vi_is_written_at_its_lowest()
     assert lines[lines.index("PG 1") + 1:lines.index("PG 1") + 3] == ["VI=1", "VM=512"]  # 0.01 rev/s at 51200
     assert any("standstill" in line for line in lines if line.startswith("'"))
     assert not driver.compile_file("out.mxt", "mcode", text=result.listing.text).has_errors
+
+
+def test_a_handler_that_behaves_otherwise_than_an_mcode_trip_is_refused():
+    """An MCode trip fires once and only while its TE bit is set (L5667, L5670); OE on every error
+    (L4538); none takes the program over. A handler with other facts would run differently."""
+    span = Span("x.x150", 4, 1, 4, 10, 0, 9)
+    handlers = [ir.SetHandler("input", "R", (ir.Const(1), ir.Const(1)), span),  # stays armed
+                ir.SetHandler("error", "R", (), span, once=True),
+                ir.SetHandler("error", "R", (), span, takes_over=True),
+                ir.SetHandler("input", "R", (ir.Const(1), ir.Const(1)), span, once=True, gated=True)]
+    module = ir.Module("x150", "x150-pdhx")
+    module.routines += [ir.Routine("MAIN", ir.RoutineKind.MAIN, [ir.Block("%1", handlers, ir.End())], origin=1),
+                        ir.Routine("R", ir.RoutineKind.HANDLER, [ir.Block("%2", [], ir.Return())])]
+    listing = backend.emit(module, PROFILE)
+    assert [d.code for d in listing.diagnostics] == ["G003", "G003", "G003"]

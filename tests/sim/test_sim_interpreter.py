@@ -224,12 +224,32 @@ def test_an_input_handler_interrupts_a_delay():
     assert output.t == 2 and trace.time == 5
 
 
-def test_mcode_trips_are_one_shot():
+def test_a_one_shot_handler_fires_once():
+    """An MCode trip (SetHandler once, gated) fires once and must be re-enabled (TE, L5667)."""
     handler = sub("TRIP", [ir.Assign(ir.Var("N"), ir.BinOp("+", ir.Var("N"), c(1)))])
-    ops = [ir.SetHandler("input", "TRIP", (c(1), c(1))), ir.Setting("handler_enable", "1", c(1)), ir.Delay(c(5, U.S))]
+    trip = ir.SetHandler("input", "TRIP", (c(1), c(1)), once=True, gated=True)
+    ops = [trip, ir.Setting("handler_enable", "1", c(1)), ir.Delay(c(5, U.S))]
     pulses = [InputEvent(1, v, at=t) for t, v in ((1, 1), (2, 0), (3, 1))]
     trace = simulate(module(ops, routines=(handler,), dialect="mcode"), Scenario(events=pulses))
     assert trace.variables["N"] == 1
+
+
+def test_the_handler_facts_come_from_the_ir_not_the_dialect():
+    """The same handler without `once` fires on every pulse, whatever the module's dialect."""
+    handler = sub("TRIP", [ir.Assign(ir.Var("N"), ir.BinOp("+", ir.Var("N"), c(1)))])
+    pulses = [InputEvent(1, v, at=t) for t, v in ((1, 1), (2, 0), (3, 1))]
+    for dialect in ("mcode", "arcus", "x150"):
+        ops = [ir.SetHandler("input", "TRIP", (c(1), c(1))), ir.Delay(c(5, U.S))]
+        trace = simulate(module(ops, routines=(handler,), dialect=dialect), Scenario(events=pulses))
+        assert trace.variables["N"] == 2, dialect
+
+
+def test_a_gated_handler_waits_for_its_enable_bit():
+    """A gated trip installed without TE does not fire (TE default 0, disabled, L5670)."""
+    handler = sub("TRIP", [ir.SetOutput(2, c(1))])
+    ops = [ir.SetHandler("input", "TRIP", (c(1), c(1)), once=True, gated=True), ir.Delay(c(5, U.S))]
+    trace = simulate(module(ops, routines=(handler,), dialect="mcode"), Scenario(events=[InputEvent(1, 1, at=2)]))
+    assert kinds(trace, "output") == []
 
 
 def test_a_when_handler_runs_when_its_condition_becomes_true():
