@@ -1,9 +1,10 @@
 """Between mcc's spans (1-based lines and columns, character offsets) and LSP positions
 (0-based lines and characters); diagnostics into LSP diagnostics.
 
-Columns are counted in characters of the normalised text. For UTF-16 clients this differs only
-after a character outside the Basic Multilingual Plane, which mcc's dialects allow only in
-comments.
+Columns here are counted in characters of the normalised text, as mcc's spans are; the server
+converts every position to and from the client's position encoding at the protocol's edge
+(`lsp/units.py`), since a UTF-8 or UTF-16 column differs from a character column after any
+non-ASCII character on the line.
 """
 
 from __future__ import annotations

@@ -14,6 +14,7 @@ import logging
 import os
 import sys
 
+import attrs
 from lsprotocol import types as t
 from pygls.exceptions import JsonRpcException
 from pygls.lsp.server import LanguageServer
@@ -25,6 +26,7 @@ from mcc.compiler.codes import registry
 from mcc.compiler.span import SourceFile
 from mcc.lsp import actions, completion, convert, formatting, hover, lenses, navigation, outline, semantic
 from mcc.lsp.documents import Documents
+from mcc.lsp.units import LineText, Units
 
 log = logging.getLogger("mcc.lsp")
 CONFIG_NAMES = ("mcc.toml", "pyproject.toml")
@@ -41,7 +43,15 @@ class MccServer(LanguageServer):
         diagnostics = [convert.diagnostic(d, snap.source, snap.uri, self.rules_url) for d in snap.diagnostics
                        if d.span.file == snap.path or d.span.file == snap.source.path]
         self.text_document_publish_diagnostics(
-            t.PublishDiagnosticsParams(uri=snap.uri, diagnostics=diagnostics, version=snap.version))
+            t.PublishDiagnosticsParams(uri=snap.uri, diagnostics=out(snap, diagnostics), version=snap.version))
+
+    def units(self) -> Units:
+        """The column unit agreed at `initialize` (UTF-16 before it, as LSP says)."""
+        try:
+            encoding = self.workspace.position_encoding
+        except RuntimeError:  # no workspace yet
+            encoding = None
+        return Units(str(getattr(encoding, "value", encoding) or "utf-16"))
 
     def refresh_lenses(self, snap) -> None:
         """A document's program memory is priced (after a pause in the typing): ask the editor to
@@ -60,6 +70,28 @@ class MccServer(LanguageServer):
 
 
 server = MccServer()
+
+
+def snapshot_lines(snap) -> LineText:
+    """The lines of the text a snapshot was analysed from: its spans' columns are in it."""
+    source = snap.source
+    return lambda line: source.line_text(line + 1) if 0 <= line < source.line_count else ""
+
+
+def document_lines(uri: str) -> LineText:
+    """The lines of the editor's current text, which the positions of a request are in."""
+    lines = server.workspace.get_text_document(uri).lines
+    return lambda line: lines[line].rstrip("\r\n") if 0 <= line < len(lines) else ""
+
+
+def out(snap, result):
+    """An answer computed from a snapshot, with its positions in the client's units."""
+    return server.units().out(result, snapshot_lines(snap))
+
+
+def character(uri: str, position: t.Position) -> t.Position:
+    """A request's position with its column in characters."""
+    return server.units().position_from_client(position, document_lines(uri))
 
 
 def guarded(func):
@@ -176,14 +208,14 @@ def located(uri: str, position: t.Position):
     snap = server.snapshot(uri)
     if snap is None:
         return None, 0
-    return snap, convert.offset_of(snap.source, position)
+    return snap, convert.offset_of(snap.source, character(uri, position))
 
 
 @server.feature(t.TEXT_DOCUMENT_HOVER)
 @guarded
 def on_hover(params: t.HoverParams):
     snap, offset = located(params.text_document.uri, params.position)
-    return hover.hover(snap, offset) if snap else None
+    return out(snap, hover.hover(snap, offset)) if snap else None
 
 
 def current_line(uri: str, line: int) -> str:
@@ -199,8 +231,10 @@ def on_completion(params: t.CompletionParams):
     snap = server.snapshot(params.text_document.uri)
     if snap is None:
         return t.CompletionList(is_incomplete=True, items=[])
-    text = current_line(params.text_document.uri, params.position.line)
-    return completion.complete(snap, text, params.position.character, params.position.line)
+    uri = params.text_document.uri
+    text = current_line(uri, params.position.line)
+    answer = completion.complete(snap, text, character(uri, params.position).character, params.position.line)
+    return server.units().out(answer, document_lines(uri))
 
 
 @server.feature(t.TEXT_DOCUMENT_SIGNATURE_HELP, t.SignatureHelpOptions(trigger_characters=[" ", ",", "="]))
@@ -210,35 +244,35 @@ def on_signature(params: t.SignatureHelpParams):
     if snap is None:
         return None
     text = current_line(params.text_document.uri, params.position.line)
-    return completion.signature(snap, text, params.position.character)
+    return completion.signature(snap, text, character(params.text_document.uri, params.position).character)
 
 
 @server.feature(t.TEXT_DOCUMENT_DEFINITION)
 @guarded
 def on_definition(params: t.DefinitionParams):
     snap, offset = located(params.text_document.uri, params.position)
-    return navigation.definition(snap, offset) if snap else None
+    return out(snap, navigation.definition(snap, offset)) if snap else None
 
 
 @server.feature(t.TEXT_DOCUMENT_REFERENCES)
 @guarded
 def on_references(params: t.ReferenceParams):
     snap, offset = located(params.text_document.uri, params.position)
-    return navigation.references(snap, offset, params.context.include_declaration) if snap else None
+    return out(snap, navigation.references(snap, offset, params.context.include_declaration)) if snap else None
 
 
 @server.feature(t.TEXT_DOCUMENT_DOCUMENT_HIGHLIGHT)
 @guarded
 def on_highlight(params: t.DocumentHighlightParams):
     snap, offset = located(params.text_document.uri, params.position)
-    return navigation.highlight(snap, offset) if snap else None
+    return out(snap, navigation.highlight(snap, offset)) if snap else None
 
 
 @server.feature(t.TEXT_DOCUMENT_PREPARE_RENAME)
 @guarded
 def on_prepare_rename(params: t.PrepareRenameParams):
     snap, offset = located(params.text_document.uri, params.position)
-    return navigation.prepare_rename(snap, offset) if snap else None
+    return out(snap, navigation.prepare_rename(snap, offset)) if snap else None
 
 
 @server.feature(t.TEXT_DOCUMENT_RENAME, t.RenameOptions(prepare_provider=True))
@@ -247,20 +281,22 @@ def on_rename(params: t.RenameParams):
     snap, offset = located(params.text_document.uri, params.position)
     if snap is None:
         return None
-    return navigation.rename(snap, offset, params.new_name)
+    return out(snap, navigation.rename(snap, offset, params.new_name))
 
 
 @server.feature(t.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
 @guarded
 def on_document_symbol(params: t.DocumentSymbolParams):
     snap = server.snapshot(params.text_document.uri)
-    return outline.document_symbols(snap) if snap else []
+    return out(snap, outline.document_symbols(snap)) if snap else []
 
 
 @server.feature(t.WORKSPACE_SYMBOL)
 @guarded
 def on_workspace_symbol(params: t.WorkspaceSymbolParams):
-    return outline.workspace_symbols(list(server.documents.latest.values()), params.query)
+    snaps = {snap.uri: snap for snap in server.documents.latest.values()}
+    found = outline.workspace_symbols(list(snaps.values()), params.query)
+    return [out(snaps[s.location.uri], s) if s.location.uri in snaps else s for s in found]
 
 
 @server.feature(t.TEXT_DOCUMENT_FOLDING_RANGE)
@@ -274,7 +310,7 @@ def on_folding(params: t.FoldingRangeParams):
 @guarded
 def on_semantic_full(params: t.SemanticTokensParams):
     snap = server.snapshot(params.text_document.uri)
-    return semantic.encode(snap) if snap else t.SemanticTokens(data=[])
+    return semantic.encode(snap, units=server.units()) if snap else t.SemanticTokens(data=[])
 
 
 @server.feature(t.TEXT_DOCUMENT_SEMANTIC_TOKENS_RANGE, semantic.LEGEND)
@@ -283,15 +319,22 @@ def on_semantic_range(params: t.SemanticTokensRangeParams):
     snap = server.snapshot(params.text_document.uri)
     if snap is None:
         return t.SemanticTokens(data=[])
-    return semantic.encode(snap, params.range.start.line, params.range.end.line)
+    return semantic.encode(snap, params.range.start.line, params.range.end.line, units=server.units())
 
 
 @server.feature(t.TEXT_DOCUMENT_CODE_ACTION,
                 t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty]))
 @guarded
 def on_code_action(params: t.CodeActionParams):
-    snap = server.snapshot(params.text_document.uri)
-    return actions.code_actions(snap, params.range, params.context) if snap else []
+    uri = params.text_document.uri
+    snap = server.snapshot(uri)
+    if snap is None:
+        return []
+    selected = server.units().range_from_client(params.range, document_lines(uri))
+    found = actions.code_actions(snap, selected, params.context)
+    # the diagnostics an action names are the client's own, already in its units
+    return [attrs.evolve(new, diagnostics=old.diagnostics) if isinstance(new, t.CodeAction) else new
+            for old, new in zip(found, out(snap, found))]
 
 
 @server.command(actions.EXPLAIN)
@@ -316,7 +359,9 @@ def formatted(uri: str, first: int | None = None, last: int | None = None):
         return []
     document = server.workspace.get_text_document(uri)
     text = SourceFile(snap.path, document.source).text
-    return formatting.edits(snap, text, first, last)
+    lines = text.split("\n")
+    return server.units().out(formatting.edits(snap, text, first, last),
+                              lambda line: lines[line] if 0 <= line < len(lines) else "")
 
 
 @server.feature(t.TEXT_DOCUMENT_FORMATTING)
@@ -335,14 +380,14 @@ def on_range_formatting(params: t.DocumentRangeFormattingParams):
 @guarded
 def on_code_lens(params: t.CodeLensParams):
     snap = server.snapshot(params.text_document.uri)
-    return lenses.code_lenses(snap) if snap else []
+    return out(snap, lenses.code_lenses(snap)) if snap else []
 
 
 @server.feature(t.TEXT_DOCUMENT_INLAY_HINT, t.InlayHintOptions(resolve_provider=False))
 @guarded
 def on_inlay_hint(params: t.InlayHintParams):
     snap = server.snapshot(params.text_document.uri)
-    return lenses.inlay_hints(snap, params.range.start.line, params.range.end.line) if snap else []
+    return out(snap, lenses.inlay_hints(snap, params.range.start.line, params.range.end.line)) if snap else []
 
 
 STATUS = "mcc/status"
