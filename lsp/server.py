@@ -38,12 +38,26 @@ class MccServer(LanguageServer):
         super().__init__("mcc", __version__, text_document_sync_kind=t.TextDocumentSyncKind.Incremental)
         self.documents = Documents(self.publish, priced=self.refresh_lenses)
         self.rules_url: str | None = None
+        # documents whose colours or folds were asked for before their first analysis finished:
+        # answered empty, so the editor is asked to ask again when it has finished
+        self.unanswered: set[str] = set()
 
     def publish(self, snap) -> None:
         diagnostics = [convert.diagnostic(d, snap.source, snap.uri, self.rules_url) for d in snap.diagnostics
                        if d.span.file == snap.path or d.span.file == snap.source.path]
         self.text_document_publish_diagnostics(
             t.PublishDiagnosticsParams(uri=snap.uri, diagnostics=out(snap, diagnostics), version=snap.version))
+        if snap.uri in self.unanswered:
+            self.unanswered.discard(snap.uri)
+            self.refresh(("semantic_tokens", self.workspace_semantic_tokens_refresh),
+                         ("folding_range", self.workspace_folding_range_refresh))
+
+    def refresh(self, *requests) -> None:
+        """Ask the editor to ask again for what it asked too early, where it supports being asked."""
+        workspace = getattr(self.client_capabilities, "workspace", None)
+        for name, ask in requests:
+            if getattr(getattr(workspace, name, None), "refresh_support", False):
+                ask(None)
 
     def units(self) -> Units:
         """The column unit agreed at `initialize` (UTF-16 before it, as LSP says)."""
@@ -56,11 +70,8 @@ class MccServer(LanguageServer):
     def refresh_lenses(self, snap) -> None:
         """A document's program memory is priced (after a pause in the typing): ask the editor to
         ask again for code lenses and inlay hints, when it supports being asked."""
-        workspace = getattr(self.client_capabilities, "workspace", None)
-        for name, refresh in (("code_lens", self.workspace_code_lens_refresh),
-                              ("inlay_hint", self.workspace_inlay_hint_refresh)):
-            if getattr(getattr(workspace, name, None), "refresh_support", False):
-                refresh(None)
+        self.refresh(("code_lens", self.workspace_code_lens_refresh),
+                     ("inlay_hint", self.workspace_inlay_hint_refresh))
 
     def report_server_error(self, error, source) -> None:  # log; never pop up a message per failure
         log.warning("request failed (%s): %s", getattr(source, "__name__", source), error)
@@ -303,14 +314,20 @@ def on_workspace_symbol(params: t.WorkspaceSymbolParams):
 @guarded
 def on_folding(params: t.FoldingRangeParams):
     snap = server.snapshot(params.text_document.uri)
-    return outline.folding_ranges(snap) if snap else []
+    if snap is None:
+        server.unanswered.add(params.text_document.uri)
+        return []
+    return outline.folding_ranges(snap)
 
 
 @server.feature(t.TEXT_DOCUMENT_SEMANTIC_TOKENS_FULL, semantic.LEGEND)
 @guarded
 def on_semantic_full(params: t.SemanticTokensParams):
     snap = server.snapshot(params.text_document.uri)
-    return semantic.encode(snap, units=server.units()) if snap else t.SemanticTokens(data=[])
+    if snap is None:
+        server.unanswered.add(params.text_document.uri)
+        return t.SemanticTokens(data=[])
+    return semantic.encode(snap, units=server.units())
 
 
 @server.feature(t.TEXT_DOCUMENT_SEMANTIC_TOKENS_RANGE, semantic.LEGEND)
@@ -318,6 +335,7 @@ def on_semantic_full(params: t.SemanticTokensParams):
 def on_semantic_range(params: t.SemanticTokensRangeParams):
     snap = server.snapshot(params.text_document.uri)
     if snap is None:
+        server.unanswered.add(params.text_document.uri)
         return t.SemanticTokens(data=[])
     return semantic.encode(snap, params.range.start.line, params.range.end.line, units=server.units())
 

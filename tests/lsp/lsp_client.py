@@ -37,6 +37,10 @@ async def client(lsp_client: LanguageClient):
     def inlay_hint_refresh(params) -> None:
         lsp_client.refreshed.append("inlayHint")
 
+    @lsp_client.feature(t.WORKSPACE_SEMANTIC_TOKENS_REFRESH)
+    def semantic_tokens_refresh(params) -> None:
+        lsp_client.refreshed.append("semanticTokens")
+
     await lsp_client.initialize_session(t.InitializeParams(
         capabilities=client_capabilities("visual-studio-code"),
         root_uri=FIXTURES.as_uri(),

@@ -429,3 +429,21 @@ async def test_saving_the_configuration_in_the_editor_reanalyses(client, tmp_pat
             break
         await asyncio.sleep(0.05)
     assert codes(client.diagnostics[doc.uri]) == EXPECTED["mcode"] - {"M301"}
+
+
+async def test_colours_asked_for_before_the_first_analysis_are_refreshed(client):
+    """An editor asks for semantic tokens as soon as it opens a file, before the first analysis of
+    a long program has finished: the server answers empty, then asks the editor to ask again."""
+    client.refreshed.clear()
+    text = "".join(f"V{n % 60 + 1}={n}\n" for n in range(3000)) + "END\n"
+    doc = Doc(client, "long.prg", text)  # analysing 3,000 lines takes far longer than one round trip
+    early = await client.text_document_semantic_tokens_full_async(t.SemanticTokensParams(doc.id()))
+    assert list(early.data) == []
+    await doc.settled()
+    for _ in range(100):
+        if "semanticTokens" in client.refreshed:
+            break
+        await asyncio.sleep(0.02)
+    assert "semanticTokens" in client.refreshed
+    late = await client.text_document_semantic_tokens_full_async(t.SemanticTokensParams(doc.id()))
+    assert len(late.data) >= 5 * 3000
