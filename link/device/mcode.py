@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from mcc.compiler import catalog, ir
+from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
@@ -27,6 +28,7 @@ from mcc.link.device.programs import module_of
 ACK, NAK = b"\x06", b"\x15"
 USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
 AXIS = "1"              # the IR's name for the drive's own axis
+MOVES = ("MA", "MR", "SL")   # the motion instructions MD remembers (L4150)
 # factory variables that are motion settings of the simulator's machine
 SETTINGS = {"VM": ir.MotionParam.MAX_SPEED, "VI": ir.MotionParam.INITIAL_SPEED, "A": ir.MotionParam.ACCEL,
             "D": ir.MotionParam.DECEL}
@@ -92,13 +94,18 @@ class Memory:
 class MCodeDevice(VirtualDevice):
     terminators = b"\r\n"
 
-    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str = "LMDCM 6.002",
-                 run_limit: float = RUN_LIMIT) -> None:
+    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str | None = None,
+                 run_limit: float = RUN_LIMIT, profile=None) -> None:
         super().__init__(faults)
         self.program_lines = program_lines
         self.run_limit = run_limit
-        self.sim = DeviceMachine("mcode", run_limit)
-        self.version = version
+        self.profile = profile if profile is None or not isinstance(profile, str) else load_profile(profile)
+        self.sim = DeviceMachine("mcode", run_limit, self.profile)
+        # The drive's identity, as PR VR and PR PN report it (L6185-L6192, L4868-L4875): the
+        # product profile's [device] version and part_number; mcc's own stand-in without them.
+        identity = self.sim.profile
+        self.version = version or (identity.get("device.version") if identity is not None else None) or "LMDCM 6.002"
+        self.part_number = (identity.get("device.part_number") if identity is not None else None) or ""
         self.memory = Memory(variables={n: i.default for n, i in names().items()
                                         if i.kind in ("variable", "flag") and i.default is not None})
         self.saved = copy.deepcopy(self.memory)
@@ -176,6 +183,8 @@ class MCodeDevice(VirtualDevice):
         before = self.numbers()   # an assignment's expression reads the values before it
         self.assign_or_instruction(word, rest)
         self.on_machine(text, before)
+        if word in MOVES:
+            self.memory.variables["MD"] = word   # the last motion instruction (MD, L4145-L4153)
         return []
 
     def pg(self, arg: str) -> list[str]:
@@ -262,6 +271,8 @@ class MCodeDevice(VirtualDevice):
             return int(round(sim.position(AXIS)))
         if name == "MV":
             return 1 if AXIS in sim.moving else 0
+        if name == "MP":   # a positional move (MA, MR) in progress (L4211-L4220); a slew is not one
+            return 1 if AXIS in sim.moving and AXIS not in sim.slewing else 0
         if name == "V":
             return int(round(sim.moving.get(AXIS, 0)))
         if name == "BY":
@@ -326,6 +337,8 @@ class MCodeDevice(VirtualDevice):
                 return [f"{n} = {scope} {v}" for n, (scope, v) in self.memory.user.items()]
             elif item.upper() == "VR":
                 out += self.version
+            elif item.upper() == "PN" and self.part_number:
+                out += self.part_number
             elif item.upper() == "EF":
                 out += str(self.memory.variables.get("EF", 0))
             else:
@@ -386,14 +399,16 @@ class MCodeDevice(VirtualDevice):
                 raise MCodeError(30)
             entry = target
         self.run(entry)
-        return []
+        # what the program prints goes to the host as it runs (PR "outputs ... to the communications host", L4895)
+        outcome = self.sim.outcome
+        return [line for text in (outcome.prints if outcome is not None else []) for line in text.splitlines()]
 
     def power_cycle(self) -> None:
         """What a power cycle does: the saved state comes back (L862), SU runs."""
         self.memory = copy.deepcopy(self.saved)
         self.program_mode = False
         self.error = 0
-        self.sim = DeviceMachine("mcode", self.run_limit)
+        self.sim = DeviceMachine("mcode", self.run_limit, self.profile)
         if "SU" in self.memory.labels:
             self.run("SU")
 
