@@ -23,7 +23,14 @@ from mcc.link.device.programs import module_of
 PROGRAM_LINES = 3230
 INVALID = "?Invalid Command"   # the manual: "?(Error Message)" (L1494), the text is undocumented
 SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO": "0", "SLOAD": "0",
-            "DB": "1", "DN": "4EX00", "TR": "0"}
+            "DB": "1", "DN": "4EX00", "TR": "0",
+            # per-axis speeds HS[axis], LS[axis], ACC[axis] (L449-L458): they read back what was
+            # set, starting at the global defaults (the manual gives no default of their own)
+            **{f"{name}{axis}": value for name, value in (("HS", "1000"), ("LS", "100"), ("ACC", "300"))
+               for axis in "XYZU"},
+            # signal polarity PO[axis], bits home/alarm/limit (L702-L704); the manual gives no
+            # default: 0
+            **{f"PO{axis}": "0" for axis in "XYZU"}}
 ACTIONS = ("ABORT", "ABS", "INC", "STOP", "BO", "BF", "STORE")
 AXES = "XYZU"
 # Host commands that act on the machine, as the standalone statement mcc's frontend compiles
@@ -38,6 +45,10 @@ HOST_COMMANDS = [
     (r"P([XYZU])=(-?\d+)", r"P\1=\2"),
     (r"HS=(\d+)", r"HSPD=\1"),
     (r"LS=(\d+)", r"LSPD=\1"),
+    (r"((?:ARC[PN]-?\d+:-?\d+:-?\d+)|(?:CIR[PN]-?\d+:-?\d+))", r"\1"),   # arcs and circles (L586-L600)
+    (r"HS([XYZU])=(\d+)", r"HSPD\1=\2"),
+    (r"LS([XYZU])=(\d+)", r"LSPD\1=\2"),
+    (r"ACC([XYZU])=(\d+)", r"ACC\1=\2"),
     (r"ACC=(\d+)", r"ACC=\1"),
     (r"DO=(\d+)", r"DO=\1"),
     (r"DO([1-8])=([01])", r"DO\1=\2"),
