@@ -19,6 +19,7 @@ A case (keys of one `[[case]]` table):
               lines (a reply "" = the command answers nothing but its acknowledgement); with
               `stored`, the commands sent after the program's run
     stored    the device stores the program and runs it (Arcus standalone: load, then SR=1)
+    profile   the product profile the example is about (default: the dialect's default profile)
     targets   which of "sim" and "device" the case applies to (default both)
     note      how the set-up was derived from the manual, and any decision taken where the
               manual contradicts itself
@@ -51,6 +52,7 @@ class Case:
     device: list[tuple[str, str]] | None = None
     targets: tuple[str, ...] = TARGETS
     stored: bool = False
+    profile: str | None = None
     note: str = ""
 
 
@@ -62,7 +64,7 @@ class Outcome:
     got: str
 
 
-KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "inputs", "device", "targets", "stored", "note"}
+KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "inputs", "device", "targets", "stored", "profile", "note"}
 
 
 def load(dialect: str) -> list[Case]:
@@ -80,6 +82,7 @@ def load(dialect: str) -> list[Case]:
             inputs={int(k): int(v) for k, v in raw.get("inputs", {}).items()},
             device=[(c, r) for c, r in raw["device"]] if "device" in raw else None,
             targets=tuple(raw.get("targets", TARGETS)), stored=bool(raw.get("stored", False)),
+            profile=raw.get("profile"),
             note=raw.get("note", "")))
     return cases
 
@@ -107,7 +110,12 @@ def run_sim(case: Case) -> Outcome:
     with tempfile.TemporaryDirectory() as folder:
         path = str(Path(folder) / f"case{EXTENSIONS[case.dialect]}")
         Path(path).write_text(case.program.strip() + "\n")
-        simulated = simulate_file(path, case.dialect, scenario=scenario)
+        profile = None
+        if case.profile:
+            from mcc.compiler.profiles import load as load_profile
+
+            profile = load_profile(case.profile)
+        simulated = simulate_file(path, case.dialect, profile=profile, scenario=scenario)
     trace = simulated.trace
     if trace is None:
         errors = "; ".join(f"{d.code} {d.message}" for d in simulated.result.diagnostics
@@ -121,12 +129,10 @@ def run_sim(case: Case) -> Outcome:
 
 
 # -- the virtual device ------------------------------------------------------------------------
-def _device(dialect: str):
-    from mcc.link.device.arcus import ArcusDevice
-    from mcc.link.device.mcode import MCodeDevice
-    from mcc.link.device.x150 import X150Device
+def _device(case: Case):
+    from mcc.link.device.virtual import make_device
 
-    return {"mcode": MCodeDevice, "x150": X150Device, "arcus": ArcusDevice}[dialect]()
+    return make_device(case.dialect, profile=case.profile)
 
 
 def replies(dialect: str, device, command: str) -> list[str]:
@@ -150,7 +156,7 @@ def replies(dialect: str, device, command: str) -> list[str]:
 
 
 def run_device(case: Case) -> Outcome:
-    device = _device(case.dialect)
+    device = _device(case)
     if case.inputs:
         device.sim.machine.inputs.update({k: float(v) for k, v in case.inputs.items()})
     got_prints: list[str] = []
