@@ -79,6 +79,23 @@ def split_items(text: str) -> list[str]:
     return items
 
 
+# The setups kept per line, set with `IS=<n>,<type>,<active>` and reported as a table by PR IS,
+# PR OS, PR LS: name -> (the lines, the factory value of a line's other parameters, how PR
+# writes a line). IS: inputs 1-4, type 0 LOW active (L3500-L3503); OS: outputs 1-3, type 16 LOW
+# active (L4618-L4621, the reply of L4647-L4650); LS: the minus (0) and plus (1) limits at 0,
+# disabled (L4017-L4023, the reply format of L4044).
+TABLES: dict[str, tuple[tuple[int, ...], tuple[int, ...], str]] = {
+    "IS": ((1, 2, 3, 4), (0, 0), "IS = {n}, {0}, {1}"),
+    "OS": ((1, 2, 3), (16, 0), "OS = {n}, {0}, {1}"),
+    "LS": ((0, 1), (0, 0), "LS={n}, {0}, {1}"),
+}
+CLOCK_TYPES = (13, 14, 15)   # IS types of the input 3/4 pair: setting one sets the other (L3520)
+
+
+def factory_tables() -> dict[str, dict[int, list[int]]]:
+    return {name: {n: list(rest) for n in lines} for name, (lines, rest, _form) in TABLES.items()}
+
+
 @dataclass
 class Memory:
     """What S saves and a power cycle restores."""
@@ -88,6 +105,7 @@ class Memory:
     labels: dict[str, int] = field(default_factory=dict)       # label -> line index
     user: dict[str, list] = field(default_factory=dict)        # name -> [scope G|L, value]
     variables: dict[str, object] = field(default_factory=dict)
+    tables: dict[str, dict[int, list[int]]] = field(default_factory=factory_tables)
     lock: int = 0
 
 
@@ -320,8 +338,25 @@ class MCodeDevice(VirtualDevice):
         if word == "ER":
             self.error = 0
             self.memory.variables["EF"] = 0
+        if word in TABLES:
+            self.set_line(word, value_text)
         self.memory.variables[word] = value
         return []
+
+    def set_line(self, name: str, text: str) -> None:
+        """IS/OS/LS=<line>,<p2>[,<p3>]: one line of a setup table; an omitted parameter keeps
+        the line's value. A line the product does not have is error 21 (illegal data)."""
+        try:
+            numbers = [int(part) for part in text.split(",")]
+        except ValueError:
+            raise MCodeError(21) from None
+        table = self.memory.tables[name]
+        if not 2 <= len(numbers) <= 3 or numbers[0] not in table:
+            raise MCodeError(21)
+        line, params = numbers[0], numbers[1:]
+        table[line][:len(params)] = params
+        if name == "IS" and line in (3, 4) and table[line][0] in CLOCK_TYPES:
+            table[7 - line] = list(table[line])   # the other input of the clock pair (L3520)
 
     # -- instructions with effects on the protocol state -----------------------------------
     def cmd_PR(self, rest: str) -> list[str]:
@@ -335,6 +370,9 @@ class MCodeDevice(VirtualDevice):
                 self.memory.variables["EF"] = 0
             elif item.upper() == "UV":
                 return [f"{n} = {scope} {v}" for n, (scope, v) in self.memory.user.items()]
+            elif item.upper() in TABLES:   # every line's setup (PR IS L3533, PR OS L4647, PR LS L4044)
+                form = TABLES[item.upper()][2]
+                return [form.format(*params, n=n) for n, params in self.memory.tables[item.upper()].items()]
             elif item.upper() == "VR":
                 out += self.version
             elif item.upper() == "PN" and self.part_number:
