@@ -80,20 +80,22 @@ def split_items(text: str) -> list[str]:
 
 
 # The setups kept per line, set with `IS=<n>,<type>,<active>` and reported as a table by PR IS,
-# PR OS, PR LS: name -> (the lines, the factory value of a line's other parameters, how PR
-# writes a line). IS: inputs 1-4, type 0 LOW active (L3500-L3503); OS: outputs 1-3, type 16 LOW
-# active (L4618-L4621, the reply of L4647-L4650); LS: the minus (0) and plus (1) limits at 0,
-# disabled (L4017-L4023, the reply format of L4044).
-TABLES: dict[str, tuple[tuple[int, ...], tuple[int, ...], str]] = {
-    "IS": ((1, 2, 3, 4), (0, 0), "IS = {n}, {0}, {1}"),
-    "OS": ((1, 2, 3), (16, 0), "OS = {n}, {0}, {1}"),
-    "LS": ((0, 1), (0, 0), "LS={n}, {0}, {1}"),
+# PR OS, PR LS: name -> ({line: the factory value of its other parameters}, how PR writes a
+# line). IS: inputs 1-4 type 0 LOW active (L3504-L3506), the analog input 5 voltage 0-5 V
+# (L3557-L3561), the index input 6 LOW active (L3595-L3600); OS: outputs 1-3 type 16 LOW active
+# (L4618-L4621, the reply of L4647-L4650); LS: the minus (0) and plus (1) limits at 0, disabled
+# (L4023-L4026, the reply format of L4044).
+TABLES: dict[str, tuple[dict[int, tuple[int, ...]], str]] = {
+    "IS": ({1: (0, 0), 2: (0, 0), 3: (0, 0), 4: (0, 0), 5: (9, 0), 6: (0, 0)}, "IS = {n}, {0}, {1}"),
+    "OS": ({1: (16, 0), 2: (16, 0), 3: (16, 0)}, "OS = {n}, {0}, {1}"),
+    "LS": ({0: (0, 0), 1: (0, 0)}, "LS={n}, {0}, {1}"),
 }
-CLOCK_TYPES = (13, 14, 15)   # IS types of the input 3/4 pair: setting one sets the other (L3520)
+CLOCK_TYPES = (13, 14, 15)   # IS types of the input 3/4 pair: setting one sets the other (L3522)
+INDEX_INPUT = 6              # IS=6,<active>: its only parameter is the active state (L3595-L3605)
 
 
 def factory_tables() -> dict[str, dict[int, list[int]]]:
-    return {name: {n: list(rest) for n in lines} for name, (lines, rest, _form) in TABLES.items()}
+    return {name: {n: list(rest) for n, rest in lines.items()} for name, (lines, _form) in TABLES.items()}
 
 
 @dataclass
@@ -354,7 +356,10 @@ class MCodeDevice(VirtualDevice):
         if not 2 <= len(numbers) <= 3 or numbers[0] not in table:
             raise MCodeError(21)
         line, params = numbers[0], numbers[1:]
-        table[line][:len(params)] = params
+        if name == "IS" and line == INDEX_INPUT and len(params) == 1:
+            table[line][1] = params[0]
+        else:
+            table[line][:len(params)] = params
         if name == "IS" and line in (3, 4) and table[line][0] in CLOCK_TYPES:
             table[7 - line] = list(table[line])   # the other input of the clock pair (L3520)
 
@@ -371,7 +376,7 @@ class MCodeDevice(VirtualDevice):
             elif item.upper() == "UV":
                 return [f"{n} = {scope} {v}" for n, (scope, v) in self.memory.user.items()]
             elif item.upper() in TABLES:   # every line's setup (PR IS L3533, PR OS L4647, PR LS L4044)
-                form = TABLES[item.upper()][2]
+                form = TABLES[item.upper()][1]
                 return [form.format(*params, n=n) for n, params in self.memory.tables[item.upper()].items()]
             elif item.upper() == "VR":
                 out += self.version

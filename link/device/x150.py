@@ -253,6 +253,8 @@ class X150Device(VirtualDevice):
             unit.xsr = "0"
             for n, body in sorted(unit.sequences.items()):
                 lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
+            if not parse(text)[0]:
+                text = unit.address + text   # an unaddressed XR1 runs the unit's sequence 1, stored as 1XD1
         module = module_of("x150", "\n".join([*lines, text]) + "\n")
         if module is None:
             return []
