@@ -33,6 +33,10 @@ SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO":
             **{f"PO{axis}": "0" for axis in "XYZU"}}
 ACTIONS = ("ABORT", "ABS", "INC", "STOP", "BO", "BF", "STORE")
 AXES = "XYZU"
+# The settings a program can change, read back from the machine: name -> (motion setting, scale
+# to the host's unit: ACC in ms, L441; HS, LS in pulses/s, L445).
+READ_BACK = {"ACC": (ir.MotionParam.ACCEL_TIME, 1000), "HS": (ir.MotionParam.MAX_SPEED, 1),
+             "LS": (ir.MotionParam.INITIAL_SPEED, 1)}
 # Host commands that act on the machine, as the standalone statement mcc's frontend compiles
 # (the catalog's `ascii` spellings, compiler/catalogs/arcus.toml): (pattern, statement template).
 HOST_COMMANDS = [
@@ -212,7 +216,19 @@ class ArcusDevice(VirtualDevice):
         self.sim.variables.update({f"V{i}": v for i, v in enumerate(self.variables)})
         self.sim.run(module, (routine.name, None))
         self.take_variables()
+        self.take_settings()
         return True
+
+    def take_settings(self) -> None:
+        """What the program set (ACC=V3, HSPD=2500, HSPDX=...) is what the host reads back."""
+        shared = self.sim.machine.shared.get("*", {})
+        for name, (param, scale) in READ_BACK.items():
+            if param in shared:
+                self.settings[name] = str(int(round(shared[param] * scale)))
+            for axis in AXES:
+                found = self.sim.machine.axes.get(axis)
+                if found is not None and param in found.settings:
+                    self.settings[f"{name}{axis}"] = str(int(round(found.settings[param] * scale)))
 
     def take_variables(self) -> None:
         for name, value in self.sim.variables.items():
