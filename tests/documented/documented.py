@@ -14,6 +14,8 @@ A case (keys of one `[[case]]` table):
     prints    the lines the program prints (simulator) and the device replies (device), in order
     positions axis -> position in steps after the program (optional)
     outputs   output number -> level after the program (optional)
+    variables variable -> value after the program (optional; the device reads it with its own
+              query, Arcus `Vn`)
     inputs    input number -> level held during the run (optional; the simulator's scenario)
     device    [[command, reply], ...] for the device when its exchange differs from the program's
               lines (a reply "" = the command answers nothing but its acknowledgement); with
@@ -48,6 +50,7 @@ class Case:
     prints: list[str] | None = None
     positions: dict[str, int] = field(default_factory=dict)
     outputs: dict[int, int] = field(default_factory=dict)
+    variables: dict[str, float] = field(default_factory=dict)
     inputs: dict[int, int] = field(default_factory=dict)
     device: list[tuple[str, str]] | None = None
     targets: tuple[str, ...] = TARGETS
@@ -64,7 +67,7 @@ class Outcome:
     got: str
 
 
-KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "inputs", "device", "targets", "stored", "profile", "note"}
+KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "variables", "inputs", "device", "targets", "stored", "profile", "note"}
 
 
 def load(dialect: str) -> list[Case]:
@@ -79,6 +82,7 @@ def load(dialect: str) -> list[Case]:
             prints=raw.get("prints"),
             positions={str(k): int(v) for k, v in raw.get("positions", {}).items()},
             outputs={int(k): int(v) for k, v in raw.get("outputs", {}).items()},
+            variables={str(k): v for k, v in raw.get("variables", {}).items()},
             inputs={int(k): int(v) for k, v in raw.get("inputs", {}).items()},
             device=[(c, r) for c, r in raw["device"]] if "device" in raw else None,
             targets=tuple(raw.get("targets", TARGETS)), stored=bool(raw.get("stored", False)),
@@ -124,7 +128,8 @@ def run_sim(case: Case) -> Outcome:
     got_prints = [line.rstrip("\r") for _t, text in trace.prints for line in text.splitlines()]
     got = _observed(got_prints if case.prints is not None else None,
                     {a: round(p) for a, p in trace.axes.items()},
-                    {int(k): int(v) for k, v in trace.outputs.items()})
+                    {int(k): int(v) for k, v in trace.outputs.items()},
+                    {n: trace.variables.get(n) for n in case.variables})
     return Outcome(_matches(case, got), _show(got, trace.stopped if trace.stopped != "end" else ""))
 
 
@@ -183,9 +188,13 @@ def run_device(case: Case) -> Outcome:
         except ValueError:
             positions[axis] = text
     outputs = {n: int(device.sim.machine.outputs.get(n, 0)) for n in case.outputs}
+    variables = {}
+    for name in case.variables:
+        answer = replies(case.dialect, device, _variable_query(case.dialect, name))
+        variables[name] = _number(answer[-1] if answer else "")
     # With an explicit exchange, its replies were the check of what the device answers.
     checked = case.prints is not None and case.device is None
-    got = _observed(got_prints if checked else None, positions, outputs)
+    got = _observed(got_prints if checked else None, positions, outputs, variables)
     return Outcome(_matches(case, got, prints=checked), _show(got))
 
 
@@ -198,14 +207,27 @@ def _position_command(dialect: str, axis: str) -> str:
 
 
 # -- comparing ---------------------------------------------------------------------------------
-def _observed(prints, positions, outputs) -> dict:
-    return {"prints": prints, "positions": positions, "outputs": outputs}
+def _variable_query(dialect: str, name: str) -> str:
+    return {"mcode": f"PR {name}", "x150": f"1{name}", "arcus": name}[dialect]
+
+
+def _number(text: str):
+    try:
+        return float(text.replace("*", "").strip())
+    except ValueError:
+        return text
+
+
+def _observed(prints, positions, outputs, variables=None) -> dict:
+    return {"prints": prints, "positions": positions, "outputs": outputs, "variables": variables or {}}
 
 
 def _matches(case: Case, got: dict, prints: bool = True) -> bool:
     if prints and case.prints is not None and got["prints"] != case.prints:
         return False
     if any(got["positions"].get(a, 0) != p for a, p in case.positions.items()):
+        return False
+    if any(got["variables"].get(n) != v for n, v in case.variables.items()):
         return False
     return all(got["outputs"].get(n, 0) == v for n, v in case.outputs.items())
 
@@ -218,6 +240,8 @@ def _show(got: dict, stopped: str = "") -> str:
         parts.append("positions " + repr(got["positions"]))
     if got["outputs"]:
         parts.append("outputs " + repr(got["outputs"]))
+    if got["variables"]:
+        parts.append("variables " + repr(got["variables"]))
     if stopped:
         parts.append(f"stopped: {stopped}")
     return ", ".join(parts)

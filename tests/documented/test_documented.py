@@ -45,6 +45,8 @@ def _expected(case) -> str:
         parts.append(f"positions {case.positions!r}")
     if case.outputs:
         parts.append(f"outputs {case.outputs!r}")
+    if case.variables:
+        parts.append(f"variables {case.variables!r}")
     return ", ".join(parts)
 
 
@@ -54,7 +56,7 @@ def test_every_case_checks_something_on_each_target():
         assert " L" in case.manual, f"{case.id}: cite the manual line"
         for target in case.targets:
             assert target in documented.TARGETS, case.id
-            checks = [case.prints is not None, bool(case.positions), bool(case.outputs)]
+            checks = [case.prints is not None, bool(case.positions), bool(case.outputs), bool(case.variables)]
             if target == "device":
                 checks.append(bool(case.device) and any(reply for _c, reply in case.device))
             else:
