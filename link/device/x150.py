@@ -240,10 +240,13 @@ class X150Device(VirtualDevice):
         GOTO) also compiles the unit's sequences and is the device's program. Returns the lines
         the run transmitted (quoted messages, TX, reports), which the host receives."""
         arg = parse(text)[2].strip()
-        if word in CONTEXT and re.fullmatch(r"-?\d+(\.\d+)?" if CONTEXT[word] not in ("MP", "MODE") else "", arg):
+        variable = re.fullmatch(r"\(VAR(\d+)\)", arg.replace(" ", "")) if word == "D" else None
+        if word in CONTEXT and (variable or re.fullmatch(r"-?\d+(\.\d+)?" if CONTEXT[word] not in ("MP", "MODE") else "",
+                                                          arg)):
             unit.context[CONTEXT[word]] = text
-            if word == "D":
-                self.sim.variables[f"%D{unit.address}"] = float(arg) if "." in arg else int(arg)
+            if word == "D":   # D(VAR5): the distance is the variable's value (L832-L837)
+                value = unit.variables.get(int(variable.group(1)), 0.0) if variable else float(arg)
+                self.sim.variables[f"%D{unit.address}"] = int(value) if float(value).is_integer() else value
         lines = [line for key, line in unit.context.items() if line != text]
         program = word in RUNS
         if program:
