@@ -123,7 +123,7 @@ def run_sim(case: Case) -> Outcome:
     trace = simulated.trace
     if trace is None:
         errors = "; ".join(f"{d.code} {d.message}" for d in simulated.result.diagnostics
-                           if d.severity.name.lower() == "error" or str(d.severity) == "error")
+                           if d.severity.value == "error")
         return Outcome(False, f"not simulated: {errors or 'see mcc sim'}")
     got_prints = [line.rstrip("\r") for _t, text in trace.prints for line in text.splitlines()]
     got = _observed(got_prints if case.prints is not None else None,
@@ -147,17 +147,11 @@ def replies(dialect: str, device, command: str) -> list[str]:
         raw = device.feed(f"@00{command}\r".encode()).decode(errors="replace")
         return [line for line in raw.split("\r") if line]
     raw = device.feed(f"{command}\r".encode()).decode(errors="replace")
-    parts = [p for p in raw.replace("\r\n", "\r").split("\r")]
-    parts = parts[1:] if parts and parts[0].strip() == command.strip() else parts   # the echo
-    out = []
-    for part in parts:
-        if part in (">", ""):
-            continue
-        if part.startswith("?") and dialect == "mcode":
-            out.append("?" + part[1:])
-            continue
-        out.append(part.rstrip(">") if dialect == "x150" and part.endswith(">") and len(part) > 1 else part)
-    return out
+    parts = raw.replace("\r\n", "\r").split("\r")
+    if parts and parts[0].strip() == command.strip():
+        parts = parts[1:]   # the echo
+    # the prompt `>` (or MCode's `?` after a refused command, kept so the case shows the refusal)
+    return [part for part in parts if part not in (">", "")]
 
 
 def run_device(case: Case) -> Outcome:
