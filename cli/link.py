@@ -396,8 +396,11 @@ def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
               metavar="SECONDS",
               help="Virtual seconds a program (or command) may run on the simulator's machine before the "
                    "device answers; a program still going then stays 'running'.")
+@click.option("--profile", default=None, metavar="NAME",
+              help="MCode: the product to be (a built-in profile or a TOML file): its machine, and the "
+                   "identity PR VR and PR PN report (default: the dialect's default profile).")
 def device(dialect: str, listen: str, program: str | None, fault: str, addresses: str, party_names: str,
-           program_lines: int, sequence_bytes: int, run_limit: float) -> None:
+           program_lines: int, sequence_bytes: int, run_limit: float, profile: str | None) -> None:
     """Run a virtual device on a TCP port, behind the dialect's host protocol.
 
     Connect with --port socket://HOST:PORT. The device keeps its state between connections
@@ -410,6 +413,7 @@ def device(dialect: str, listen: str, program: str | None, fault: str, addresses
       mcc device --dialect mcode --listen 127.0.0.1:4001 &
       mcc download samples/mcode/pick_and_place.mxt --port socket://127.0.0.1:4001
     """
+    from mcc.compiler.profiles import ProfileError
     from mcc.link.device.faults import Faults
     from mcc.link.device.server import DeviceServer
     from mcc.link.device.virtual import make_device
@@ -424,7 +428,10 @@ def device(dialect: str, listen: str, program: str | None, fault: str, addresses
     try:
         dev = make_device(dialect, faults, addresses=tuple(a.strip() for a in addresses.split(",") if a.strip()),
                           program_lines=program_lines, sequence_bytes=sequence_bytes, program=program,
-                          party=tuple(n.strip() for n in party_names.split(",") if n.strip()), run_limit=run_limit)
+                          party=tuple(n.strip() for n in party_names.split(",") if n.strip()), run_limit=run_limit,
+                          profile=profile if dialect == "mcode" else None)
+    except ProfileError as exc:
+        raise click.BadParameter(str(exc), param_hint="--profile") from None
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--program") from None
     server = DeviceServer(dev, host or "127.0.0.1", int(port_text))

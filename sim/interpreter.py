@@ -41,7 +41,7 @@ ONCE_EVENTS = frozenset({"time", "position"})
 HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("stall", "fault", "error"),
                  "power": ("power_loss",)}
 DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
-CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving"})  # readings that change between events
+CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving", "moving_to_position"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 
@@ -1204,6 +1204,8 @@ class Simulator:
             return axis.speed(self.now)
         if meaning == "moving":
             return 1 if axis.moving(self.now) else 0
+        if meaning == "moving_to_position":   # a move to a position runs (a slew is not one)
+            return 1 if axis.moving(self.now) and axis.motion is not None and axis.motion.t_end != float("inf") else 0
         if meaning == "fault":
             return axis.fault
         if meaning == "enabled":

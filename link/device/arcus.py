@@ -23,9 +23,20 @@ from mcc.link.device.programs import module_of
 PROGRAM_LINES = 3230
 INVALID = "?Invalid Command"   # the manual: "?(Error Message)" (L1494), the text is undocumented
 SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO": "0", "SLOAD": "0",
-            "DB": "1", "DN": "4EX00", "TR": "0"}
+            "DB": "1", "DN": "4EX00", "TR": "0",
+            # per-axis speeds HS[axis], LS[axis], ACC[axis] (L449-L458): they read back what was
+            # set, starting at the global defaults (the manual gives no default of their own)
+            **{f"{name}{axis}": value for name, value in (("HS", "1000"), ("LS", "100"), ("ACC", "300"))
+               for axis in "XYZU"},
+            # signal polarity PO[axis], bits home/alarm/limit (L702-L704); the manual gives no
+            # default: 0
+            **{f"PO{axis}": "0" for axis in "XYZU"}}
 ACTIONS = ("ABORT", "ABS", "INC", "STOP", "BO", "BF", "STORE")
 AXES = "XYZU"
+# The settings a program can change, read back from the machine: name -> (motion setting, scale
+# to the host's unit: ACC in ms, L441; HS, LS in pulses/s, L445).
+READ_BACK = {"ACC": (ir.MotionParam.ACCEL_TIME, 1000), "HS": (ir.MotionParam.MAX_SPEED, 1),
+             "LS": (ir.MotionParam.INITIAL_SPEED, 1)}
 # Host commands that act on the machine, as the standalone statement mcc's frontend compiles
 # (the catalog's `ascii` spellings, compiler/catalogs/arcus.toml): (pattern, statement template).
 HOST_COMMANDS = [
@@ -38,6 +49,10 @@ HOST_COMMANDS = [
     (r"P([XYZU])=(-?\d+)", r"P\1=\2"),
     (r"HS=(\d+)", r"HSPD=\1"),
     (r"LS=(\d+)", r"LSPD=\1"),
+    (r"((?:ARC[PN]-?\d+:-?\d+:-?\d+)|(?:CIR[PN]-?\d+:-?\d+))", r"\1"),   # arcs and circles (L586-L600)
+    (r"HS([XYZU])=(\d+)", r"HSPD\1=\2"),
+    (r"LS([XYZU])=(\d+)", r"LSPD\1=\2"),
+    (r"ACC([XYZU])=(\d+)", r"ACC\1=\2"),
     (r"ACC=(\d+)", r"ACC=\1"),
     (r"DO=(\d+)", r"DO=\1"),
     (r"DO([1-8])=([01])", r"DO\1=\2"),
@@ -201,7 +216,19 @@ class ArcusDevice(VirtualDevice):
         self.sim.variables.update({f"V{i}": v for i, v in enumerate(self.variables)})
         self.sim.run(module, (routine.name, None))
         self.take_variables()
+        self.take_settings()
         return True
+
+    def take_settings(self) -> None:
+        """What the program set (ACC=V3, HSPD=2500, HSPDX=...) is what the host reads back."""
+        shared = self.sim.machine.shared.get("*", {})
+        for name, (param, scale) in READ_BACK.items():
+            if param in shared:
+                self.settings[name] = str(int(round(shared[param] * scale)))
+            for axis in AXES:
+                found = self.sim.machine.axes.get(axis)
+                if found is not None and param in found.settings:
+                    self.settings[f"{name}{axis}"] = str(int(round(found.settings[param] * scale)))
 
     def take_variables(self) -> None:
         for name, value in self.sim.variables.items():

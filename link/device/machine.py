@@ -112,6 +112,8 @@ class DeviceMachine:
         self.run_limit = run_limit
         self.profile = profile if profile is not None else default_profile(dialect)
         self.machine = Machine()
+        for axis in (self.profile.axes if self.profile is not None else ()):
+            self.machine.axis(axis)   # the product's axes exist from power-up, as in `mcc sim`
         self.variables: dict[str, int | float] = {}
         self.clock = 0.0                      # virtual seconds the device has run
         self.status = "idle"                  # of the program: idle | running | error

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from mcc.compiler import catalog, ir
+from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
@@ -27,6 +28,7 @@ from mcc.link.device.programs import module_of
 ACK, NAK = b"\x06", b"\x15"
 USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
 AXIS = "1"              # the IR's name for the drive's own axis
+MOVES = ("MA", "MR", "SL")   # the motion instructions MD remembers (L4150)
 # factory variables that are motion settings of the simulator's machine
 SETTINGS = {"VM": ir.MotionParam.MAX_SPEED, "VI": ir.MotionParam.INITIAL_SPEED, "A": ir.MotionParam.ACCEL,
             "D": ir.MotionParam.DECEL}
@@ -77,6 +79,25 @@ def split_items(text: str) -> list[str]:
     return items
 
 
+# The setups kept per line, set with `IS=<n>,<type>,<active>` and reported as a table by PR IS,
+# PR OS, PR LS: name -> ({line: the factory value of its other parameters}, how PR writes a
+# line). IS: inputs 1-4 type 0 LOW active (L3504-L3506), the analog input 5 voltage 0-5 V
+# (L3557-L3561), the index input 6 LOW active (L3595-L3600); OS: outputs 1-3 type 16 LOW active
+# (L4618-L4621, the reply of L4647-L4650); LS: the minus (0) and plus (1) limits at 0, disabled
+# (L4023-L4026, the reply format of L4044).
+TABLES: dict[str, tuple[dict[int, tuple[int, ...]], str]] = {
+    "IS": ({1: (0, 0), 2: (0, 0), 3: (0, 0), 4: (0, 0), 5: (9, 0), 6: (0, 0)}, "IS = {n}, {0}, {1}"),
+    "OS": ({1: (16, 0), 2: (16, 0), 3: (16, 0)}, "OS = {n}, {0}, {1}"),
+    "LS": ({0: (0, 0), 1: (0, 0)}, "LS={n}, {0}, {1}"),
+}
+CLOCK_TYPES = (13, 14, 15)   # IS types of the input 3/4 pair: setting one sets the other (L3522)
+INDEX_INPUT = 6              # IS=6,<active>: its only parameter is the active state (L3595-L3605)
+
+
+def factory_tables() -> dict[str, dict[int, list[int]]]:
+    return {name: {n: list(rest) for n, rest in lines.items()} for name, (lines, _form) in TABLES.items()}
+
+
 @dataclass
 class Memory:
     """What S saves and a power cycle restores."""
@@ -86,19 +107,25 @@ class Memory:
     labels: dict[str, int] = field(default_factory=dict)       # label -> line index
     user: dict[str, list] = field(default_factory=dict)        # name -> [scope G|L, value]
     variables: dict[str, object] = field(default_factory=dict)
+    tables: dict[str, dict[int, list[int]]] = field(default_factory=factory_tables)
     lock: int = 0
 
 
 class MCodeDevice(VirtualDevice):
     terminators = b"\r\n"
 
-    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str = "LMDCM 6.002",
-                 run_limit: float = RUN_LIMIT) -> None:
+    def __init__(self, faults: Faults | None = None, program_lines: int = 1500, version: str | None = None,
+                 run_limit: float = RUN_LIMIT, profile=None) -> None:
         super().__init__(faults)
         self.program_lines = program_lines
         self.run_limit = run_limit
-        self.sim = DeviceMachine("mcode", run_limit)
-        self.version = version
+        self.profile = profile if profile is None or not isinstance(profile, str) else load_profile(profile)
+        self.sim = DeviceMachine("mcode", run_limit, self.profile)
+        # The drive's identity, as PR VR and PR PN report it (L6185-L6192, L4868-L4875): the
+        # product profile's [device] version and part_number; mcc's own stand-in without them.
+        identity = self.sim.profile
+        self.version = version or (identity.get("device.version") if identity is not None else None) or "LMDCM 6.002"
+        self.part_number = (identity.get("device.part_number") if identity is not None else None) or ""
         self.memory = Memory(variables={n: i.default for n, i in names().items()
                                         if i.kind in ("variable", "flag") and i.default is not None})
         self.saved = copy.deepcopy(self.memory)
@@ -176,6 +203,8 @@ class MCodeDevice(VirtualDevice):
         before = self.numbers()   # an assignment's expression reads the values before it
         self.assign_or_instruction(word, rest)
         self.on_machine(text, before)
+        if word in MOVES:
+            self.memory.variables["MD"] = word   # the last motion instruction (MD, L4145-L4153)
         return []
 
     def pg(self, arg: str) -> list[str]:
@@ -262,6 +291,8 @@ class MCodeDevice(VirtualDevice):
             return int(round(sim.position(AXIS)))
         if name == "MV":
             return 1 if AXIS in sim.moving else 0
+        if name == "MP":   # a positional move (MA, MR) in progress (L4211-L4220); a slew is not one
+            return 1 if AXIS in sim.moving and AXIS not in sim.slewing else 0
         if name == "V":
             return int(round(sim.moving.get(AXIS, 0)))
         if name == "BY":
@@ -309,8 +340,28 @@ class MCodeDevice(VirtualDevice):
         if word == "ER":
             self.error = 0
             self.memory.variables["EF"] = 0
+        if word in TABLES:
+            self.set_line(word, value_text)
         self.memory.variables[word] = value
         return []
+
+    def set_line(self, name: str, text: str) -> None:
+        """IS/OS/LS=<line>,<p2>[,<p3>]: one line of a setup table; an omitted parameter keeps
+        the line's value. A line the product does not have is error 21 (illegal data)."""
+        try:
+            numbers = [int(part) for part in text.split(",")]
+        except ValueError:
+            raise MCodeError(21) from None
+        table = self.memory.tables[name]
+        if not 2 <= len(numbers) <= 3 or numbers[0] not in table:
+            raise MCodeError(21)
+        line, params = numbers[0], numbers[1:]
+        if name == "IS" and line == INDEX_INPUT and len(params) == 1:
+            table[line][1] = params[0]
+        else:
+            table[line][:len(params)] = params
+        if name == "IS" and line in (3, 4) and table[line][0] in CLOCK_TYPES:
+            table[7 - line] = list(table[line])   # the other input of the clock pair (L3520)
 
     # -- instructions with effects on the protocol state -----------------------------------
     def cmd_PR(self, rest: str) -> list[str]:
@@ -324,8 +375,13 @@ class MCodeDevice(VirtualDevice):
                 self.memory.variables["EF"] = 0
             elif item.upper() == "UV":
                 return [f"{n} = {scope} {v}" for n, (scope, v) in self.memory.user.items()]
+            elif item.upper() in TABLES:   # every line's setup (PR IS L3533, PR OS L4647, PR LS L4044)
+                form = TABLES[item.upper()][1]
+                return [form.format(*params, n=n) for n, params in self.memory.tables[item.upper()].items()]
             elif item.upper() == "VR":
                 out += self.version
+            elif item.upper() == "PN" and self.part_number:
+                out += self.part_number
             elif item.upper() == "EF":
                 out += str(self.memory.variables.get("EF", 0))
             else:
@@ -386,14 +442,16 @@ class MCodeDevice(VirtualDevice):
                 raise MCodeError(30)
             entry = target
         self.run(entry)
-        return []
+        # what the program prints goes to the host as it runs (PR "outputs ... to the communications host", L4895)
+        outcome = self.sim.outcome
+        return [line for text in (outcome.prints if outcome is not None else []) for line in text.splitlines()]
 
     def power_cycle(self) -> None:
         """What a power cycle does: the saved state comes back (L862), SU runs."""
         self.memory = copy.deepcopy(self.saved)
         self.program_mode = False
         self.error = 0
-        self.sim = DeviceMachine("mcode", self.run_limit)
+        self.sim = DeviceMachine("mcode", self.run_limit, self.profile)
         if "SU" in self.memory.labels:
             self.run("SU")
 

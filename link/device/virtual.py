@@ -8,13 +8,14 @@ from mcc.link.device.machine import RUN_LIMIT
 
 def make_device(dialect: str, faults: Faults | None = None, addresses: tuple[str, ...] = ("1", "2", "3", "4"),
                 program_lines: int = 1500, sequence_bytes: int = 8000, program: str | None = None,
-                address: str = "00", party: tuple[str, ...] = (), run_limit: float = RUN_LIMIT):
+                address: str = "00", party: tuple[str, ...] = (), run_limit: float = RUN_LIMIT,
+                profile: str | None = None):
     if dialect == "mcode":
         from mcc.link.device.mcode import MCodeBus, MCodeDevice
 
         if party:
-            return MCodeBus(party, faults, program_lines=program_lines, run_limit=run_limit)
-        return MCodeDevice(faults, program_lines=program_lines, run_limit=run_limit)
+            return MCodeBus(party, faults, program_lines=program_lines, run_limit=run_limit, profile=profile)
+        return MCodeDevice(faults, program_lines=program_lines, run_limit=run_limit, profile=profile)
     if dialect == "x150":
         from mcc.link.device.x150 import X150Device
 

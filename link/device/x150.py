@@ -100,7 +100,7 @@ class X150Device(VirtualDevice):
             out += self.execute(unit, text, word, arg.strip())
         first = targets[0]
         if first.defining is None and word not in PROTOCOL and word != ";" and text:
-            self.on_machine(first, text, word)
+            out += self.on_machine(first, text, word)   # what the command or the sequence transmits
         reply = (raw if first.echo else b"") + "".join(line + "\r" for line in out).encode("latin-1")
         return reply + (b">" if first.terminal else b"")
 
@@ -235,26 +235,32 @@ class X150Device(VirtualDevice):
         return []
 
     # -- the simulator's machine ----------------------------------------------------------
-    def on_machine(self, unit: Unit, text: str, word: str) -> None:
+    def on_machine(self, unit: Unit, text: str, word: str) -> list[str]:
         """Run a command on the machine, after the unit's context; a sequence run (XR, XG, GOSUB,
-        GOTO) also compiles the unit's sequences and is the device's program."""
+        GOTO) also compiles the unit's sequences and is the device's program. Returns the lines
+        the run transmitted (quoted messages, TX, reports), which the host receives."""
         arg = parse(text)[2].strip()
-        if word in CONTEXT and re.fullmatch(r"-?\d+(\.\d+)?" if CONTEXT[word] not in ("MP", "MODE") else "", arg):
+        variable = re.fullmatch(r"\(VAR(\d+)\)", arg.replace(" ", "")) if word == "D" else None
+        if word in CONTEXT and (variable or re.fullmatch(r"-?\d+(\.\d+)?" if CONTEXT[word] not in ("MP", "MODE") else "",
+                                                          arg)):
             unit.context[CONTEXT[word]] = text
-            if word == "D":
-                self.sim.variables[f"%D{unit.address}"] = float(arg) if "." in arg else int(arg)
+            if word == "D":   # D(VAR5): the distance is the variable's value (L832-L837)
+                value = unit.variables.get(int(variable.group(1)), 0.0) if variable else float(arg)
+                self.sim.variables[f"%D{unit.address}"] = int(value) if float(value).is_integer() else value
         lines = [line for key, line in unit.context.items() if line != text]
         program = word in RUNS
         if program:
             if not arg.isdigit() or int(arg) not in unit.sequences:
                 unit.xsr = "2"
-                return
+                return []
             unit.xsr = "0"
             for n, body in sorted(unit.sequences.items()):
                 lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
+            if not parse(text)[0]:
+                text = unit.address + text   # an unaddressed XR1 runs the unit's sequence 1, stored as 1XD1
         module = module_of("x150", "\n".join([*lines, text]) + "\n")
         if module is None:
-            return
+            return []
         self.sim.variables.update({f"VAR{k}": v for k, v in unit.variables.items()})
         outcome = self.sim.run(module, None, program=program)
         for name, value in self.sim.variables.items():
@@ -262,6 +268,7 @@ class X150Device(VirtualDevice):
                 unit.variables[int(name[3:])] = float(value)
         if program and outcome.status == "error":
             unit.xsr = "2"
+        return [line for text in outcome.prints for line in text.splitlines()]
 
 
 PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",
