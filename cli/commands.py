@@ -57,6 +57,35 @@ def regular_files(ctx, param, value):
     return value
 
 
+STDIN = "-"
+
+
+def stdin_option(func):
+    """--stdin-filename, for commands that read a program from standard input as `-`."""
+    return click.option("--stdin-filename", metavar="PATH",
+                        help="With `-`: the name of the program read from standard input. It chooses the "
+                             "dialect (by its extension) and the configuration (the nearest to it), and names "
+                             "the program in messages; editors pass the buffer's file name.")(func)
+
+
+def read_stdin(paths, stdin_filename: str | None, dialect: str | None) -> tuple[str, str] | None:
+    """(name, text) when `paths` asks for standard input (`-`), else None."""
+    if STDIN not in paths:
+        if stdin_filename:
+            raise click.UsageError("--stdin-filename names the program read from standard input: pass `-` as the "
+                                   "file to read it")
+        return None
+    if len(paths) > 1:
+        raise click.UsageError("`-` reads one program from standard input: name no other file with it")
+    from mcc.compiler import dialects
+
+    name = stdin_filename or STDIN
+    if dialect is None and dialects.from_path(name) is None:
+        raise click.UsageError("cannot tell the dialect of standard input: pass --dialect, or --stdin-filename "
+                               f"with the program's name ({', '.join(dialects.all_extensions())})")
+    return name, click.get_text_stream("stdin").read()
+
+
 def use_color(fmt: str) -> bool:
     return fmt == "text" and sys.stdout.isatty() and "NO_COLOR" not in os.environ
 
@@ -69,26 +98,34 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 
 
 @cli.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False),
+@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, allow_dash=True),
                 callback=regular_files)
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="text: one diagnostic per finding with the source line; json: one JSON object on stdout.")
 @click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file.")
 @click.option("--verify-ir", is_flag=True, help="Also run the IR verifier after lowering (violations are G010).")
-def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | None, verify_ir: bool) -> None:
-    """Check FILES for syntax and semantic errors, without writing anything.
+@stdin_option
+def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | None, verify_ir: bool,
+          stdin_filename: str | None) -> None:
+    """Check FILES for syntax and semantic errors, without writing anything. `-` reads the program
+    from standard input (name it with --stdin-filename).
 
     \b
     Examples:
       mcc check samples/mcode/pick_and_place.mxt
       mcc check --format json *.prg
       mcc check --profile lmm program.mxt
+      mcc check - --stdin-filename feeder.mxt < feeder.mxt
     """
     from mcc.compiler import driver
 
     prof = load_profile(profile)
-    results = [driver.check_file(path, dialect, prof) for path in files]
+    piped = read_stdin(files, stdin_filename, dialect)
+    if piped is not None:
+        results = [driver.check_file(piped[0], dialect, prof, piped[1])]
+    else:
+        results = [driver.check_file(path, dialect, prof) for path in files]
     if verify_ir:
         for result in results:
             driver.verify_ir(result)

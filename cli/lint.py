@@ -11,7 +11,7 @@ import sys
 
 import click
 
-from mcc.cli.commands import DIALECT_NAMES, cli, regular_files, use_color
+from mcc.cli.commands import DIALECT_NAMES, cli, read_stdin, regular_files, stdin_option, use_color
 from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
 
 LINT_FORMATS = ["text", "json", "sarif", "github"]
@@ -86,6 +86,7 @@ def common_options(func):
         click.option("--profile", help="Target profile (a built-in name or a TOML file); overrides `target`."),
         click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
                      help="Worker processes (default: the number of CPUs; 1 runs in this process)."),
+        stdin_option,
     ]
     for option in reversed(options):
         func = option(func)
@@ -93,7 +94,7 @@ def common_options(func):
 
 
 @cli.command()
-@click.argument("paths", nargs=-1, type=click.Path(exists=True), callback=regular_files)
+@click.argument("paths", nargs=-1, type=click.Path(exists=True, allow_dash=True), callback=regular_files)
 @click.option("--format", "fmt", type=click.Choice(LINT_FORMATS), default="text", show_default=True,
               help="text: findings with the source line; json: as `mcc check`; sarif: SARIF 2.1.0 for code "
                    "scanning; github: workflow annotations.")
@@ -111,7 +112,7 @@ def common_options(func):
 @click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
 @common_options
 def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, verify, statistics, fail_on, exit_zero,
-         dialect, config, isolated, profile, jobs) -> None:
+         dialect, config, isolated, profile, jobs, stdin_filename) -> None:
     """Check PATHS (files or directories; default: the current directory) with every check and lint rule.
 
     \b
@@ -121,16 +122,21 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
       mcc lint --fix programs/                    apply the safe fixes
       mcc lint --format sarif . > mcc.sarif       for GitHub code scanning
       mcc lint --statistics .                     how often each code occurs
+      mcc lint - --stdin-filename a.mxt < a.mxt   a program from standard input (editors)
 
-    Suppress a finding with a comment on its line: MCode `' noqa: M301`, Arcus and X150
+    With `-` and --fix, the fixed program is written to standard output and the findings that
+    remain to standard error. Suppress a finding with a comment on its line: MCode `' noqa: M301`, Arcus and X150
     `; noqa: A301`. Exit codes: 0 no errors, 1 errors (or findings at --fail-on), 2 usage error.
     """
     from mcc.compiler.lint import engine
 
     resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
+    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify)
+    piped = read_stdin(paths, stdin_filename, dialect)
+    if piped is not None:
+        lint_stdin(piped, resolver, options, fmt, statistics, fail_on, exit_zero)
     targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
-    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
     outcomes = config_outcomes(resolver) + sorted(outcomes, key=lambda o: o.path)
     if diff:
@@ -141,6 +147,29 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
         sys.exit(EXIT_USAGE)  # a fixed file could not be written (G006): as for any file error
     failing = {path: settings.fail_on for path, settings in work}
     sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, failing, fail_on))
+
+
+def lint_stdin(piped: tuple[str, str], resolver, options, fmt: str, statistics: bool, fail_on, exit_zero: bool):
+    """`mcc lint -`: the program from standard input. With --fix the fixed text goes to standard
+    output (what an editor puts back in the buffer) and the report to standard error."""
+    from mcc.compiler.lint import engine, fixes
+
+    name, text = piped
+    settings = resolver.for_path(name)
+    outcome = engine.lint_source(name, text, settings, options)
+    outcomes = config_outcomes(resolver) + [outcome]
+    if options.diff:
+        changed = outcome.text != text
+        if changed:
+            sys.stdout.write(fixes.unified_diff(name, text, outcome.text))
+        sys.exit(EXIT_ERRORS if changed and not exit_zero else EXIT_OK)
+    if options.fix:
+        outcome.written = outcome.text != text  # written to standard output
+        sys.stdout.write(outcome.text)
+        sys.stdout.flush()
+        sys.stdout = sys.stderr  # the report follows the program, on standard error
+    report(outcomes, fmt, statistics, options.fix, options.unsafe_fixes, 1)
+    sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, {name: settings.fail_on}, fail_on))
 
 
 def exit_code(outcomes, failing: dict[str, str], override: str | None) -> int:
@@ -209,13 +238,13 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
 
 
 @cli.command()
-@click.argument("paths", nargs=-1, type=click.Path(exists=True), callback=regular_files)
+@click.argument("paths", nargs=-1, type=click.Path(exists=True, allow_dash=True), callback=regular_files)
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 and list the files that would change.")
 @click.option("--diff", is_flag=True, help="Write nothing; print the changes as a unified diff (exit 1 if any).")
 @click.option("--verify", is_flag=True, help="Also simulate each file before and after formatting and leave it "
                                              "unchanged if they behave differently.")
 @common_options
-def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs) -> None:
+def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, stdin_filename) -> None:
     """Rewrite PATHS (files or directories; default: the current directory) in the canonical style
     of their dialect.
 
@@ -224,14 +253,19 @@ def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs) ->
       mcc fmt .                        format every program below here
       mcc fmt --check .                in CI: exit 1 if a file is not formatted
       mcc fmt --diff program.mxt       show what would change
+      mcc fmt - --stdin-filename a.prg < a.prg > b.prg     standard input to standard output
 
     Formatting keeps every comment and never changes what a program does: mcc compares the program
-    before and after and leaves a file alone if they differ. Exit codes: 0 done (or nothing to
+    before and after and leaves a file alone if they differ. A file with a syntax error is not
+    formatted (fix the error first). Exit codes: 0 done (or nothing to
     change), 1 files would change (--check, --diff) or could not be formatted, 2 usage error.
     """
     from mcc.compiler.lint import engine, formatting
 
     resolver = make_resolver(config, isolated, (), (), (), profile, None)
+    piped = read_stdin(paths, stdin_filename, dialect)
+    if piped is not None:
+        fmt_stdin(piped, resolver, check, diff, verify, dialect)
     targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
     options = formatting.Options(check=check, diff=diff, dialect=dialect, verify=verify)
@@ -262,6 +296,39 @@ def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs) ->
     if any(o.write_error for o in outcomes):
         sys.exit(EXIT_USAGE)
     sys.exit(EXIT_ERRORS if failed or (check or diff) and changed else EXIT_OK)
+
+
+def fmt_stdin(piped: tuple[str, str], resolver, check: bool, diff: bool, verify: bool, dialect: str | None):
+    """`mcc fmt -`: the formatted program on standard output (nothing when it cannot be formatted:
+    the reason goes to standard error and the exit code is 1, so an editor keeps its buffer)."""
+    from mcc.compiler import driver
+    from mcc.compiler.lint import formatting
+
+    name, text = piped
+    found = driver.resolve_dialect(name, dialect)
+    if formatting.formatter(found.name) is None:
+        click.echo(f"note: mcc has no {found.name} formatter yet; the program is left as it is", err=True)
+        sys.stdout.write(text)
+        sys.exit(EXIT_OK)
+    formatted, error = formatting.format_source(name, text, found.name, resolver.for_path(name))
+    if not error and verify and formatted != text:
+        problem = formatting._simulated_difference(name, found.name, text, formatted)
+        error = f"--verify: {problem}; the program was left unchanged" if problem else ""
+    if error:
+        click.echo(f"error: {name}: {error}", err=True)
+        sys.exit(EXIT_ERRORS)
+    if diff:
+        if formatted != text:
+            from mcc.compiler.lint.fixes import unified_diff
+
+            sys.stdout.write(unified_diff(name, text, formatted))
+        sys.exit(EXIT_ERRORS if formatted != text else EXIT_OK)
+    if check:
+        if formatted != text:
+            click.echo(f"Would reformat: {name}")
+        sys.exit(EXIT_ERRORS if formatted != text else EXIT_OK)
+    sys.stdout.write(formatted)
+    sys.exit(EXIT_OK)
 
 
 __all__ = ["lint", "fmt", "EXIT_USAGE"]

@@ -105,9 +105,26 @@ class Diagnostics:
     def __len__(self) -> int:
         return len(self.items)
 
+    def refuse_syntax_errors(self) -> None:
+        """Raise `SyntaxErrors` when any collected diagnostic is a syntax error (formatters: a text
+        that does not parse is not reformatted, as black and ruff refuse it)."""
+        first = next((d for d in self.items if d.kind is Kind.SYNTAX and d.severity is Severity.ERROR), None)
+        if first is not None:
+            raise SyntaxErrors(first, sum(1 for d in self.items if d.kind is Kind.SYNTAX))
+
     @property
     def has_errors(self) -> bool:
         return any(d.severity is Severity.ERROR for d in self.items)
 
     def sorted(self) -> list[Diagnostic]:
         return sorted(self.items, key=Diagnostic.sort_key)
+
+
+class SyntaxErrors(Exception):
+    """The text has syntax errors, so it is left as written; `first` says where."""
+
+    def __init__(self, first: Diagnostic, count: int = 1) -> None:
+        more = f" (and {count - 1} more)" if count > 1 else ""
+        super().__init__(f"syntax error at {first.span.line}:{first.span.column}: {first.code} {first.message}{more}")
+        self.first = first
+        self.count = count

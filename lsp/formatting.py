@@ -1,8 +1,8 @@
 """Document and range formatting with `mcc fmt`'s rules (`mcc.compiler.lint.formatting`).
 
-The whole text is formatted and verified the way `mcc fmt` does (the IR must not change); the
-result is sent as the smallest line edits. Range formatting keeps only the edits inside the
-range's lines.
+The whole text is formatted and verified by `mcc fmt`'s own step (`formatting.format_source`: the
+IR must not change, a text with a syntax error is not formatted); the result is sent as the
+smallest line edits. Range formatting keeps only the edits inside the range's lines.
 """
 
 from __future__ import annotations
@@ -17,13 +17,13 @@ from mcc.compiler.lint import formatting
 def edits(snap, text: str, first_line: int | None = None, last_line: int | None = None) -> list[t.TextEdit]:
     if formatting.formatter(snap.dialect) is None:
         return []
-    formatted = formatting.format_text(text, snap.path, snap.dialect, snap.settings)
+    formatted, problem = formatting.format_source(snap.path, text, snap.dialect, snap.settings)
+    if problem.startswith("not formatted:"):
+        return []  # the program's own errors, which the editor already shows: nothing to format
+    if problem:
+        raise RuntimeError(problem)
     if formatted == text:
         return []
-    problem = formatting.verify(snap.path, snap.dialect, text, formatted, snap.settings)
-    if problem:
-        raise RuntimeError(f"formatting would change the program ({problem}); the text was left alone. "
-                           "This is a bug in mcc, please report it")
     before = text.split("\n")
     after = formatted.split("\n")
     out = []

@@ -40,9 +40,14 @@ def catalog() -> acat.ArcusCatalog:
     return acat.load()
 
 
-def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
+def format_text(text: str, path: str = "<text>", profile: Profile | None = None, strict: bool = False) -> str:
+    """The text in the canonical style; a line that does not parse is kept as written, or, when
+    `strict`, the text is refused (`SyntaxErrors`), as `mcc fmt` does."""
     source = SourceFile(path, text)
-    tree = parser.parse(source, Diagnostics())
+    parsed = Diagnostics()
+    tree = parser.parse(source, parsed)
+    if strict:
+        parsed.refuse_syntax_errors()
     limit = int(profile.get("limits.line_length", 0)) if profile else 0
     lines = collapse_blank_lines(layout(source, tree))
     align_comments(lines, limit)

@@ -133,15 +133,9 @@ def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, di
                 driver.internal_error(diags, path, exc, f"running lint rule {rule.code}")
 
 
-def lint_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
-    try:
-        original = files.read(path)
-    except OSError as exc:
-        diags = Diagnostics()
-        diags.add("G002", driver.file_span(path), f"cannot read {path}: {exc.strerror or exc}")
-        found = driver.resolve_dialect(path, options.dialect)
-        return Outcome(path, found.name if found else "unknown", diags.items)
-    text = original.text
+def lint_source(path: str, text: str, settings: Settings, options: Options = Options()) -> Outcome:
+    """Lint a text (a file's or standard input's) and, with --fix or --diff, apply the fixes in
+    memory: the outcome's text is the fixed text, its diagnostics what remains."""
     dialect, diags = lint_text(path, text, settings, options.dialect)
     fixed = 0
     if (options.fix or options.diff) and not driver.has_long_lines(diags):  # G007: offsets shifted, no fixes
@@ -152,7 +146,19 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
             extra.add("G008", driver.file_span(path), f"{run.error}; the file was left unchanged. This is a bug in "
                                                       "mcc: please report it with this file")
             diags = sorted(diags + extra.items, key=Diagnostic.sort_key)
-    outcome = Outcome(path, dialect, diags, text, fixed)
+    return Outcome(path, dialect, diags, text, fixed)
+
+
+def lint_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
+    try:
+        original = files.read(path)
+    except OSError as exc:
+        diags = Diagnostics()
+        diags.add("G002", driver.file_span(path), f"cannot read {path}: {exc.strerror or exc}")
+        found = driver.resolve_dialect(path, options.dialect)
+        return Outcome(path, found.name if found else "unknown", diags.items)
+    outcome = lint_source(path, original.text, settings, options)
+    text = outcome.text
     if text != original.text:
         if options.diff:
             outcome.diff = fixes.unified_diff(path, original.text, text)

@@ -14,6 +14,7 @@ from types import ModuleType
 
 from mcc.compiler import driver
 from mcc.compiler.config import Settings
+from mcc.compiler.diagnostics import SyntaxErrors
 from mcc.compiler.ir_compare import differences
 from mcc.compiler.lint import files
 from mcc.compiler.lint.fixes import unified_diff
@@ -48,11 +49,11 @@ def formatter(dialect: str) -> ModuleType | None:
         raise
 
 
-def format_text(text: str, path: str, dialect: str, settings: Settings = Settings()) -> str:
+def format_text(text: str, path: str, dialect: str, settings: Settings = Settings(), strict: bool = False) -> str:
     module = formatter(dialect)
     if module is None:
         return text
-    return module.format_text(text, path, settings.profile(dialect))
+    return module.format_text(text, path, settings.profile(dialect), strict=strict)
 
 
 def verify(path: str, dialect: str, before: str, after: str, settings: Settings) -> str:
@@ -93,6 +94,32 @@ def long_line(text: str, limit: int) -> str:
     return ""
 
 
+def format_source(path: str, text: str, dialect: str, settings: Settings) -> tuple[str, str]:
+    """(formatted text, "") or (text, why it was not formatted): the one formatting step of
+    `mcc fmt` for a file and for standard input. A text with a syntax error is not formatted."""
+    found = driver.resolve_dialect(path, dialect)
+    too_long = long_line(text, found.longest_line)
+    if too_long:
+        return text, f"{too_long}; the file was left unchanged (G007)"
+    try:
+        formatted = format_text(text, path, found.name, settings, strict=True)
+    except SyntaxErrors as exc:
+        return text, f"not formatted: {exc}; fix it first"
+    except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
+        own = own_errors(path, found.name, text, settings)
+        return text, f"not formatted: the file has errors ({own}); fix them first" if own else (
+            f"internal error while formatting: {type(exc).__name__}: {exc}. This is a bug in mcc; "
+            "please report it with this file")
+    if formatted != text:
+        problem = verify(path, found.name, text, formatted, settings)
+        if problem:
+            own = own_errors(path, found.name, text, settings)
+            return text, f"not formatted: the file has errors ({own}); fix them first" if own else (
+                f"internal error: formatting would change the program ({problem}). This is a bug "
+                "in mcc; the file was left unchanged, please report it")
+    return formatted, ""
+
+
 def format_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
     found = driver.resolve_dialect(path, options.dialect)
     if found is None:
@@ -103,27 +130,11 @@ def format_file(path: str, settings: Settings, options: Options = Options()) -> 
         return outcome
     try:
         original = files.read(path)
-        too_long = long_line(original.text, found.longest_line)
-        if too_long:
-            outcome.error = f"{too_long}; the file was left unchanged (G007)"
-            return outcome
-        text = format_text(original.text, path, found.name, settings)
-        if text != original.text:
-            problem = verify(path, found.name, original.text, text, settings)
-            if problem:
-                own = own_errors(path, found.name, original.text, settings)
-                outcome.error = f"not formatted: the file has errors ({own}); fix them first" if own else (
-                    f"internal error: formatting would change the program ({problem}). This is a bug "
-                    "in mcc; the file was left unchanged, please report it")
-                return outcome
     except OSError as exc:
         outcome.error = f"cannot read {path}: {exc.strerror or exc}"
         return outcome
-    except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
-        own = own_errors(path, found.name, original.text, settings)
-        outcome.error = f"not formatted: the file has errors ({own}); fix them first" if own else (
-            f"internal error while formatting: {type(exc).__name__}: {exc}. This is a bug in mcc; "
-            "please report it with this file")
+    text, outcome.error = format_source(path, original.text, found.name, settings)
+    if outcome.error:
         return outcome
     outcome.changed = text != original.text
     if outcome.changed:

@@ -38,9 +38,14 @@ CANONICAL_OPERATORS = {"=<": "<="}
 
 
 
-def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
+def format_text(text: str, path: str = "<text>", profile: Profile | None = None, strict: bool = False) -> str:
+    """The text in the canonical style; a line that does not parse is kept as written, or, when
+    `strict`, the text is refused (`SyntaxErrors`), as `mcc fmt` does."""
     source = SourceFile(path, text)
-    tree = parser.parse(source, Diagnostics())
+    parsed = Diagnostics()
+    tree = parser.parse(source, parsed)
+    if strict:
+        parsed.refuse_syntax_errors()
     limit = int(profile.get("limits.line_length", DEFAULT_LINE_LENGTH)) if profile else DEFAULT_LINE_LENGTH
     return Formatter(source, tree, limit).run()
 

@@ -25,9 +25,14 @@ from mcc.compiler.x150.checks import canonical_case
 from mcc.compiler.lint.layout import Out, align_comments, collapse_blank_lines, render
 
 
-def format_text(text: str, path: str = "<text>", profile: Profile | None = None) -> str:
+def format_text(text: str, path: str = "<text>", profile: Profile | None = None, strict: bool = False) -> str:
+    """The text in the canonical style; a line that does not parse is kept as written, or, when
+    `strict`, the text is refused (`SyntaxErrors`), as `mcc fmt` does."""
     source = SourceFile(path, text)
-    tree = parser.parse(source, Diagnostics())
+    parsed = Diagnostics()
+    tree = parser.parse(source, parsed)
+    if strict:
+        parsed.refuse_syntax_errors()
     lines = collapse_blank_lines([layout_line(source, line) for line in tree.lines])
     align_comments(lines)
     return "".join(render(line) + "\n" for line in lines)
