@@ -68,7 +68,10 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
     if isinstance(op, ir.Home):
         mode = f" mode {expr_text(op.mode)}" if op.mode is not None else ""
         speed = f" speed {expr_text(op.speed)}" if op.speed is not None else ""
-        return f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{mode}"
+        creep = ""
+        if op.creep:
+            creep = f" creep {op.creep:+d}" + (f" at {expr_text(op.creep_speed)}" if op.creep_speed is not None else "")
+        return f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{creep} zero {op.zero}{mode}"
     if isinstance(op, ir.Stop):
         return f"stop {op.axis} {'ramp' if op.ramp else 'abort'}"
     if isinstance(op, ir.SetPosition):

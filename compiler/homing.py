@@ -1,0 +1,108 @@
+"""What a product's homing command does, read from its profile's `[homing]` table.
+
+The three dialects home differently (docs/SIMULATOR.md, "Homing", has the manuals' lines): MCode
+`HM` creeps back off the switch at VI and leaves the counter alone, Arcus `HOME` zeroes the
+counter at the switch and ramps down past it, X150 `GH` reverses onto the switch edge at GHF and
+zeroes there. The lowering writes the product's homing into each `ir.Home` (`home_op`), so the
+simulator runs only what the IR says; a backend asks `refusal` whether its dialect's homing
+command does what an `ir.Home` says, and refuses the conversion (G003) when it does not: a
+conversion that moves the machine's zero or where the axis stops is a different program.
+
+Profile keys (`[homing]`):
+
+- `creep`: "written" (the command's type says the creep direction: MCode HM 1-4), "reverse"
+  (back onto the switch, against the seek: X150 GH), "none" (no creep: Arcus HOME);
+- `creep_speed`: "initial" (the initial speed in force: MCode VI) or a speed in rev/s (X150's GHF
+  default 0.1);
+- `zero`: "switch" (the counter becomes 0 as the switch trips), "end" (where the homing stops),
+  "none" (the counter keeps counting).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from mcc.compiler import ir
+from mcc.compiler.profiles import Profile
+
+CREEPS = ("written", "reverse", "none")
+
+
+@dataclass(frozen=True)
+class Model:
+    creep: str = "reverse"
+    creep_speed: float | None = None  # rev/s; None: the initial speed in force
+    zero: str = "end"
+
+
+def model(profile: Profile) -> Model:
+    """The profile's homing; a value the table does not allow falls back to the default."""
+    creep = str(profile.get("homing.creep", "reverse"))
+    speed = profile.get("homing.creep_speed", "initial")
+    zero = str(profile.get("homing.zero", "end"))
+    return Model(creep if creep in CREEPS else "reverse",
+                 float(speed) if isinstance(speed, (int, float)) and not isinstance(speed, bool) and speed > 0 else None,
+                 zero if zero in ir.HOME_ZEROS else "end")
+
+
+def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direction: int, span=None,
+            written_creep: int = 0, speed: ir.Expr | None = None) -> ir.Home:
+    """The `ir.Home` of the product's homing command seeking in `direction`; `written_creep` is
+    the creep direction the command's type gives (MCode HM n)."""
+    found = model(profile)
+    creep = {"written": written_creep, "reverse": -direction, "none": 0}[found.creep]
+    creep_speed = None
+    if creep and found.creep_speed is not None:
+        creep_speed = ir.Const(found.creep_speed * (steps_per_rev or 1), ir.Unit.STEPS_PER_S, span)
+    return ir.Home(axis, method, direction, span=span, creep=creep, speed=speed, creep_speed=creep_speed,
+                   zero=found.zero)
+
+
+def refusal(op: ir.Home, profile: Profile, source_steps_per_rev: int) -> str:
+    """Why the target's homing command would not do what `op` says ("" when it does): a different
+    zero, a creep off the switch or none, another creep direction or speed."""
+    target = model(profile)
+    name = profile.dialect
+    if op.zero != target.zero:
+        return (f"the source's homing {_ZERO[op.zero]}, {name}'s {_ZERO[target.zero]}: the machine's zero would "
+                "move; home in the target's own way, or compile to the source's dialect")
+    creep = {"written": op.creep, "reverse": -op.direction, "none": 0}[target.creep]
+    if target.creep == "written" and op.creep == 0:
+        creep = None
+    if creep != op.creep:
+        return (f"the source's homing {_creep(op.creep)}, {name}'s {_creep(creep)}: the axis would stop "
+                "elsewhere; compile to the source's dialect")
+    if op.creep and not _same_speed(op.creep_speed, target.creep_speed, source_steps_per_rev):
+        return (f"the source's homing creeps off the switch at {_speed(op.creep_speed, source_steps_per_rev)}, "
+                f"{name}'s at {_speed_rev(target.creep_speed)}: the homing would take another time")
+    return ""
+
+
+_ZERO = {"switch": "zeroes the counter as the switch trips", "end": "zeroes the counter where it stops",
+         "none": "leaves the counter alone"}
+
+
+def _creep(direction: int | None) -> str:
+    if direction is None:
+        return "always creeps off the switch"
+    return "creeps off the switch in " + ("+" if direction > 0 else "-") if direction else "does not creep off the switch"
+
+
+def _same_speed(speed: ir.Expr | None, rev_s: float | None, steps_per_rev: int) -> bool:
+    if speed is None or rev_s is None:
+        return speed is None and rev_s is None
+    if not isinstance(speed, ir.Const):
+        return False
+    return abs(float(speed.value) / (steps_per_rev or 1) - rev_s) <= 1e-6 * max(1.0, rev_s)
+
+
+def _speed(speed: ir.Expr | None, steps_per_rev: int) -> str:
+    if speed is None:
+        return "the initial speed"
+    if isinstance(speed, ir.Const):
+        return _speed_rev(float(speed.value) / (steps_per_rev or 1))
+    return "a computed speed"
+
+
+def _speed_rev(rev_s: float | None) -> str:
+    return "the initial speed" if rev_s is None else f"{rev_s:g} rev/s"
