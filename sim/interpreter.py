@@ -760,9 +760,9 @@ class Simulator:
         switch = self.scenario.switches(name).home
         self._event(op, "home", axis=name, method=op.method)
         limits = axis.limits(self.machine.shared)
-        if op.speed is not None:  # a homing speed of its own (X150 GH n), not the max speed
+        if op.speed is not None:  # a homing speed of its own, not the max speed
             limits = dataclasses.replace(limits, maximum=abs(float(self._eval(op.speed))))
-        if axis.home_accel is not None:  # and ramps at the homing acceleration (X150 GA; 0: at once)
+        if axis.home_accel is not None:  # and ramps at the homing acceleration (0: at once)
             limits = dataclasses.replace(limits, accel=axis.home_accel, decel=axis.home_accel)
         creep = 0.0
         if op.creep:

@@ -45,7 +45,7 @@ class Axis:
     enabled: int = 1
     on_end: str = ""  # "home": the position becomes 0 when the motion ends
     home_accel: float | None = None  # X150 GA: homing ramps at it rather than at the move acceleration
-    home_final_speed: float | None = None  # X150 GHF: the creep off the switch runs at it
+    home_final_speed: float | None = None  # the home_final_speed setting: the creep runs at it
     homing: object = None  # the homing in progress (interpreter.HomeRun), while on_end is "home"
     cached: Limits | None = None  # the limits in force, until a setting changes
 
