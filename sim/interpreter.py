@@ -787,6 +787,15 @@ class Simulator:
         self._home_phase(axis, run, "seek", abs(delta), segments)
         run.speed = speed
 
+    def finish_homing(self, until: float) -> None:
+        """Run on the homing phases a finished program left going, up to `until`: each phase starts
+        when the one before ends, so a caller that freezes the machine after the program (the
+        virtual device between commands) must let them follow one another first."""
+        for axis in self.machine.axes.values():
+            while axis.on_end == "home" and axis.motion is not None and axis.motion.t_end <= until:
+                self.now = max(self.now, axis.motion.t_end)
+                self._motion_end(axis)
+
     def _home_phase(self, axis: Axis, run: HomeRun, stage: str, length: float, segments) -> None:
         start = axis.position
         path = Path({axis.name: start}, length, {axis.name: run.direction})

@@ -190,3 +190,16 @@ def test_a_homing_compiled_to_its_own_dialect_verifies(source, dialect, ext, axi
     problem = check_translation(f"h.{ext}", dialect, checked.analysis.module, result.listing.text, dialect,
                                 scenarios=[Scenario(axes={axis: AxisSwitches(home=-3000)})])
     assert problem == ""
+
+
+def test_the_virtual_device_runs_an_immediate_hm_through_its_creep():
+    """An immediate `HM 1` on the virtual MCode device (its machine has the home switch at machine
+    0): the seek, the brake past the switch and the creep back at VI follow one another before the
+    machine is frozen (lexium-mcode.txt L3198), and P keeps counting: P=500 at machine 0, MR 1000
+    (P 1500, machine 1000), HM 1 ends on the switch at machine 0, where P reads 500."""
+    from mcc.link.device.mcode import MCodeDevice
+
+    device = MCodeDevice()
+    for command in ("VI=400", "VM=4000", "A=20000", "D=20000", "P=500", "MR 1000", "HM 1"):
+        device.command(f"{command}\r".encode())
+    assert device.command(b"PR P\r").split(b"\r\n")[1] == b"500"
