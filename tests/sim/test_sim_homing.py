@@ -203,3 +203,18 @@ def test_the_virtual_device_runs_an_immediate_hm_through_its_creep():
     for command in ("VI=400", "VM=4000", "A=20000", "D=20000", "P=500", "MR 1000", "HM 1"):
         device.command(f"{command}\r".encode())
     assert device.command(b"PR P\r").split(b"\r\n")[1] == b"500"
+
+
+def test_the_printer_and_the_verifier_know_the_homing_fields():
+    """docs/IR.md, "Home": the printer shows the creep and the zero; the verifier rejects a zero or
+    a creep direction outside the contract (the simulator would otherwise guess)."""
+    from mcc.compiler import ir_print, ir_verify
+
+    op = ir.Home("1", "switch", -1, creep=1, zero="none")
+    assert ir_print.op_text(op) == "home 1 switch direction -1 creep +1 zero none"
+    x150 = ir.Home("1", "switch", 1, creep=-1, creep_speed=c(400, U.STEPS_PER_S), zero="end",
+                   speed=c(8000, U.STEPS_PER_S))
+    assert ir_print.op_text(x150) == "home 1 switch direction +1 speed 8000 steps/s creep -1 at 400 steps/s zero end"
+    bad = module([ir.Home("X", "switch", -1, creep=2, zero="somewhere")])
+    messages = [v.message for v in ir_verify.verify(bad)]
+    assert any("creep direction 2" in m for m in messages) and any("'somewhere'" in m for m in messages)
