@@ -15,7 +15,9 @@ Profile keys (`[homing]`):
 - `creep_speed`: "initial" (the initial speed in force: MCode VI) or a speed in rev/s (X150's GHF
   default 0.1);
 - `zero`: "switch" (the counter becomes 0 as the switch trips), "end" (where the homing stops),
-  "none" (the counter keeps counting).
+  "none" (the counter keeps counting);
+- `accel`: the seek's and the brake's ramp in rev/s² (X150's GA default 10), a program's own
+  setting (GA) replacing it; absent: the move ramps in force.
 """
 
 from __future__ import annotations
@@ -33,6 +35,13 @@ class Model:
     creep: str = "reverse"
     creep_speed: float | None = None  # rev/s; None: the initial speed in force
     zero: str = "end"
+    accel: float | None = None  # rev/s²; None: the move ramps in force
+
+
+def _positive(value) -> float | None:
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
+        return float(value)
+    return None
 
 
 def model(profile: Profile) -> Model:
@@ -40,9 +49,8 @@ def model(profile: Profile) -> Model:
     creep = str(profile.get("homing.creep", "reverse"))
     speed = profile.get("homing.creep_speed", "initial")
     zero = str(profile.get("homing.zero", "end"))
-    return Model(creep if creep in CREEPS else "reverse",
-                 float(speed) if isinstance(speed, (int, float)) and not isinstance(speed, bool) and speed > 0 else None,
-                 zero if zero in ir.HOME_ZEROS else "end")
+    return Model(creep if creep in CREEPS else "reverse", _positive(speed), zero if zero in ir.HOME_ZEROS else "end",
+                 _positive(profile.get("homing.accel")))
 
 
 def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direction: int, span=None,
@@ -54,8 +62,11 @@ def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direct
     creep_speed = None
     if creep and found.creep_speed is not None:
         creep_speed = ir.Const(found.creep_speed * (steps_per_rev or 1), ir.Unit.STEPS_PER_S, span)
+    accel = None
+    if found.accel is not None:
+        accel = ir.Const(found.accel * (steps_per_rev or 1), ir.Unit.STEPS_PER_S2, span)
     return ir.Home(axis, method, direction, span=span, creep=creep, speed=speed, creep_speed=creep_speed,
-                   zero=found.zero)
+                   zero=found.zero, accel=accel)
 
 
 def refusal(op: ir.Home, profile: Profile, source_steps_per_rev: int) -> str:
@@ -75,7 +86,22 @@ def refusal(op: ir.Home, profile: Profile, source_steps_per_rev: int) -> str:
     if op.creep and not _same_speed(op.creep_speed, target.creep_speed, source_steps_per_rev):
         return (f"the source's homing creeps off the switch at {_speed(op.creep_speed, source_steps_per_rev)}, "
                 f"{name}'s at {_speed_rev(target.creep_speed)}: the homing would take another time")
+    if not _same_speed(op.accel, target.accel, source_steps_per_rev):
+        return (f"the source's homing ramps at {_accel(op.accel, source_steps_per_rev)}, {name}'s at "
+                f"{_accel_rev(target.accel)}: the axis would stop elsewhere past the switch")
     return ""
+
+
+def _accel(accel: ir.Expr | None, steps_per_rev: int) -> str:
+    if accel is None:
+        return "the move ramps"
+    if isinstance(accel, ir.Const):
+        return _accel_rev(float(accel.value) / (steps_per_rev or 1))
+    return "a computed acceleration"
+
+
+def _accel_rev(rev_s2: float | None) -> str:
+    return "the move ramps" if rev_s2 is None else f"{rev_s2:g} rev/s²"
 
 
 _ZERO = {"switch": "zeroes the counter as the switch trips", "end": "zeroes the counter where it stops",

@@ -287,7 +287,8 @@ class Slew:
 class Home:
     """Seek the home switch (`method`: switch | index | switch+index | offset | limit) moving in
     `direction` (+1/-1) at `speed` (steps/s; None: the max speed in force) until the switch trips,
-    then decelerate to a stop past it; then, when `creep` is +1/-1, creep in that direction at
+    then decelerate to a stop past it (ramping at `accel` when given, else at the acceleration and
+    deceleration in force); then, when `creep` is +1/-1, creep in that direction at
     `creep_speed` (steps/s; None: the initial speed in force) and stop as the switch is left (its
     edge). `zero` says where the counter becomes 0: "switch" (at the trip, so the axis stops past
     0), "end" (where the homing stops) or "none" (the counter keeps counting). docs/SIMULATOR.md,
@@ -303,6 +304,7 @@ class Home:
     speed: Expr | None = None  # X150 GH n homes at a speed of its own, not at V
     creep_speed: Expr | None = None  # X150 GHF; None: the initial speed in force (MCode VI)
     zero: str = "end"  # HOME_ZEROS
+    accel: Expr | None = None  # steps/s², the seek's and brake's ramp (X150 GA's default); None: the move ramps
 
 
 HOME_ZEROS = ("switch", "end", "none")
@@ -678,7 +680,7 @@ def op_exprs(op: Op) -> tuple:
     if isinstance(op, Slew):
         return (op.velocity,) if op.velocity is not None else ()
     if isinstance(op, Home):
-        return tuple(e for e in (op.mode, op.speed, op.creep_speed) if e is not None)
+        return tuple(e for e in (op.mode, op.speed, op.creep_speed, op.accel) if e is not None)
     if isinstance(op, Delay):
         return (op.duration,)
     if isinstance(op, SetOutput):

@@ -152,6 +152,8 @@ class _Checker:
             self._unit(op.speed, speeds, where, "homing speed", op.span)
         if op.creep_speed is not None:
             self._unit(op.creep_speed, speeds, where, "homing creep speed", op.span)
+        if op.accel is not None:
+            self._unit(op.accel, frozenset({ir.Unit.STEPS_PER_S2}), where, "homing acceleration", op.span)
         if op.creep not in (-1, 0, 1):
             self.add("meaning", where, f"homing creep direction {op.creep} is not +1, -1 or 0", op.span)
         if op.zero not in ir.HOME_ZEROS:

@@ -762,8 +762,11 @@ class Simulator:
         limits = axis.limits(self.machine.shared)
         if op.speed is not None:  # a homing speed of its own, not the max speed
             limits = dataclasses.replace(limits, maximum=abs(float(self._eval(op.speed))))
-        if axis.home_accel is not None:  # and ramps at the homing acceleration (0: at once)
-            limits = dataclasses.replace(limits, accel=axis.home_accel, decel=axis.home_accel)
+        ramp = axis.home_accel  # the program's homing acceleration, else the operation's (0: at once)
+        if ramp is None and op.accel is not None:
+            ramp = abs(float(self._eval(op.accel)))
+        if ramp is not None:
+            limits = dataclasses.replace(limits, accel=ramp, decel=ramp)
         creep = 0.0
         if op.creep:
             if op.creep_speed is not None:  # the product's final speed, unless the program set its own

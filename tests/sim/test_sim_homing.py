@@ -101,25 +101,26 @@ def test_x150_gh_reverses_onto_the_switch_edge_at_ghf_and_zeroes_there():
     """parker-x150.md L1711-L1722: GH-1 turns negatively at 1 rev/s, at the home input "It will then
     stop, reverse and finally stop completely when the home switch is hit for the second time";
     the final move runs at GHF (default 0.1 rev/s, L1726-L1734); "the GH command will reset the
-    absolute position counter to zero" (L1715). GA is not set, so the move acceleration A ramps
-    (docs/SIMULATOR.md).
+    absolute position counter to zero" (L1715); GH ramps at GA, default 10 rev/s² (L1686-L1695),
+    not at the move acceleration A.
 
-    4000 steps/rev (CUR default); A20 = 80000 steps/s², GH-1 = 4000 steps/s. Switch at -3000:
-    ramp 4000² / 160000 = 100 steps in 0.05 s, cruise 2900 / 4000 = 0.725 s: the switch at
-    0.775 s; brake 0.05 s, 100 steps past (-3100); creep back at 400 steps/s: 0.25 s. Ends at
-    1.075 s on the switch edge, machine -3000, position 0, zero -3000."""
+    4000 steps/rev (CUR default); GA 10 = 40000 steps/s², GH-1 = 4000 steps/s. Switch at -3000:
+    ramp 4000² / 80000 = 200 steps in 0.1 s, cruise 2800 / 4000 = 0.7 s: the switch at 0.8 s;
+    brake 0.1 s, 200 steps past (-3200); creep back at 400 steps/s: 0.5 s. Ends at 1.4 s on the
+    switch edge, machine -3000, position 0, zero -3000."""
     _, end = run("1XE10\n1XD10\n1A20\n1GH-1\n1XT\n", "x150", "1", -3000)
-    assert end.t == pytest.approx(1.075, abs=1e-6)
+    assert end.t == pytest.approx(1.4, abs=1e-6)
     assert (end.data["machine"], end.data["zero"], end.data["position"]) == (-3000, -3000, 0)
 
 
 def test_x150_ga_and_ghf_set_the_homing_ramp_and_the_final_speed():
-    """parker-x150.md L1695 (GA: the acceleration of GH) and L1726-L1734 (GHF: the final move's
-    speed). GA10 = 40000 steps/s², GHF0.5 = 2000 steps/s. Switch at +3000, GH2 = 8000 steps/s:
-    ramp 8000² / 80000 = 800 steps in 0.2 s, cruise 2200 / 8000 = 0.275 s (0.475 s); brake 0.2 s,
-    800 steps past (3800); creep back 800 / 2000 = 0.4 s: 1.075 s, machine 3000, zero 3000."""
-    _, end = run("1XE10\n1XD10\n1GA10\n1GHF0.5\n1GH2\n1XT\n", "x150", "1", 3000)
-    assert end.t == pytest.approx(1.075, abs=1e-6)
+    """parker-x150.md L1695 (GA: the acceleration of GH, replacing the default 10 rev/s²) and
+    L1726-L1734 (GHF: the final move's speed). GA20 = 80000 steps/s², GHF0.5 = 2000 steps/s.
+    Switch at +3000, GH2 = 8000 steps/s: ramp 8000² / 160000 = 400 steps in 0.1 s, cruise
+    2600 / 8000 = 0.325 s (0.425 s); brake 0.1 s, 400 steps past (3400); creep back
+    400 / 2000 = 0.2 s: 0.725 s, machine 3000, zero 3000."""
+    _, end = run("1XE10\n1XD10\n1GA20\n1GHF0.5\n1GH2\n1XT\n", "x150", "1", 3000)
+    assert end.t == pytest.approx(0.725, abs=1e-6)
     assert (end.data["machine"], end.data["zero"], end.data["position"]) == (3000, 3000, 0)
 
 
@@ -136,6 +137,7 @@ def test_the_homing_ir_carries_each_products_homing():
     assert (arcus.direction, arcus.creep, arcus.zero) == (1, 0, "switch")
     x150 = home_of("1XE10\n1XD10\n1GH-2\n1XT\n", "x150", "x150")
     assert (x150.direction, x150.creep, x150.creep_speed.value, x150.zero) == (-1, 1, 400, "end")
+    assert x150.accel.value == 40000 and mcode.accel is None and arcus.accel is None
 
 
 def test_the_oracle_reports_a_homing_that_moves_the_machine_zero():
@@ -213,8 +215,9 @@ def test_the_printer_and_the_verifier_know_the_homing_fields():
     op = ir.Home("1", "switch", -1, creep=1, zero="none")
     assert ir_print.op_text(op) == "home 1 switch direction -1 creep +1 zero none"
     x150 = ir.Home("1", "switch", 1, creep=-1, creep_speed=c(400, U.STEPS_PER_S), zero="end",
-                   speed=c(8000, U.STEPS_PER_S))
-    assert ir_print.op_text(x150) == "home 1 switch direction +1 speed 8000 steps/s creep -1 at 400 steps/s zero end"
+                   speed=c(8000, U.STEPS_PER_S), accel=c(40000, U.STEPS_PER_S2))
+    assert ir_print.op_text(x150) == \
+        "home 1 switch direction +1 speed 8000 steps/s accel 40000 steps/s^2 creep -1 at 400 steps/s zero end"
     bad = module([ir.Home("X", "switch", -1, creep=2, zero="somewhere")])
     messages = [v.message for v in ir_verify.verify(bad)]
     assert any("creep direction 2" in m for m in messages) and any("'somewhere'" in m for m in messages)

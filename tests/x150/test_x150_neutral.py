@@ -112,9 +112,10 @@ def test_gh_is_a_homing_move_at_its_own_speed_that_the_program_waits_for():
 
 def test_a_homing_move_x150_cannot_write_is_refused_and_gh_is_refused_elsewhere():
     span = Span("p.mxt", 2, 1, 2, 5, 0, 4)
-    # a homing as GH does it (creep back at GHF 0.1 rev/s, 0 at the end: parker-x150.md L1715, L1722,
-    # L1726) but at a max speed the program never set
-    seek = ir.Home("X", "switch", 1, span=span, creep=-1, creep_speed=ir.Const(400, ir.Unit.STEPS_PER_S), zero="end")
+    # a homing as GH does it (creep back at GHF 0.1 rev/s, 0 at the end, ramps at GA 10 rev/s²:
+    # parker-x150.md L1715, L1722, L1726, L1686) but at a max speed the program never set
+    seek = ir.Home("X", "switch", 1, span=span, creep=-1, creep_speed=ir.Const(400, ir.Unit.STEPS_PER_S), zero="end",
+                   accel=ir.Const(40000, ir.Unit.STEPS_PER_S2))
     main = ir.Routine("main", ir.RoutineKind.MAIN, [ir.Block("a", [seek, ir.WaitMotion("X", span)], ir.End(span),
                                                              span)], span)
     listing = backend.emit(ir.Module("mcode", "lmd-e", routines=[main], steps_per_rev=4000), PROFILE)
