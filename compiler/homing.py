@@ -17,7 +17,9 @@ Profile keys (`[homing]`):
 - `zero`: "switch" (the counter becomes 0 as the switch trips), "end" (where the homing stops),
   "none" (the counter keeps counting);
 - `accel`: the seek's and the brake's ramp in rev/s² (X150's GA default 10), a program's own
-  setting (GA) replacing it; absent: the move ramps in force.
+  setting (GA) replacing it; absent: the move ramps in force;
+- `input`: true when the command fails unless an input is set up as the home switch (MCode
+  `IS=n,1,a`, Error 80 "HOME Sw. not defined").
 """
 
 from __future__ import annotations
@@ -36,6 +38,7 @@ class Model:
     creep_speed: float | None = None  # rev/s; None: the initial speed in force
     zero: str = "end"
     accel: float | None = None  # rev/s²; None: the move ramps in force
+    input: bool = False  # the homing fails unless an input is set up as the home switch
 
 
 def _positive(value) -> float | None:
@@ -50,7 +53,7 @@ def model(profile: Profile) -> Model:
     speed = profile.get("homing.creep_speed", "initial")
     zero = str(profile.get("homing.zero", "end"))
     return Model(creep if creep in CREEPS else "reverse", _positive(speed), zero if zero in ir.HOME_ZEROS else "end",
-                 _positive(profile.get("homing.accel")))
+                 _positive(profile.get("homing.accel")), profile.get("homing.input", False) is True)
 
 
 def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direction: int, span=None,
@@ -66,7 +69,7 @@ def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direct
     if found.accel is not None:
         accel = ir.Const(found.accel * (steps_per_rev or 1), ir.Unit.STEPS_PER_S2, span)
     return ir.Home(axis, method, direction, span=span, creep=creep, speed=speed, creep_speed=creep_speed,
-                   zero=found.zero, accel=accel)
+                   zero=found.zero, accel=accel, needs_input=found.input)
 
 
 def refusal(op: ir.Home, profile: Profile, source_steps_per_rev: int) -> str:

@@ -293,7 +293,8 @@ class Home:
     edge). `zero` says where the counter becomes 0: "switch" (at the trip, so the axis stops past
     0), "end" (where the homing stops) or "none" (the counter keeps counting). docs/SIMULATOR.md,
     "Homing", has each dialect's homing with the manuals' lines; the lowering fills these fields
-    from the product profile's `[homing]` table (compiler/homing.py)."""
+    from the product profile's `[homing]` table (compiler/homing.py). With `needs_input` the
+    homing fails unless an input has been set up as the home switch (`input_function` "home")."""
 
     axis: str
     method: str  # switch | index | switch+index | offset | limit
@@ -305,6 +306,7 @@ class Home:
     creep_speed: Expr | None = None  # X150 GHF; None: the initial speed in force (MCode VI)
     zero: str = "end"  # HOME_ZEROS
     accel: Expr | None = None  # steps/s², the seek's and brake's ramp (X150 GA's default); None: the move ramps
+    needs_input: bool = False  # fails, without moving, unless an input is set up as the home switch (MCode Error 80)
 
 
 HOME_ZEROS = ("switch", "end", "none")

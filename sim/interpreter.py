@@ -594,6 +594,11 @@ class Simulator:
             if op.axis == ir.ALL_AXES:  # every device now has this value
                 self.settings = {k: v for k, v in self.settings.items() if (k[0], k[2]) != (op.name, op.index)}
             self.settings[(op.name, op.axis, op.index)] = value
+        if op.name == "input_function" and op.index is not None:  # which inputs a homing may use
+            if isinstance(op.value, ir.Text) and op.value.value == "home":
+                self.machine.home_inputs.add(op.index)
+            else:
+                self.machine.home_inputs.discard(op.index)
         if op.name == "home_accel":
             for name in self._expand((op.axis,)):
                 self._axis(name).home_accel = float(value) if value is not None else None
@@ -756,6 +761,9 @@ class Simulator:
         creep back onto its edge when the operation creeps toward it, and zero the counter where
         `op.zero` says. The seek runs toward the switch from whichever side it lies (a device that
         seeks away from it reverses at a limit; that detour is not modelled)."""
+        if op.needs_input and not self.machine.home_inputs:
+            raise RuntimeFault("S016", "the homing needs an input set up as the home switch (input function "
+                                       "'home'), and none is: set one up before homing")
         axis = self._axis(name)
         switch = self.scenario.switches(name).home
         self._event(op, "home", axis=name, method=op.method)

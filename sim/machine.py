@@ -96,6 +96,7 @@ class Machine:
     inputs: dict[int, int] = field(default_factory=dict)
     analog: dict[int, float] = field(default_factory=dict)
     outputs: dict[int, int] = field(default_factory=dict)
+    home_inputs: set[int] = field(default_factory=set)  # inputs set up as the home switch (input_function "home")
     # settings written for every axis ("*"), read by an axis without its own
     shared: dict[str, dict] = field(default_factory=lambda: {"*": {}, "*ramp": {}, "defaults": defaults(0)})
 

@@ -27,7 +27,7 @@ def run(text: str, dialect: str, axis: str, home: float, path: str = "h"):
     return trace, end
 
 
-MCODE_SETUP = "VI=400\nVM=4000\nA=20000\nD=20000\n"
+MCODE_SETUP = "IS=1,1,0\nVI=400\nVM=4000\nA=20000\nD=20000\n"  # input 1 is home (L3512)
 
 
 def test_mcode_hm1_creeps_back_off_the_switch_at_vi_and_leaves_the_counter_alone():
@@ -132,7 +132,7 @@ def test_the_homing_ir_carries_each_products_homing():
         return next(op for _, b in result.analysis.module.blocks() for op in b.ops if isinstance(op, ir.Home))
 
     mcode = home_of("PG 100\nHM 4\nH\nE\nPG\n", "mcode", "mxt")
-    assert (mcode.direction, mcode.creep, mcode.creep_speed, mcode.zero) == (1, 1, None, "none")
+    assert (mcode.direction, mcode.creep, mcode.creep_speed, mcode.zero, mcode.needs_input) == (1, 1, None, "none", True)
     arcus = home_of("HOMEY+\nEND\n", "arcus", "prg")
     assert (arcus.direction, arcus.creep, arcus.zero) == (1, 0, "switch")
     x150 = home_of("1XE10\n1XD10\n1GH-2\n1XT\n", "x150", "x150")
@@ -160,8 +160,8 @@ def test_the_oracle_reports_a_homing_that_moves_the_machine_zero():
     ("HSPD=4000\nLSPD=400\nACC=200\nHOMEX-\nWAITX\nEND\n", "arcus", "x150", 4),
     ("1XE10\n1XD10\n1V2\n1GH-1\n1XT\n", "x150", "arcus", 4),
     ("1XE10\n1XD10\n1V2\n1GH-1\n1XT\n", "x150", "mcode", 4),
-    ("PG 100\nVM=4000\nHM 1\nH\nE\nPG\n", "mcode", "arcus", 3),
-    ("PG 100\nVM=4000\nHM 1\nH\nE\nPG\n", "mcode", "x150", 3),
+    ("IS=1,1,0\nPG 100\nVM=4000\nHM 1\nH\nE\nPG\n", "mcode", "arcus", 4),
+    ("IS=1,1,0\nPG 100\nVM=4000\nHM 1\nH\nE\nPG\n", "mcode", "x150", 4),
 ])
 def test_a_cross_compiled_homing_that_would_move_the_zero_is_refused_on_its_line(source, dialect, target, line):
     """MCode HM leaves the counter alone (lexium-mcode.txt L3198), Arcus HOME zeroes it at the
@@ -202,7 +202,7 @@ def test_the_virtual_device_runs_an_immediate_hm_through_its_creep():
     from mcc.link.device.mcode import MCodeDevice
 
     device = MCodeDevice()
-    for command in ("VI=400", "VM=4000", "A=20000", "D=20000", "P=500", "MR 1000", "HM 1"):
+    for command in ("IS=1,1,0", "VI=400", "VM=4000", "A=20000", "D=20000", "P=500", "MR 1000", "HM 1"):
         device.command(f"{command}\r".encode())
     assert device.command(b"PR P\r").split(b"\r\n")[1] == b"500"
 
@@ -214,6 +214,7 @@ def test_the_printer_and_the_verifier_know_the_homing_fields():
 
     op = ir.Home("1", "switch", -1, creep=1, zero="none")
     assert ir_print.op_text(op) == "home 1 switch direction -1 creep +1 zero none"
+    assert ir_print.op_text(ir.Home("1", "switch", -1, creep=1, zero="none", needs_input=True)).endswith("needs home input")
     x150 = ir.Home("1", "switch", 1, creep=-1, creep_speed=c(400, U.STEPS_PER_S), zero="end",
                    speed=c(8000, U.STEPS_PER_S), accel=c(40000, U.STEPS_PER_S2))
     assert ir_print.op_text(x150) == \
@@ -221,3 +222,15 @@ def test_the_printer_and_the_verifier_know_the_homing_fields():
     bad = module([ir.Home("X", "switch", -1, creep=2, zero="somewhere")])
     messages = [v.message for v in ir_verify.verify(bad)]
     assert any("creep direction 2" in m for m in messages) and any("'somewhere'" in m for m in messages)
+
+
+def test_mcode_hm_without_a_home_input_stops_with_error_80_s016():
+    """lexium-mcode.txt L3200: HM needs "a switch connected to an input defined as home using the IS
+    (Input Setup) command" (type 1 in the IS table, L3512); without one the drive answers Error 80
+    "HOME Sw. not defined" (L8515): the homing does not move and the run stops with S016."""
+    result = driver.check_file("h.mxt", "mcode", None, "VM=4000\nPG 100\nHM 1\nH\nE\nPG\n")
+    trace = simulate(result.analysis.module, Scenario(axes={"1": AxisSwitches(home=-3000)}))
+    assert trace.stopped == "error" and [d.code for d in trace.diagnostics] == ["S016"]
+    assert trace.diagnostics[0].span.line == 3 and kinds(trace, "home") == []
+    set_up = driver.check_file("h.mxt", "mcode", None, "IS=2,1,0\nVI=400\nVM=4000\nPG 100\nHM 1\nH\nE\nPG\n")
+    assert simulate(set_up.analysis.module, Scenario(axes={"1": AxisSwitches(home=-3000)})).stopped == "end"
