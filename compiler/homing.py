@@ -114,7 +114,9 @@ _ZERO = {"switch": "zeroes the counter as the switch trips", "end": "zeroes the 
 def _creep(direction: int | None) -> str:
     if direction is None:
         return "always creeps off the switch"
-    return "creeps off the switch in " + ("+" if direction > 0 else "-") if direction else "does not creep off the switch"
+    if not direction:
+        return "does not creep off the switch"
+    return "creeps off the switch in " + ("+" if direction > 0 else "-")
 
 
 def _same_speed(speed: ir.Expr | None, rev_s: float | None, steps_per_rev: int) -> bool:

@@ -73,7 +73,8 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
             creep = f" creep {op.creep:+d}" + (f" at {expr_text(op.creep_speed)}" if op.creep_speed is not None else "")
         accel = f" accel {expr_text(op.accel)}" if op.accel is not None else ""
         needs = " needs home input" if op.needs_input else ""
-        return f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{accel}{creep} zero {op.zero}{needs}{mode}"
+        return (f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{accel}{creep} zero {op.zero}"
+                f"{needs}{mode}")
     if isinstance(op, ir.Stop):
         return f"stop {op.axis} {'ramp' if op.ramp else 'abort'}"
     if isinstance(op, ir.SetPosition):
