@@ -8,7 +8,8 @@ simulator runs only what the IR says; a backend asks `refusal` whether its diale
 command does what an `ir.Home` says, and refuses the conversion (G003) when it does not: a
 conversion that moves the machine's zero or where the axis stops is a different program.
 
-Profile keys (`[homing]`):
+Profile keys (`[homing]`, and `[homing.methods.<method>]` for what one homing method, an
+`ir.Home.method`, does otherwise):
 
 - `creep`: "written" (the command's type says the creep direction: MCode HM 1-4), "reverse"
   (back onto the switch, against the seek: X150 GH), "none" (no creep: Arcus HOME);
@@ -47,20 +48,23 @@ def _positive(value) -> float | None:
     return None
 
 
-def model(profile: Profile) -> Model:
-    """The profile's homing; a value the table does not allow falls back to the default."""
-    creep = str(profile.get("homing.creep", "reverse"))
-    speed = profile.get("homing.creep_speed", "initial")
-    zero = str(profile.get("homing.zero", "end"))
-    return Model(creep if creep in CREEPS else "reverse", _positive(speed), zero if zero in ir.HOME_ZEROS else "end",
-                 _positive(profile.get("homing.accel")), profile.get("homing.input", False) is True)
+def model(profile: Profile, method: str = "switch") -> Model:
+    """The profile's homing by `method` (its `[homing.methods.<method>]` keys over `[homing]`);
+    a value the table does not allow falls back to the default."""
+    base, own = profile.get("homing"), profile.get(f"homing.methods.{method}")
+    table = {k: v for k, v in (base.items() if isinstance(base, dict) else ()) if k != "methods"}
+    table.update(own if isinstance(own, dict) else {})
+    creep = str(table.get("creep", "reverse"))
+    zero = str(table.get("zero", "end"))
+    return Model(creep if creep in CREEPS else "reverse", _positive(table.get("creep_speed", "initial")),
+                 zero if zero in ir.HOME_ZEROS else "end", _positive(table.get("accel")), table.get("input") is True)
 
 
 def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direction: int, span=None,
             written_creep: int = 0, speed: ir.Expr | None = None) -> ir.Home:
     """The `ir.Home` of the product's homing command seeking in `direction`; `written_creep` is
     the creep direction the command's type gives (MCode HM n)."""
-    found = model(profile)
+    found = model(profile, method)
     creep = {"written": written_creep, "reverse": -direction, "none": 0}[found.creep]
     creep_speed = None
     if creep and found.creep_speed is not None:
@@ -75,7 +79,7 @@ def home_op(profile: Profile, steps_per_rev: int, axis: str, method: str, direct
 def refusal(op: ir.Home, profile: Profile, source_steps_per_rev: int) -> str:
     """Why the target's homing command would not do what `op` says ("" when it does): a different
     zero, a creep off the switch or none, another creep direction or speed."""
-    target = model(profile)
+    target = model(profile, op.method)
     name = profile.dialect
     if op.zero != target.zero:
         return (f"the source's homing {_ZERO[op.zero]}, {name}'s {_ZERO[target.zero]}: the machine's zero would "

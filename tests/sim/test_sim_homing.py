@@ -97,6 +97,29 @@ def test_arcus_home_close_to_the_switch_brakes_from_the_speed_it_reached():
     assert (end.data["machine"], end.data["zero"], end.data["position"]) == (-400, -200, -200)
 
 
+def test_arcus_zhome_ramps_down_to_lspd_and_zeroes_where_it_stops_on_the_index():
+    """arcus-pmx-4ex-sa.txt L676 (ZHOME = ASCII mode 2, L1000): at the home sensor "deceleration is
+    done to ensure smooth ramp down to low speed. Low speed is maintained until the index channel
+    of the encoder is triggered at which point the motion stops and pulse and encoder position
+    counters are reset to zero". mcc's scenarios have no index mark: it comes as the axis reaches
+    LSPD (docs/SIMULATOR.md). Same motion as HOMEX- (1.04 s, machine -3440) but the counter is 0
+    where it stops: zero at -3440, position 0."""
+    _, end = run(ARCUS_SETUP + "ZHOMEX-\nWAITX\nEND\n", "arcus", "X", -3000)
+    assert end.t == pytest.approx(1.04, abs=1e-6)
+    assert (end.data["machine"], end.data["zero"], end.data["position"]) == (-3440, -3440, 0)
+
+
+def test_arcus_zome_zeroes_at_the_index_and_stops_past_it():
+    """arcus-pmx-4ex-sa.txt L678-L680 (ZOME = mode 3, L1005): the axis "maintains the high speed
+    until the index channel of the encoder is triggered at which point the motion stops and ...
+    counters are reset to zero". The scenario's home position stands for the index; the counter
+    becomes 0 there and the stop ramps down as HOME's (mcc's decision): 1.04 s, machine -3440,
+    zero -3000, position -440."""
+    _, end = run(ARCUS_SETUP + "ZOMEX-\nWAITX\nEND\n", "arcus", "X", -3000)
+    assert end.t == pytest.approx(1.04, abs=1e-6)
+    assert (end.data["machine"], end.data["zero"], end.data["position"]) == (-3440, -3000, -440)
+
+
 def test_x150_gh_reverses_onto_the_switch_edge_at_ghf_and_zeroes_there():
     """parker-x150.md L1711-L1722: GH-1 turns negatively at 1 rev/s, at the home input "It will then
     stop, reverse and finally stop completely when the home switch is hit for the second time";
@@ -178,6 +201,7 @@ def test_a_cross_compiled_homing_that_would_move_the_zero_is_refused_on_its_line
 
 @pytest.mark.parametrize("source, dialect, ext, axis", [
     (ARCUS_SETUP + "HOMEX-\nWAITX\nX100\nWAITX\nEND\n", "arcus", "prg", "X"),
+    (ARCUS_SETUP + "ZHOMEX-\nWAITX\nX100\nWAITX\nEND\n", "arcus", "prg", "X"),
     ("1XE10\n1XD10\n1A20\n1V2\n1GH-1\n1D100\n1G\n1XT\n", "x150", "x150", "1"),
     (MCODE_SETUP + "PG 100\nHM 1\nH\nMA 100\nH\nE\nPG\n", "mcode", "mxt", "1"),
 ])
