@@ -23,6 +23,7 @@ import string
 from fractions import Fraction
 
 from mcc.backends.listing import Listing
+from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import FIXED, InForce, lookup, with_fixed_initial_speed
@@ -634,6 +635,9 @@ class Writer:
         if op.speed is not None:  # X150 GH n
             raise Unsupported("homing at a speed of its own (MCode homes at the max speed VM; set VM to that speed "
                               "around the homing move in the source)")
+        refused = homing.refusal(op, self.profile, self.module.steps_per_rev)
+        if refused:  # HM creeps off at VI and leaves P alone (L3198): another homing moves the zero
+            raise Unsupported(refused)
         if op.mode is not None:
             return f"{self.prefix(op.axis)}{name} {self.expr(op.mode)}"
         kind = HOME_TYPES.get((op.direction, op.creep))

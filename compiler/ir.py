@@ -285,17 +285,31 @@ class Slew:
 
 @dataclass(slots=True)
 class Home:
-    """Seek the home reference (`method`: switch | index | switch+index | offset) moving in
-    `direction` (+1/-1) at `speed` (steps/s; None: the max speed in force), then creep off it in
-    `creep` (+1/-1, 0: the device's default) at the initial speed; the position there becomes 0."""
+    """Seek the home switch (`method`: switch | index | switch+index | offset | limit) moving in
+    `direction` (+1/-1) at `speed` (steps/s; None: the max speed in force) until the switch trips,
+    then decelerate to a stop past it (ramping at `accel` when given, else at the acceleration and
+    deceleration in force); then, when `creep` is +1/-1, creep in that direction at
+    `creep_speed` (steps/s; None: the initial speed in force) and stop as the switch is left (its
+    edge). `zero` says where the counter becomes 0: "switch" (at the trip, so the axis stops past
+    0), "end" (where the homing stops) or "none" (the counter keeps counting). docs/SIMULATOR.md,
+    "Homing", has each dialect's homing with the manuals' lines; the lowering fills these fields
+    from the product profile's `[homing]` table (compiler/homing.py). With `needs_input` the
+    homing fails unless an input has been set up as the home switch (`input_function` "home")."""
 
     axis: str
-    method: str  # switch | index | switch+index | offset
+    method: str  # switch | index | switch+index | offset | limit
     direction: int = 0
     mode: Expr | None = None  # legacy: a dialect homing type; the contract uses direction/creep
     span: Span | None = None
-    creep: int = 0
+    creep: int = 0  # 0: no creep off the switch
     speed: Expr | None = None  # X150 GH n homes at a speed of its own, not at V
+    creep_speed: Expr | None = None  # X150 GHF; None: the initial speed in force (MCode VI)
+    zero: str = "end"  # HOME_ZEROS
+    accel: Expr | None = None  # steps/s², the seek's and brake's ramp (X150 GA's default); None: the move ramps
+    needs_input: bool = False  # fails, without moving, unless an input is set up as the home switch (MCode Error 80)
+
+
+HOME_ZEROS = ("switch", "end", "none")
 
 
 @dataclass(slots=True)
@@ -678,7 +692,7 @@ def op_exprs(op: Op) -> tuple:
     if isinstance(op, Slew):
         return (op.velocity,) if op.velocity is not None else ()
     if isinstance(op, Home):
-        return (op.mode,) if op.mode is not None else ()
+        return tuple(e for e in (op.mode, op.speed, op.creep_speed, op.accel) if e is not None)
     if isinstance(op, Delay):
         return (op.duration,)
     if isinstance(op, SetOutput):

@@ -68,7 +68,13 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
     if isinstance(op, ir.Home):
         mode = f" mode {expr_text(op.mode)}" if op.mode is not None else ""
         speed = f" speed {expr_text(op.speed)}" if op.speed is not None else ""
-        return f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{mode}"
+        creep = ""
+        if op.creep:
+            creep = f" creep {op.creep:+d}" + (f" at {expr_text(op.creep_speed)}" if op.creep_speed is not None else "")
+        accel = f" accel {expr_text(op.accel)}" if op.accel is not None else ""
+        needs = " needs home input" if op.needs_input else ""
+        return (f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{accel}{creep} zero {op.zero}"
+                f"{needs}{mode}")
     if isinstance(op, ir.Stop):
         return f"stop {op.axis} {'ramp' if op.ramp else 'abort'}"
     if isinstance(op, ir.SetPosition):

@@ -130,8 +130,8 @@ class _Checker:
                 self._unit(value, POSITION, where, "arc centre", op.span)
             if op.angle is not None:
                 self._unit(op.angle, ANGLE, where, "arc angle", op.span)
-        elif isinstance(op, ir.Home) and op.speed is not None:
-            self._unit(op.speed, frozenset({ir.Unit.STEPS_PER_S}), where, "homing speed", op.span)
+        elif isinstance(op, ir.Home):
+            self._home(op, where)
         elif isinstance(op, ir.Step):
             self._unit(op.count, frozenset({ir.Unit.NONE}), where, "step count", op.span)
         elif isinstance(op, ir.Slew) and op.velocity is not None:
@@ -144,6 +144,21 @@ class _Checker:
                 self.add("meaning", where, f"setting '{op.name}' is not in ir_names.SETTINGS", op.span)
             else:
                 self._unit(op.value, frozenset({info.unit}), where, op.name, op.span)
+
+    def _home(self, op: ir.Home, where: str) -> None:
+        """A homing operation says what it does after the switch (docs/IR.md, "Home")."""
+        speeds = frozenset({ir.Unit.STEPS_PER_S})
+        if op.speed is not None:
+            self._unit(op.speed, speeds, where, "homing speed", op.span)
+        if op.creep_speed is not None:
+            self._unit(op.creep_speed, speeds, where, "homing creep speed", op.span)
+        if op.accel is not None:
+            self._unit(op.accel, frozenset({ir.Unit.STEPS_PER_S2}), where, "homing acceleration", op.span)
+        if op.creep not in (-1, 0, 1):
+            self.add("meaning", where, f"homing creep direction {op.creep} is not +1, -1 or 0", op.span)
+        if op.zero not in ir.HOME_ZEROS:
+            self.add("meaning", where, f"homing zero '{op.zero}' is not one of {', '.join(ir.HOME_ZEROS)}",
+                     op.span)
 
     def _unit(self, expr, allowed: frozenset, where: str, what: str, span) -> None:
         if isinstance(expr, ir.Const) and expr.unit not in allowed:

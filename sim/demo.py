@@ -27,7 +27,7 @@ def program() -> ir.Module:
              ir.SetMotion(ir.MotionParam.ACCEL, "*", k(20000, U.STEPS_PER_S2)),
              ir.SetMotion(ir.MotionParam.DECEL, "*", k(20000, U.STEPS_PER_S2)),
              ir.SetMotion(ir.MotionParam.PROFILE, "Y", k(1)),
-             ir.Home("X", "switch", -1), ir.WaitMotion("X"),
+             ir.Home("X", "switch", -1, zero="switch"), ir.WaitMotion("X"),  # 0 at the switch, no creep
              ir.Assign(ir.Var("V1"), k(0))]
     cycle = [ir.Move(ir.MoveMode.ABSOLUTE, (("X", k(6000, U.STEPS)), ("Y", k(3000, U.STEPS)))),
              ir.WaitMotion("*"),

@@ -26,7 +26,8 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import Span
 from mcc.sim import values
 from mcc.sim.machine import Axis, Machine, defaults
-from mcc.sim.motion import INF, Limits, Motion, Path, plan, plan_slew, plan_stop
+from mcc.sim.motion import (INF, Limits, Motion, Path, plan, plan_brake, plan_creep, plan_seek, plan_slew,
+                             plan_stop)
 from mcc.sim.scenario import Scenario
 from mcc.sim.trace import Event, Trace
 
@@ -54,6 +55,20 @@ UNMODELLED = {"following_mode": "the axis follows an external input instead of r
 # Readings that report a setting: the setting they read and its value before the program sets it.
 SETTING_READINGS = {"following_ratio": ("following_ratio", 100), "input_levels": ("input_active_high", 0),
                     "output_levels": ("output_active_high", 0)}
+
+
+@dataclass
+class HomeRun:
+    """A homing in progress: its operation, the switch (machine coordinate), the limits it runs
+    at, its creep speed, the phase it is in and its direction of travel."""
+
+    op: ir.Home
+    switch: float
+    limits: Limits
+    creep: float
+    stage: str = "seek"  # seek | brake | creep
+    direction: float = 1.0
+    speed: float = 0.0  # at the switch, when the seek trips it
 
 
 class ContractError(Exception):
@@ -663,9 +678,17 @@ class Simulator:
             if op.axis == ir.ALL_AXES:  # every device now has this value
                 self.settings = {k: v for k, v in self.settings.items() if (k[0], k[2]) != (op.name, op.index)}
             self.settings[(op.name, op.axis, op.index)] = value
+        if op.name == "input_function" and op.index is not None:  # which inputs a homing may use
+            if isinstance(op.value, ir.Text) and op.value.value == "home":
+                self.machine.home_inputs.add(op.index)
+            else:
+                self.machine.home_inputs.discard(op.index)
         if op.name == "home_accel":
             for name in self._expand((op.axis,)):
                 self._axis(name).home_accel = float(value) if value is not None else None
+        elif op.name == "home_final_speed":
+            for name in self._expand((op.axis,)):
+                self._axis(name).home_final_speed = float(value) if value is not None else None
         elif op.name == "handler_enable":
             mask = self._eval_quiet(op.value)
             if mask is not None:
@@ -818,24 +841,100 @@ class Simulator:
         self.slewing[name] = velocity
 
     def _home(self, op: ir.Home, name: str) -> None:
+        """Homing as the IR says (docs/SIMULATOR.md, "Homing"): seek the switch, brake past it,
+        creep back onto its edge when the operation creeps toward it, and zero the counter where
+        `op.zero` says. The seek runs toward the switch from whichever side it lies (a device that
+        seeks away from it reverses at a limit; that detour is not modelled)."""
+        if op.needs_input and not self.machine.home_inputs:
+            raise RuntimeFault("S016", "the homing needs an input set up as the home switch (input function "
+                                       "'home'), and none is: set one up before homing")
         axis = self._axis(name)
         switch = self.scenario.switches(name).home
-        target = switch - axis.offset
         self._event(op, "home", axis=name, method=op.method)
-        start = axis.position
-        if target == start:
-            axis.position, axis.offset = 0.0, switch
-            self._event(op, "home_end", axis=name)
-            return
-        delta = target - start
-        path = Path({name: start}, abs(delta), {name: 1.0 if delta > 0 else -1.0})
         limits = axis.limits(self.machine.shared)
-        if op.speed is not None:  # X150 GH n seeks at a speed of its own, not at the max speed
+        if op.speed is not None:  # a homing speed of its own, not the max speed
             limits = dataclasses.replace(limits, maximum=abs(float(self._eval(op.speed))))
-        if axis.home_accel is not None:  # and ramps at GA (0: at once)
-            limits = dataclasses.replace(limits, accel=axis.home_accel, decel=axis.home_accel)
-        self._begin(op, path, limits, targets={name: target}, plan_length=abs(delta))
-        axis.on_end = "home"
+        ramp = axis.home_accel  # the program's homing acceleration, else the operation's (0: at once)
+        if ramp is None and op.accel is not None:
+            ramp = abs(float(self._eval(op.accel)))
+        if ramp is not None:
+            limits = dataclasses.replace(limits, accel=ramp, decel=ramp)
+        creep = 0.0
+        if op.creep:
+            if op.creep_speed is not None:  # the product's final speed, unless the program set its own
+                creep = axis.home_final_speed if axis.home_final_speed is not None \
+                    else abs(float(self._eval(op.creep_speed)))
+            else:
+                creep = limits.initial
+            if creep <= 0:
+                raise RuntimeFault("S007", "the homing would creep off the switch at speed 0 and never end "
+                                           "(set the initial speed first)")
+        run = HomeRun(op, switch, limits, creep)
+        delta = switch - (axis.position + axis.offset)
+        if delta == 0:  # on the switch already: it trips at once
+            self._home_tripped(axis, run, 0.0)
+            return
+        try:
+            segments, speed = plan_seek(self.now, abs(delta), limits)
+        except ValueError as exc:
+            raise RuntimeFault("S007", f"{exc} (set a maximum speed first)") from None
+        run.direction = 1.0 if delta > 0 else -1.0
+        self._home_phase(axis, run, "seek", abs(delta), segments)
+        run.speed = speed
+
+    def finish_homing(self, until: float) -> None:
+        """Run on the homing phases a finished program left going, up to `until`: each phase starts
+        when the one before ends, so a caller that freezes the machine after the program (the
+        virtual device between commands) must let them follow one another first."""
+        for axis in self.machine.axes.values():
+            while axis.on_end == "home" and axis.motion is not None and axis.motion.t_end <= until:
+                self.now = max(self.now, axis.motion.t_end)
+                self._motion_end(axis)
+
+    def _home_phase(self, axis: Axis, run: HomeRun, stage: str, length: float, segments) -> None:
+        start = axis.position
+        path = Path({axis.name: start}, length, {axis.name: run.direction})
+        self._install(run.op, path, segments, {axis.name: start + run.direction * length})
+        run.stage = stage
+        axis.on_end, axis.homing = "home", run
+
+    def _home_next(self, axis: Axis) -> None:
+        """A phase of the homing has ended: go on with the next one."""
+        run = axis.homing
+        if run.stage == "seek":
+            self._home_tripped(axis, run, run.speed)
+        elif run.stage == "brake":
+            self._home_creep(axis, run)
+        else:
+            self._home_done(axis, run)
+
+    def _home_tripped(self, axis: Axis, run: HomeRun, speed: float) -> None:
+        """The switch trips with the axis at `speed`: zero here if so told, then brake past it."""
+        if run.op.zero == "switch":
+            axis.position, axis.offset = axis.position + axis.offset - run.switch, run.switch
+        segments = plan_brake(self.now, speed, run.limits.initial, run.limits.decel, run.limits.smooth)
+        if segments:
+            self._home_phase(axis, run, "brake", segments[0].length, segments)
+        else:
+            self._home_creep(axis, run)
+
+    def _home_creep(self, axis: Axis, run: HomeRun) -> None:
+        """Creep in the operation's direction until the switch is left: back onto its edge when the
+        creep goes toward it; a creep away from a switch already passed ends at once."""
+        back = run.switch - (axis.position + axis.offset)
+        if run.op.creep and back * run.op.creep > 0:
+            run.direction = float(run.op.creep)
+            self._home_phase(axis, run, "creep", abs(back), plan_creep(self.now, abs(back), run.creep))
+        else:
+            self._home_done(axis, run)
+
+    def _home_done(self, axis: Axis, run: HomeRun) -> None:
+        if run.op.zero == "end":
+            axis.position, axis.offset = 0.0, axis.position + axis.offset
+        axis.on_end, axis.homing = "", None
+        machine = axis.position + axis.offset
+        self._event(run.op, "home_end", axis=axis.name, position=_round(axis.position), machine=_round(machine),
+                    zero=_round(axis.offset))
 
     def _begin(self, op, path: Path, lim: Limits, targets: dict[str, float], plan_length: float) -> None:
         try:
@@ -957,10 +1056,8 @@ class Simulator:
         axis.position = end[axis.name]
         axis.motion = None
         if axis.on_end == "home":
-            axis.offset += axis.position
-            axis.position = 0.0
             axis.on_end = ""
-            self._event(self.motion_op.get(motion.ident), "home_end", axis=axis.name)
+            self._home_next(axis)
         else:
             self._event(self.motion_op.get(motion.ident), "move_end", axis=axis.name,
                         position=_round(axis.position))

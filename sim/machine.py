@@ -45,6 +45,8 @@ class Axis:
     enabled: int = 1
     on_end: str = ""  # "home": the position becomes 0 when the motion ends
     home_accel: float | None = None  # X150 GA: homing ramps at it rather than at the move acceleration
+    home_final_speed: float | None = None  # the home_final_speed setting: the creep runs at it
+    homing: object = None  # the homing in progress (interpreter.HomeRun), while on_end is "home"
     cached: Limits | None = None  # the limits in force, until a setting changes
 
     def at(self, t: float) -> float:
@@ -94,6 +96,7 @@ class Machine:
     inputs: dict[int, int] = field(default_factory=dict)
     analog: dict[int, float] = field(default_factory=dict)
     outputs: dict[int, int] = field(default_factory=dict)
+    home_inputs: set[int] = field(default_factory=set)  # inputs set up as the home switch (input_function "home")
     # settings written for every axis ("*"), read by an axis without its own
     shared: dict[str, dict] = field(default_factory=lambda: {"*": {}, "*ramp": {}, "defaults": defaults(0)})
 

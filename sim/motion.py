@@ -223,3 +223,44 @@ def plan_stop(t0: float, v_from: float, decel: float, smooth: bool) -> list[Segm
     if v_from <= 0 or decel <= 0:
         return []
     return [Segment(t0, v_from / decel, 0.0, v_from, 0.0, smooth)]
+
+
+def plan_seek(t0: float, length: float, lim: Limits) -> tuple[list[Segment], float]:
+    """A homing seek: ramp from the initial speed toward the maximum and keep going until the
+    switch, `length` (> 0) steps away; the axis passes the switch still moving. Returns the
+    segments and the speed at the switch (the seek does not know where the switch is, so it never
+    slows down for it)."""
+    vi = max(lim.initial, 0.0)
+    vmax = max(lim.maximum, vi)
+    if vmax <= 0:
+        raise ValueError("the homing speed is 0: the seek would never reach the switch")
+    segments: list[Segment] = []
+    t, s, v = t0, 0.0, vi
+    if vmax > vi and lim.accel > 0:
+        up = (vmax * vmax - vi * vi) / (2 * lim.accel)
+        if up >= length:  # the switch comes before the top speed
+            v = math.sqrt(vi * vi + 2 * lim.accel * length)
+            segments.append(Segment(t, (v - vi) / lim.accel, 0.0, vi, v, lim.smooth))
+            return segments, v
+        dur = (vmax - vi) / lim.accel
+        segments.append(Segment(t, dur, 0.0, vi, vmax, lim.smooth))
+        t, s = t + dur, up
+    v = vmax
+    segments.append(Segment(t, (length - s) / v, s, v, v))
+    return segments, v
+
+
+def plan_brake(t0: float, v_from: float, v_to: float, decel: float, smooth: bool) -> list[Segment]:
+    """Ramp from `v_from` down to `v_to` at `decel` and stop there (decel 0 or less: at once):
+    a homing seek slowing down past the switch to its initial speed."""
+    if v_from <= v_to or decel <= 0:
+        return []
+    return [Segment(t0, (v_from - v_to) / decel, 0.0, v_from, v_to, smooth)]
+
+
+def plan_creep(t0: float, length: float, speed: float) -> list[Segment]:
+    """A creep at constant `speed` (> 0) for `length` steps, starting and stopping at once (a
+    speed the motor starts and stops at without a ramp)."""
+    if length <= 0:
+        return []
+    return [Segment(t0, length / speed, 0.0, speed, speed)]

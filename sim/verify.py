@@ -256,6 +256,13 @@ def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float) -> str:
             return f"axis {dx['axis']} is at {dx['position'] * scale:g} steps in the source, at " \
                    f"{dy['position']:g} in the output"
         return ""
+    if x.kind == "home_end":  # where the homing left the axis and the machine's zero (docs/SIMULATOR.md)
+        for key, what in (("machine", "stops at machine position"), ("zero", "has its zero at machine position"),
+                          ("position", "reads")):
+            if key in dx and abs(dx[key] * scale - dy.get(key, float("inf"))) > POSITION_TOLERANCE + 1e-6:
+                return f"after homing, axis {dx['axis']} {what} {dx[key] * scale:g} steps in the source, " \
+                       f"{dy.get(key, float('nan')):g} in the output"
+        return ""
     if x.kind == "slew":
         if abs(dx["velocity"] * scale - dy["velocity"]) > max(1.0, abs(dy["velocity"]) * TIME_REL):
             return f"axis {dx['axis']} slews at {dx['velocity'] * scale:g} steps/s in the source, at " \

@@ -22,6 +22,7 @@ from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.convert import Refused
 from mcc.backends.arcus.target import DIALECT, HOME_KEYWORDS, MOTION_IR
 from mcc.backends.structure import NEGATE, negate
+from mcc.compiler import homing
 from mcc.compiler import in_force, ir, units
 from mcc.compiler.arcus import catalog as arcus_catalog
 from mcc.compiler.span import Span
@@ -331,7 +332,12 @@ class Legalizer:
             self.ctx.unsupported(op, "homing at a speed of its own has no Arcus statement (HOME seeks at the high "
                                      "speed HSPD; set HSPD to that speed around the homing move in the source)")
             raise Skip
-        self.emit(ir.Home(self.axis(op.axis, op), op.method, op.direction, span=op.span))
+        refused = homing.refusal(op, self.ctx.profile, self.ctx.module.steps_per_rev)
+        if refused:  # HOME zeroes at the switch and brakes past it (L662): another homing moves the zero
+            self.ctx.unsupported(op, refused)
+            raise Skip
+        self.emit(homing.home_op(self.ctx.profile, self.ctx.profile.steps_per_rev, self.axis(op.axis, op), op.method,
+                                 op.direction, op.span))
 
     def op_stop(self, op: ir.Stop) -> None:
         self.emit(ir.Stop(self.axis(op.axis, op, setting=True), op.ramp, op.span))

@@ -30,6 +30,7 @@ from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
 from mcc.compiler.x150 import naming, neutral
+from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
@@ -700,6 +701,9 @@ class Writer:
         if op.method != "switch" or op.direction not in (1, -1):
             how = f"by {op.method}" + (" without a direction" if op.direction not in (1, -1) else "")
             raise CannotWrite(f"X150 homes on the home switch in + or - (GH); homing {how} has no equivalent", "G003")
+        refused = homing.refusal(op, self.profile, self.source_spr)
+        if refused:  # GH zeroes at the switch edge after creeping back at GHF (L1715, L1722)
+            raise CannotWrite(refused, "G003")
         speed = op.speed
         if speed is None:  # another dialect's homing seeks at the max speed in force: GH at that speed
             speed = lookup(self.forces.get(id(op), {}), ir.MotionParam.MAX_SPEED, op.axis)

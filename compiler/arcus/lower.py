@@ -32,6 +32,7 @@ from mcc.compiler.arcus import syntax as st
 from mcc.compiler.arcus.resolve import (ASSIGN, BARE, COLON, CONDITION, CONTROL, MOVE, NUMBERED, WRITE, Resolved,
                                         Resolver)
 from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler import homing
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -430,7 +431,8 @@ class Lowering:
 
     def home(self, res: Resolved) -> ir.Op:
         method = HOME_METHODS.get(int(res.keyword.get("home_mode", 0)), "switch")
-        return ir.Home(res.match.axis, method, res.match.direction, span=res.span)
+        return homing.home_op(self.profile, self.module.steps_per_rev, res.match.axis, method, res.match.direction,
+                              res.span)
 
     def stop(self, res: Resolved) -> ir.Op:
         return ir.Stop(res.match.axis or ir.ALL_AXES, ramp=res.keyword.ir == "stop", span=res.span)

@@ -23,6 +23,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.resolve import Resolved, Resolver
+from mcc.compiler import homing
 from mcc.compiler.profiles import Profile
 
 DIALECT = "mcode"
@@ -419,7 +420,8 @@ class Lowering:
             kind_of = self.expr(args[0])
             if isinstance(kind_of, ir.Const) and kind_of.value in HOME_TYPES:
                 seek, creep = HOME_TYPES[kind_of.value]
-                return ir.Home(axis, HOME_METHODS[name], seek, span=span, creep=creep)
+                return homing.home_op(self.profile, self.module.steps_per_rev, axis, HOME_METHODS[name], seek, span,
+                                      written_creep=creep)
         if kind == "hold" or name == "H":
             if args:
                 return ir.Delay(units.to_ir(self.expr(args[0]), MS_TO_S, ir.Unit.S), span)

@@ -36,6 +36,7 @@ from fractions import Fraction
 
 from mcc.compiler import ir, ir_names
 from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler import homing
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler import units
@@ -370,7 +371,8 @@ class Lowering:
             # command runs once homing has ended ("use the SP command after the GH is complete", L1715)
             speed = ir.Const(units.revs_to_steps(abs(arg.value), self.module.steps_per_rev), ir.Unit.STEPS_PER_S,
                              arg.span)
-            self.emit(ir.Home(axis, "switch", 1 if arg.value > 0 else -1, span=span, speed=speed))
+            self.emit(homing.home_op(self.profile, self.module.steps_per_rev, axis, "switch",
+                                     1 if arg.value > 0 else -1, span, speed=speed))
             self.emit(ir.WaitMotion(axis, span))
         elif name == "PZ" and arg is None and axis_ok:
             self.emit(ir.SetPosition(axis, ir.Const(0, ir.Unit.STEPS, span), span))

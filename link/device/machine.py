@@ -173,6 +173,7 @@ class DeviceMachine:
             return self._ended(Outcome("error", f"internal error in the simulator ({type(exc).__name__}: {exc}); "
                                                 "this is a bug in mcc, please report it"), program)
         self.last = trace
+        simulator.finish_homing(max(self.run_limit, trace.time))  # its phases follow one another
         end = trace.time
         if trace.stopped == "end":
             # The program ended while moves it started were still running: they go on to their
@@ -189,8 +190,6 @@ class DeviceMachine:
                     if axis.motion.t_end == float("inf"):   # a slew: it reports the speed it runs at
                         self.moving[name] = self.slewing[name] = axis.speed(end + 3600.0)
                 axis.position = round(axis.at(end), 6)
-                if not axis.moving(end) and axis.on_end == "home":
-                    axis.offset, axis.position = axis.offset + axis.position, 0.0
                 axis.motion = None
                 axis.on_end = ""
         self.variables.update(trace.variables)

@@ -243,7 +243,9 @@ def test_logic_conditions_predicated_calls_and_input_waits() -> None:
         block("t", [ir.SetOutput(1, const(1))], ir.Jump("x")),
         block("x", [], ir.End()),
     ])
-    sub = ir.Routine("K", ir.RoutineKind.SUBROUTINE, [block("k", [ir.Home("X", "switch", -1)], ir.Return())])
+    # HOMEX-: 0 at the switch, no creep back (arcus-pmx-4ex-sa.txt L662)
+    sub = ir.Routine("K", ir.RoutineKind.SUBROUTINE, [block("k", [ir.Home("X", "switch", -1, zero="switch")],
+                                                             ir.Return())])
     module = module_of(main, sub)
     listing, compiled = compile_and_read_back(module)
     text = listing.text.splitlines()

@@ -112,7 +112,10 @@ def test_gh_is_a_homing_move_at_its_own_speed_that_the_program_waits_for():
 
 def test_a_homing_move_x150_cannot_write_is_refused_and_gh_is_refused_elsewhere():
     span = Span("p.mxt", 2, 1, 2, 5, 0, 4)
-    seek = ir.Home("X", "switch", 1, span=span)  # MCode HM at a max speed the program never set
+    # a homing as GH does it (creep back at GHF 0.1 rev/s, 0 at the end, ramps at GA 10 rev/s²:
+    # parker-x150.md L1715, L1722, L1726, L1686) but at a max speed the program never set
+    seek = ir.Home("X", "switch", 1, span=span, creep=-1, creep_speed=ir.Const(400, ir.Unit.STEPS_PER_S), zero="end",
+                   accel=ir.Const(40000, ir.Unit.STEPS_PER_S2))
     main = ir.Routine("main", ir.RoutineKind.MAIN, [ir.Block("a", [seek, ir.WaitMotion("X", span)], ir.End(span),
                                                              span)], span)
     listing = backend.emit(ir.Module("mcode", "lmd-e", routines=[main], steps_per_rev=4000), PROFILE)
@@ -123,15 +126,15 @@ def test_a_homing_move_x150_cannot_write_is_refused_and_gh_is_refused_elsewhere(
         assert any(d.code == "G003" and words in d.message and d.span.line == 2 for d in result.diagnostics)
 
 
-def test_another_dialects_homing_becomes_gh_at_the_speed_and_acceleration_in_force():
+def test_another_dialects_homing_is_refused_because_gh_moves_the_zero():
+    """MCode HM creeps off the switch at VI and leaves P counting (lexium-mcode.txt L3198; its
+    example sets P=0 itself, L8084-L8086); X150 GH zeroes the counter where it stops (parker-x150.md
+    L1715): written as GH, the program's position 0 would be elsewhere on the machine, so the
+    conversion is refused on the HM line."""
     source = "PG 1\nVM=25600\nA=102400\nD=102400\nHM 1\nH\nMA 51200\nH\nE\nPG\n"
     result = driver.compile_file("h.mxt", "mcode", target="x150", text=source)
-    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
-    lines = result.listing.text.splitlines()
-    assert lines[lines.index("1GH-0.5") - 1] == "1GA2"  # 25600 steps/s and 102400 steps/s^2 at 51200 steps/rev
-    assert not driver.compile_file("out.x150", "x150", text=result.listing.text).has_errors
-    unknown = driver.compile_file("h.mxt", "mcode", target="x150", text="PG 1\nHM 1\nH\nE\nPG\n")
-    assert any(d.code == "G003" and "max speed" in d.message for d in unknown.diagnostics)
+    [refusal] = [d for d in result.diagnostics if d.severity.value == "error"]
+    assert refusal.code == "G003" and refusal.span.line == 5 and "zero" in refusal.message
 
 
 def test_a_conditional_call_is_an_if_around_the_call():

@@ -1,4 +1,5 @@
 ' Homing: home to the switch (HM 1), then index to 4000 and switch output 1 on.
+IS=1,1,0
 VI=400
 VM=4000
 A=20000
