@@ -61,8 +61,8 @@ def power_up(profile: "Profile | None", steps_per_rev: int) -> dict[str, float]:
     out = {name: value * scale for name, value in FALLBACK_POWER_UP_PER_REV.items()}
     out["profile"] = 0
     table = profile.get("machine.defaults", {}) if profile is not None else {}
-    if not isinstance(table, dict):
-        return out
+    if not isinstance(table, dict) or table.get("unit", "steps") not in ("steps", "revs"):
+        return out  # a table in no known unit is not guessed at
     per = 1 if table.get("unit", "steps") == "steps" else scale
     for name in SCALED_SETTINGS:
         value = table.get(name)

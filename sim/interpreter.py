@@ -164,13 +164,17 @@ class Simulator:
         arithmetic = machine_table(self.product, "arithmetic")
         self.division = str(arithmetic.get("integer_division", "truncate"))
         self.motion_floor = arithmetic.get("float_to_motion") == "floor"
-        self.float_format = arithmetic.get("float_print")  # [width, decimals, notation, justification]
+        # [width, decimals, notation, justification]; a malformed value in a user's profile is ignored
+        fmt = arithmetic.get("float_print")
+        self.float_format = fmt if isinstance(fmt, list) and 0 < len(fmt) <= 4 and all(
+            isinstance(v, int) and not isinstance(v, bool) and 0 <= v <= 32 for v in fmt) else None
         self.float_pad = bool(arithmetic.get("float_print_pad", False))
         # inputs: the scenario gives electrical levels; I1.. read the logic state through the
         # polarity the program set (IS, INL) or the product's default (docs/SIMULATOR.md, "Inputs")
         inputs = machine_table(self.product, "inputs")
         self.active_high_default = bool(inputs.get("active_high", True))
-        self.input_count = int(inputs.get("count", 0))
+        count = inputs.get("count", 0)
+        self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)

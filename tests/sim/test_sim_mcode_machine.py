@@ -230,3 +230,16 @@ def test_the_other_products_keep_their_truncating_division():
 
     assert values.binary("/", -7, 2) == -3 and values.binary("/", -7, 2, "floor") == -4
     assert values.binary("%", -7, 2) == -1 and values.binary("%", -7, 2, "floor") == 1
+
+
+def test_a_malformed_machine_table_in_a_users_profile_falls_back_without_a_traceback(tmp_path):
+    """docs/PROFILES.md `[machine.*]`: values of the wrong kind are ignored (mcc's fallback applies):
+    the run still ends, the float prints in Python's plain form, the speed is 1 rev/s."""
+    path = tmp_path / "bad.toml"
+    path.write_text('extends = "lmd-c"\nname = "bad"\n[machine.arithmetic]\nfloat_print = "abc"\n'
+                    '[machine.inputs]\ncount = "x"\n[machine.defaults]\nunit = 5\n', encoding="utf-8")
+    profile = profiles.load(str(path))
+    assert profiles.power_up(profile, 51200)["max_speed"] == 51200.0  # 1 rev/s: the table is not read
+    simulated = simulate_file("prog.mxt", "mcode", profile, None, text=program("F1=6/5", "PR F1", "PR IN"))
+    assert simulated.trace is not None and simulated.trace.stopped == "end"
+    assert [text.strip() for _, text in simulated.trace.prints] == ["1.2", "0"]
