@@ -26,7 +26,7 @@ from mcc.backends.listing import Listing
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
-from mcc.compiler.in_force import FIXED, InForce, lookup, with_fixed_initial_speed
+from mcc.compiler.in_force import FIXED, InForce, lookup, with_fixed_initial_speed, with_source_power_up
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
@@ -920,8 +920,9 @@ def pattern_cond(pattern: ir.Pattern):
 def emit(module: ir.Module, profile: Profile) -> Listing:
     # an X150 program starts every move from standstill; VI has no 0: the output sets its lowest
     lowest = float(cat.load().lookup("VI").entry.range[0])
-    module = with_fixed_initial_speed(
-        module, lowest / float(units.ratio(module.steps_per_rev, profile.steps_per_rev)))
+    lowest = lowest / float(units.ratio(module.steps_per_rev, profile.steps_per_rev))
+    module = with_source_power_up(module, profile, lowest)  # the source's power-up speeds where ours differ
+    module = with_fixed_initial_speed(module, lowest)
     try:
         return Writer(module, profile).run()
     except Unsupported as exc:  # a limit of the whole program (the name space), not of one line

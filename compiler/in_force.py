@@ -54,6 +54,224 @@ def with_fixed_initial_speed(module: ir.Module, lowest: float) -> ir.Module:
     return copy
 
 
+POWER_UP_PARAMS = (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED, ir.MotionParam.ACCEL,
+                   ir.MotionParam.DECEL)
+MOTION_OPS = (ir.Move, ir.Arc, ir.Slew, ir.Home)
+SETTING_READINGS = {p.value for p in POWER_UP_PARAMS}
+
+
+def source_profile(module: ir.Module, target):
+    """The built-in profile the module was compiled for, when it is not the target's own (None for
+    the target's own profile, and for a profile not known by name here: a user's profile file, a
+    hand-built module)."""
+    from mcc.compiler.profiles import ProfileError, load
+
+    if module.profile == target.name or not module.profile:
+        return None
+    try:
+        return load(module.profile)
+    except ProfileError:
+        return None
+
+
+def with_source_power_up(module: ir.Module, target, lowest_initial: float = 0.0) -> ir.Module:
+    """What a program relies on from its own product, made explicit for another: its power-up
+    motion settings (`with_power_up`) and its inputs' polarity (`with_input_polarity`). Every
+    backend calls it first; a module from the target's own or an unknown profile is returned as it
+    is."""
+    source = source_profile(module, target)
+    if source is None:
+        return module
+    return with_input_polarity(with_power_up(module, source, target, lowest_initial), source, target)
+
+
+def active_high(profile) -> bool:
+    """Whether the product's inputs read active at a high level before a program sets otherwise
+    (`[machine.inputs] active_high`; true without it: the input reads its level)."""
+    return bool(profile.get("machine.inputs.active_high", True)) if profile is not None else True
+
+
+def with_input_polarity(module: ir.Module, source, target) -> ir.Module:
+    """For products whose inputs read with opposite polarity at power-up (an MCode I1 is low-active,
+    lexium-mcode.txt L3500; an Arcus DI1 reads the level, arcus L1900-L1905): the reads of every
+    input whose polarity the program does not set itself are inverted, so that the output tests
+    the same electrical level as the source (`I1=1` becomes `DI1=0`). A polarity the program sets
+    (MCode IS, X150 INL) is written by the backend or refused there. A copy; the module as it is
+    when nothing differs."""
+    if active_high(source) == active_high(target):
+        return module
+    set_here = {op.index for _, b in module.blocks() for op in b.ops
+                if isinstance(op, ir.Setting) and op.name == "input_active_high"}
+    read = {n.index for _, b in module.blocks() for e in [*(x for op in b.ops for x in ir.op_exprs(op)),
+                                                           *ir.term_exprs(b.terminator)]
+            for n in ir.walk_expr(e) if isinstance(n, ir.Status) and n.meaning == "input"}
+    read |= {i + 1 for _, b in module.blocks() for e in [*(x for op in b.ops for x in ir.op_exprs(op)),
+                                                          *ir.term_exprs(b.terminator)]
+             for n in ir.walk_expr(e) if isinstance(n, ir.InputMatch)
+             for i, bit in enumerate(n.pattern.bits) if bit in "01"}
+    flip = frozenset(n for n in read if n is not None and n not in set_here)
+    if not flip:
+        return module
+    copy = ir.copy_module(module)
+    for _, block in copy.blocks():
+        block.ops[:] = [_flip_op(op, flip) for op in block.ops]
+        if isinstance(block.terminator, ir.Branch):
+            block.terminator.cond = _flip_expr(block.terminator.cond, flip)
+    return copy
+
+
+def _flip_op(op, flip: frozenset):
+    import copy
+
+    fields = {ir.Assign: "value", ir.SetOutput: "value", ir.WaitInput: "cond", ir.Call: "cond"}
+    name = fields.get(type(op))
+    if name is not None and getattr(op, name) is not None:
+        new = _flip_expr(getattr(op, name), flip)
+        if new is not getattr(op, name):
+            op = copy.copy(op)
+            setattr(op, name, new)
+        return op
+    if isinstance(op, ir.Print):
+        items = tuple(_flip_expr(item, flip) for item in op.items)
+        if any(a is not b for a, b in zip(items, op.items)):
+            op = copy.copy(op)
+            op.items = items
+    return op
+
+
+def _inverted(node, flip: frozenset) -> bool:
+    return isinstance(node, ir.Status) and node.meaning == "input" and node.index in flip
+
+
+def _flip_expr(expr, flip: frozenset):
+    """`expr` reading each input of `flip` inverted (the same object when it reads none)."""
+    if not any(_inverted(n, flip) or isinstance(n, ir.InputMatch) for n in ir.walk_expr(expr)):
+        return expr
+    if _inverted(expr, flip):
+        return ir.BinOp("-", ir.Const(1), expr, expr.span)
+    if isinstance(expr, ir.Compare):
+        for status, const, other in ((expr.left, expr.right, "right"), (expr.right, expr.left, "left")):
+            if _inverted(status, flip) and isinstance(const, ir.Const) and const.value in (0, 1) \
+                    and expr.op in ("=", "!="):
+                turned = ir.Const(1 - const.value, const.unit, const.span)
+                left, right = (status, turned) if other == "right" else (turned, status)
+                return ir.Compare(expr.op, left, right, expr.span)
+        return ir.Compare(expr.op, _flip_expr(expr.left, flip), _flip_expr(expr.right, flip), expr.span)
+    if isinstance(expr, ir.Truth):
+        if _inverted(expr.expr, flip):
+            return ir.Compare("=", expr.expr, ir.Const(0), expr.span)
+        return ir.Truth(_flip_expr(expr.expr, flip), expr.span)
+    if isinstance(expr, ir.InputMatch):
+        bits = "".join({"0": "1", "1": "0"}.get(b, b) if i + 1 in flip else b
+                       for i, b in enumerate(expr.pattern.bits))
+        return expr if bits == expr.pattern.bits else ir.InputMatch(ir.Pattern(bits, expr.pattern.span), expr.span)
+    if isinstance(expr, ir.Logic):
+        return ir.Logic(expr.op, _flip_expr(expr.left, flip), _flip_expr(expr.right, flip), expr.span)
+    if isinstance(expr, ir.Not):
+        return ir.Not(_flip_expr(expr.cond, flip), expr.span)
+    if isinstance(expr, ir.BinOp):
+        return ir.BinOp(expr.op, _flip_expr(expr.left, flip), _flip_expr(expr.right, flip), expr.span)
+    if isinstance(expr, ir.UnOp):
+        return ir.UnOp(expr.op, _flip_expr(expr.operand, flip), expr.span)
+    if isinstance(expr, ir.Func):
+        return ir.Func(expr.name, tuple(_flip_expr(a, flip) for a in expr.args), expr.span)
+    return expr
+
+
+def with_power_up(module: ir.Module, source, target, lowest_initial: float = 0.0) -> ir.Module:
+    """For a conversion between products that power up with different motion settings (their
+    profiles' `[machine.defaults]`, compiler/profiles.py `power_up`): the source's power-up values
+    are written at the start of the program, where the target's differ, so that a program that
+    relies on its controller's defaults moves the same on the other one (an MCode axis that sets
+    nothing runs at VM 768000 steps/s, an X150 axis at 1 rev/s). They go at the start of the routine
+    that runs first (the first IMMEDIATE routine, else the entry routine), in a new first block when
+    something jumps back to that start, so that the jump does not set them again; a setting that block already makes before
+    any motion is not repeated. A copy; the module is returned as it is when nothing differs or the
+    program neither moves nor reads a speed. A setting the source dialect fixes (FIXED: X150's
+    standstill starts) is left to `with_fixed_initial_speed`, one the target fixes cannot be written; an initial speed below the target's
+    lowest (`lowest_initial`, in the IR's steps/s) is written at that lowest, as there."""
+    from mcc.compiler.profiles import power_up
+
+    if not _uses_motion(module):
+        return module
+    ours = power_up(source, module.steps_per_rev)
+    ratio = module.steps_per_rev / target.steps_per_rev if module.steps_per_rev > 0 and target.steps_per_rev > 0 \
+        else 1.0
+    theirs = {name: value * ratio for name, value in power_up(target, target.steps_per_rev).items()}
+    fixed = {param for param, _ in [*FIXED.get(module.dialect, {}), *FIXED.get(target.dialect, {})]}
+    ours["initial_speed"] = max(ours["initial_speed"], lowest_initial)
+    differ = [p for p in POWER_UP_PARAMS if p not in fixed
+              and abs(ours[p.value] - theirs[p.value]) > 1e-9 * max(1.0, abs(ours[p.value]))]
+    if not differ:
+        return module
+    copy = ir.copy_module(module)
+    first = _first_run(copy)
+    if first is None or first.entry is None:
+        return module
+    covered = _set_before_motion(first.entry, _motion_axes(copy))
+    differ = [p for p in differ if p not in covered]
+    if not differ:
+        return module
+    ops = [ir.SetMotion(p, ALL, ir.Const(_number(ours[p.value]), ir.PARAM_UNITS[p])) for p in differ]
+    entry = first.entry
+    if not any(entry.label in ir.successors(b.terminator) for _, b in copy.blocks()):
+        entry.ops[:0] = ops  # nothing jumps back to the start: the settings run once there
+        return copy
+    label = "%power_up"
+    while any(b.label == label for _, b in copy.blocks()):
+        label += "_"
+    first.blocks.insert(0, ir.Block(label, ops, ir.Jump(entry.label), entry.span))
+    return copy
+
+
+def _number(value: float) -> int | float:
+    return int(value) if float(value).is_integer() else value
+
+
+def _uses_motion(module: ir.Module) -> bool:
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, MOTION_OPS):
+                return True
+            for expr in ir.op_exprs(op):
+                if any(isinstance(n, ir.Status) and n.meaning in SETTING_READINGS for n in ir.walk_expr(expr)):
+                    return True
+    return False
+
+
+def _first_run(module: ir.Module) -> ir.Routine | None:
+    """The routine the program starts with: the commands sent before it, else its main routine."""
+    for kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP):
+        for routine in module.routines:
+            if routine.kind is kind and routine.blocks:
+                return routine
+    return None
+
+
+def _motion_axes(module: ir.Module) -> set[str]:
+    axes: set[str] = set()
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.Move):
+                axes.update(axis for axis, _ in op.targets)
+            elif isinstance(op, ir.Arc):
+                axes.update(op.axes)
+            elif isinstance(op, MOTION_OPS):
+                axes.add(getattr(op, "axis", ALL))
+    return axes
+
+
+def _set_before_motion(block: ir.Block, axes: set[str]) -> set[ir.MotionParam]:
+    """The settings `block` gives a constant, for every axis that moves, before anything moves."""
+    seen: dict[ir.MotionParam, set[str]] = {}
+    for op in block.ops:
+        if isinstance(op, MOTION_OPS) or isinstance(op, (ir.Call, ir.Native)):
+            break
+        if isinstance(op, ir.SetMotion) and isinstance(op.value, ir.Const):
+            seen.setdefault(op.param, set()).add(op.axis)
+    return {p for p, set_for in seen.items() if ALL in set_for or (axes and axes <= set_for)}
+
+
 def lookup(state: State, param: ir.MotionParam, axis: str) -> ir.Const | None:
     """The constant in force for `param` on `axis`, or None when it is not known statically."""
     found = state.get((param, axis))
@@ -82,6 +300,8 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]]) -> No
             state[(op.param, op.axis)] = op.value
         else:
             state.pop((op.param, op.axis), None)
+            # an unknown value on one axis must not read as the value set for every axis
+            state.pop((op.param, ALL), None)
     elif isinstance(op, ir.Native):
         state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):

@@ -578,6 +578,16 @@ class Module:
     # Routines called but defined outside this file (an X150 sequence already stored on the
     # controller): calls to them are resolved, and backends write the call without a body.
     externals: list[str] = field(default_factory=list)
+    # The type of each device register the program uses without declaring it (MCode F1..F8 hold
+    # float64, R1..R4 int32): declared by the lowering, never written as a declaration by a backend.
+    registers: dict[str, VarType] = field(default_factory=dict)
+
+    def type_of(self, name: str) -> VarType | None:
+        """The type of a variable or register, or None when the module does not say."""
+        variable = self.variables.get(name)
+        if variable is not None:
+            return variable.type
+        return self.registers.get(name)
 
     def routine(self, name: str) -> Routine | None:
         for routine in self.routines:
@@ -731,4 +741,5 @@ def copy_module(module: Module) -> Module:
                   for b in routine.blocks]
         routines.append(dataclasses.replace(routine, blocks=blocks))
     variables = {name: copy.copy(v) for name, v in module.variables.items()}
-    return dataclasses.replace(module, variables=variables, routines=routines, externals=list(module.externals))
+    return dataclasses.replace(module, variables=variables, routines=routines, externals=list(module.externals),
+                               registers=dict(module.registers))

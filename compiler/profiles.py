@@ -43,6 +43,38 @@ class Profile:
         return node
 
 
+# The motion settings an axis has at power-up when the profile's `[machine.defaults]` does not
+# give them: mcc's fallback, per motor revolution (docs/SIMULATOR.md, "Defaults").
+FALLBACK_POWER_UP_PER_REV = {"initial_speed": 0.0, "max_speed": 1.0, "accel": 10.0, "decel": 10.0}
+STEPS_PER_REV_UNKNOWN = 1000  # the step size assumed when a module does not know its own
+SCALED_SETTINGS = ("initial_speed", "max_speed", "accel", "decel")  # steps/s or steps/s² (or revs)
+PLAIN_SETTINGS = ("profile",)  # plain numbers (0 trapezoidal, 1 S-curve)
+
+
+def power_up(profile: "Profile | None", steps_per_rev: int) -> dict[str, float]:
+    """The motion settings in force at power-up, in steps of `steps_per_rev` per revolution, keyed
+    by `ir.MotionParam` value: the profile's `[machine.defaults]` (in its `unit`, "steps" or
+    "revs") where it gives them, else FALLBACK_POWER_UP_PER_REV. One table, read by the simulator,
+    the virtual device and cross-dialect compilation (which writes the source's settings where the
+    target powers up with others)."""
+    scale = steps_per_rev if steps_per_rev > 0 else STEPS_PER_REV_UNKNOWN
+    out = {name: value * scale for name, value in FALLBACK_POWER_UP_PER_REV.items()}
+    out["profile"] = 0
+    table = profile.get("machine.defaults", {}) if profile is not None else {}
+    if not isinstance(table, dict) or table.get("unit", "steps") not in ("steps", "revs"):
+        return out  # a table in no known unit is not guessed at
+    per = 1 if table.get("unit", "steps") == "steps" else scale
+    for name in SCALED_SETTINGS:
+        value = table.get(name)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            out[name] = float(value) * per
+    for name in PLAIN_SETTINGS:
+        value = table.get(name)
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            out[name] = value
+    return out
+
+
 def _merge(base: dict, over: dict) -> dict:
     out = dict(base)
     for key, value in over.items():

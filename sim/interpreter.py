@@ -189,7 +189,25 @@ class Simulator:
         self.went_back = False  # the last terminator jumped back (to a block at or before its own)
         self.since_back = -1  # steps since the last jump back (-1: none yet)
         self.machine = Machine(inputs=dict(self.scenario.inputs), analog=dict(self.scenario.analog))
-        self.machine.shared["defaults"] = defaults(module.steps_per_rev)
+        # the product's machine (power-up settings, arithmetic, inputs): the profile given, else
+        # the one the module was compiled for
+        self.product = profile if profile is not None else profile_of(module)
+        self.machine.shared["defaults"] = defaults(module.steps_per_rev, self.product)
+        arithmetic = machine_table(self.product, "arithmetic")
+        self.division = str(arithmetic.get("integer_division", "truncate"))
+        self.motion_floor = arithmetic.get("float_to_motion") == "floor"
+        # [width, decimals, notation, justification]; a malformed value in a user's profile is ignored
+        fmt = arithmetic.get("float_print")
+        self.float_format = fmt if isinstance(fmt, list) and 0 < len(fmt) <= 4 and all(
+            isinstance(v, int) and not isinstance(v, bool) and 0 <= v <= 32 for v in fmt) else None
+        self.float_pad = bool(arithmetic.get("float_print_pad", False))
+        # inputs: the scenario gives electrical levels; I1.. read the logic state through the
+        # polarity the program set (IS, INL) or the product's default (docs/SIMULATOR.md, "Inputs")
+        inputs = machine_table(self.product, "inputs")
+        self.active_high_default = bool(inputs.get("active_high", True))
+        count = inputs.get("count", 0)
+        self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
+        self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
         self.default_type = DEFAULT_TYPES.get(module.dialect, ir.VarType.FLOAT64)
@@ -569,7 +587,10 @@ class Simulator:
 
     def _do_assign(self, op) -> Wait | None:
         name = op.target.name
-        value = values.store(self._eval(op.value), self._type(name))
+        vtype = self._type(name)
+        # an expression assigned to a float64 variable computes in floating point (MCode F1-F8,
+        # lexium-mcode.txt L1249, L2834: F1=Q2/Q1 is 1.2)
+        value = values.store(self._eval(op.value, vtype is ir.VarType.FLOAT64), vtype)
         if self.vars.get(name) != value:
             self.changes += 1
         self.vars[name] = value
@@ -683,6 +704,9 @@ class Simulator:
                 self.machine.home_inputs.add(op.index)
             else:
                 self.machine.home_inputs.discard(op.index)
+        if op.name == "input_active_high" and op.index is not None and value is not None:
+            self.active_high[op.index] = bool(value)
+            self.changes += 1  # a polling loop reads its inputs anew
         if op.name == "home_accel":
             for name in self._expand((op.axis,)):
                 self._axis(name).home_accel = float(value) if value is not None else None
@@ -752,12 +776,8 @@ class Simulator:
 
 
     def _type(self, name: str) -> ir.VarType:
-        variable = self.module.variables.get(name)
-        if variable is not None:
-            return variable.type
-        if self.module.dialect == "mcode" and name[:1] == "F" and name[1:].isdigit():
-            return ir.VarType.FLOAT64  # MCode's float registers F1.. (firmware 6)
-        return self.default_type
+        declared = self.module.type_of(name)  # the lowering declares variables and registers
+        return declared if declared is not None else self.default_type
 
     def _axis(self, name: str) -> Axis:
         found = self.machine.axes.get(name)
@@ -782,7 +802,7 @@ class Simulator:
     def _move(self, op: ir.Move) -> None:
         targets: dict[str, float] = {}
         for name, expr in op.targets:
-            value = float(self._eval(expr))
+            value = self._motion_value(expr)
             for axis_name in self._expand((name,)):
                 axis = self._axis(axis_name)
                 targets[axis_name] = value if op.mode is ir.MoveMode.ABSOLUTE else axis.position + value
@@ -795,6 +815,14 @@ class Simulator:
         lead = self._axis(next(iter(targets)))
         path = Path(start, length, {name: d / length for name, d in deltas.items()})
         self._begin(op, path, lead.limits(self.machine.shared), targets=targets, plan_length=length)
+
+    def _motion_value(self, expr) -> float:
+        """A move target or slew speed: a float value rounded down where the product says so
+        (MCode `MA F5`, `SL=F2`: "rounded down to the nearest integer", lexium-mcode.txt L2815)."""
+        value = self._eval(expr)
+        if self.motion_floor and isinstance(value, float) and math.isfinite(value):
+            return float(math.floor(value))
+        return float(value)
 
     def _arc(self, op: ir.Arc) -> None:
         ax, ay = op.axes
@@ -816,7 +844,7 @@ class Simulator:
     def _slew(self, op: ir.Slew, name: str) -> None:
         axis = self._axis(name)
         lim = axis.limits(self.machine.shared)
-        velocity = float(self._eval(op.velocity)) if op.velocity is not None else op.direction * lim.maximum
+        velocity = self._motion_value(op.velocity) if op.velocity is not None else op.direction * lim.maximum
         current = axis.speed(self.now)
         # the same slew again (a loop that keeps commanding it) changes nothing: no event, so a
         # loop doing only that is recognised as polling and time can pass
@@ -1110,10 +1138,30 @@ class Simulator:
 
     # -- inputs, outputs, handlers ---------------------------------------------------------------
 
+    def _level(self, index: int) -> int:
+        """Input `index`'s electrical level: the scenario's, else the inactive level of the polarity
+        in force (an input nothing drives is not active, whichever way it is wired)."""
+        level = self.machine.inputs.get(index)
+        if level is None:
+            return 0 if self.active_high.get(index, self.active_high_default) else 1
+        return level
+
+    def _logic(self, index: int) -> int:
+        """Input `index`'s logic state (1 active): its level through the polarity the program set,
+        else the product's (MCode I1-I4 are low-active by default, lexium-mcode.txt L3273, L3500)."""
+        level = self._level(index)
+        return level if self.active_high.get(index, self.active_high_default) else 1 - level
+
+    def _levels(self) -> int:
+        """Every input's level as a bit mask, input 1 in bit 0 (MCode IN, L3433-L3435)."""
+        top = max([self.input_count, *self.machine.inputs]) if self.machine.inputs or self.input_count else 0
+        return sum(1 << (n - 1) for n in range(1, top + 1) if self._level(n))
+
     def _set_input(self, index: int, value: int, **where) -> None:
-        old = self.machine.inputs.get(index, 0)
+        old = self._logic(index)
         self.machine.inputs[index] = value
         self._event(None, "input", input=index, value=value, **where)
+        value = self._logic(index)  # capture and input handlers fire on the logic state
         if old != value:
             self.changes += 1
             capture = self.capture_input if self.capture_input is not None else DEFAULT_CAPTURE_INPUT
@@ -1236,7 +1284,9 @@ class Simulator:
 
     # -- expressions -----------------------------------------------------------------------------
 
-    def _eval(self, expr) -> values.Number:
+    def _eval(self, expr, real: bool = False) -> values.Number:
+        """The value of `expr`; `real`: computed in floating point (an expression assigned to a
+        float64 variable), integers taken as floats before any operator applies."""
         if isinstance(expr, ir.Const):
             return expr.value
         if isinstance(expr, ir.Var):
@@ -1244,20 +1294,22 @@ class Simulator:
                 self.vars[expr.name] = values.store(0, self._type(expr.name))
             return self.vars[expr.name]
         if isinstance(expr, ir.BinOp):
-            left = self._eval(expr.left)
-            right = self._eval(expr.right)
-            if self.default_type is ir.VarType.DECIMAL and expr.op in ("/", "%") \
+            left = self._eval(expr.left, real)
+            right = self._eval(expr.right, real)
+            if real:
+                left, right = values.real(left), values.real(right)
+            elif self.default_type is ir.VarType.DECIMAL and expr.op in ("/", "%") \
                     and isinstance(left, int) and isinstance(right, int):
                 left = Decimal(left)  # X150 computes in decimals: 1/3 of two literals too
             try:
-                return values.binary(expr.op, left, right)
+                return values.binary(expr.op, left, right, self.division)
             except values.ArithmeticFault as exc:
                 raise RuntimeFault("S002", str(exc)) from None
         if isinstance(expr, ir.UnOp):
-            return values.unary(expr.op, self._eval(expr.operand))
+            return values.unary(expr.op, self._eval(expr.operand, real))
         if isinstance(expr, ir.Func):
             try:
-                return values.function(expr.name, [self._eval(a) for a in expr.args])
+                return values.function(expr.name, [self._eval(a, real) for a in expr.args])
             except values.ArithmeticFault as exc:
                 raise RuntimeFault("S002", str(exc)) from None
         if isinstance(expr, ir.Status):
@@ -1276,9 +1328,9 @@ class Simulator:
         meaning, index = status.meaning, status.index
         m = self.machine
         if meaning == "input":
-            return m.inputs.get(index or 0, 0)
-        if meaning == "inputs":
-            return m.input_mask()
+            return self._logic(index or 0)
+        if meaning == "inputs":  # the raw levels (MCode IN, lexium-mcode.txt L3433-L3435)
+            return self._levels() if self.input_count else m.input_mask()
         if meaning == "output":
             return m.outputs.get(index or 0, 0)
         if meaning == "outputs":
@@ -1337,7 +1389,7 @@ class Simulator:
             return self._eval(cond.expr) != 0
         if isinstance(cond, ir.InputMatch):
             for n, bit in enumerate(cond.pattern.bits, 1):
-                if bit in "01" and self.machine.inputs.get(n, 0) != int(bit):
+                if bit in "01" and self._logic(n) != int(bit):
                     return False
             return True
         if isinstance(cond, ir.Not):
@@ -1347,10 +1399,18 @@ class Simulator:
     def _text(self, item) -> str:
         if isinstance(item, ir.Text):
             return item.value
+        if self.float_format and self._reads_float(item):
+            return values.float_text(float(self._eval(item)), self.float_format, self.float_pad)
         value = values.plain(self._eval(item))
         if isinstance(value, float) and value.is_integer():
             return str(int(value))
         return str(value)
+
+    def _reads_float(self, item) -> bool:
+        """Whether a printed item reads a float64 variable: then it prints in the product's float
+        format (MCode PF, lexium-mcode.txt L4744-L4777)."""
+        return any(isinstance(node, ir.Var) and self._type(node.name) is ir.VarType.FLOAT64
+                   for node in ir.walk_expr(item))
 
     # -- the trace -------------------------------------------------------------------------------
 
@@ -1415,6 +1475,22 @@ def _severity(name: str):
     from mcc.compiler.diagnostics import Severity
 
     return Severity(name)
+
+
+def machine_table(profile, name: str) -> dict:
+    """The profile's `[machine.<name>]` table ({} without one): the product's machine as data."""
+    table = profile.get(f"machine.{name}", {}) if profile is not None else {}
+    return table if isinstance(table, dict) else {}
+
+
+def profile_of(module: ir.Module):
+    """The built-in profile the module names, or None (a user's profile file is not known here)."""
+    from mcc.compiler.profiles import ProfileError, load
+
+    try:
+        return load(module.profile) if module.profile else None
+    except ProfileError:
+        return None
 
 
 def simulate(module: ir.Module, scenario: Scenario | None = None, options: Options | None = None,

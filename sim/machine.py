@@ -10,24 +10,16 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from mcc.compiler.ir import MotionParam
+from mcc.compiler.profiles import power_up
 from mcc.sim.motion import Limits, Motion
 
-# Settings an axis starts with when the program sets none (docs/SIMULATOR.md, "Defaults"), per
-# motor revolution, so that a program and its translation to a different step size start alike.
-DEFAULTS_PER_REV: dict[MotionParam, float] = {
-    MotionParam.INITIAL_SPEED: 0.0,
-    MotionParam.MAX_SPEED: 1.0,  # rev/s
-    MotionParam.ACCEL: 10.0,  # rev/s²
-    MotionParam.DECEL: 10.0,
-}
-STEPS_PER_REV_UNKNOWN = 1000  # the step size assumed when the module does not know its own
 
 
-def defaults(steps_per_rev: int) -> dict[MotionParam, float]:
-    scale = steps_per_rev if steps_per_rev > 0 else STEPS_PER_REV_UNKNOWN
-    out = {param: value * scale for param, value in DEFAULTS_PER_REV.items()}
-    out[MotionParam.PROFILE] = 0
-    return out
+def defaults(steps_per_rev: int, profile=None) -> dict[MotionParam, float]:
+    """The settings an axis starts with when the program sets none: the product's power-up values
+    (`[machine.defaults]` of its profile, else mcc's fallback; compiler/profiles.py `power_up`),
+    in the IR's steps."""
+    return {MotionParam(name): value for name, value in power_up(profile, steps_per_rev).items()}
 
 
 @dataclass

@@ -4,7 +4,9 @@ A value is an `int` (an int32 variable, an integer constant), a `float` (a float
 reading or a constant with a fraction) or a `Decimal` (an X150 decimal variable). The operators
 mean what `ir_names.BINARY_OPS` says:
 
-- `/` truncates toward zero when both operands are integers, `%` keeps the dividend's sign;
+- `/` of two integers truncates toward zero (`%` keeps the dividend's sign), or rounds down where
+  the product's profile says `integer_division = "floor"` (MCode, lexium-mcode.txt L1249);
+- an expression assigned to a float64 variable computes in floating point (`real`);
 - an int32 variable wraps to 32 bits when it is assigned (two's complement);
 - decimal values compute exactly (Python's `decimal`, 28 digits) and are rounded to
   `DECIMAL_PLACES` when stored, so `10 / 3` is `3.333333` in an X150 variable;
@@ -55,7 +57,27 @@ def _pair(a: Number, b: Number) -> tuple[Number, Number]:
     return a, b
 
 
-def binary(op: str, a: Number, b: Number) -> Number:
+def real(value: Number) -> Number:
+    """An operand of a floating-point expression (one assigned to a float64 variable)."""
+    return float(value) if isinstance(value, int) else value
+
+
+def float_text(value: float, fmt, pad: bool = False) -> str:
+    """A float as the product prints it with the format `fmt` = [width, decimals, notation,
+    justification] (MCode PF, lexium-mcode.txt L4744-L4777; default 10,6,0,0 prints 1.2 as
+    `1.200000`, PF=8,4,1,1 prints 0 as `0.0000E+00`). `pad`: fill to the width, right- or
+    left-justified; the manual's examples show no padding, so the profiles leave it off."""
+    width, decimals, notation, justify = (list(fmt) + [10, 6, 0, 0][len(fmt):])[:4]
+    text = f"{value:.{int(decimals)}{'E' if notation else 'f'}}"
+    if pad:
+        text = text.ljust(int(width)) if justify else text.rjust(int(width))
+    return text
+
+
+def binary(op: str, a: Number, b: Number, division: str = "truncate") -> Number:
+    """`a op b`. `division`: how an integer quotient rounds, "truncate" (toward zero) or "floor"
+    (rounded down, toward minus infinity: MCode, lexium-mcode.txt L1249); the remainder `%` goes
+    with it (a - quotient * b)."""
     if op in ("&", "|", "^", "<<", ">>"):
         x, y = int(a), int(b)
         if op == "&":
@@ -78,7 +100,10 @@ def binary(op: str, a: Number, b: Number) -> Number:
         if y == 0:
             raise ArithmeticFault("division by zero")
         if isinstance(x, int):
-            quotient = abs(x) // abs(y) * (1 if (x >= 0) == (y >= 0) else -1)
+            if division == "floor":
+                quotient = x // y
+            else:
+                quotient = abs(x) // abs(y) * (1 if (x >= 0) == (y >= 0) else -1)
             return quotient if op == "/" else x - quotient * y
         if op == "/":
             return x / y

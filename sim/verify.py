@@ -73,16 +73,40 @@ def inputs_read(module: ir.Module) -> list[int]:
     return sorted(found)[:MAX_DRIVEN_INPUTS]
 
 
+def with_idle_levels(scenario: Scenario, source: ir.Module, profile, also: list[int]) -> Scenario:
+    """The scenario with the level of every input it leaves undriven stated: the source's idle
+    level (inactive for the polarity the source sets first, else its product's), so that the output,
+    on a product whose inputs idle at the other level, runs on the same machine (docs/SIMULATOR.md,
+    "Inputs")."""
+    from mcc.compiler.in_force import active_high
+    from mcc.sim.interpreter import profile_of
+
+    undriven = [n for n in sorted(set(inputs_read(source)) | set(also)) if n not in scenario.inputs]
+    if not undriven:
+        return scenario
+    default = active_high(profile if profile is not None else profile_of(source))
+    polarity: dict[int, bool] = {}
+    for _, block in source.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.Setting) and op.name == "input_active_high" and op.index is not None \
+                    and isinstance(op.value, ir.Const):
+                polarity.setdefault(op.index, bool(op.value.value))
+    idle = {n: 0 if polarity.get(n, default) else 1 for n in undriven}
+    return dataclasses.replace(scenario, inputs={**idle, **scenario.inputs})
+
+
 def default_scenarios(module: ir.Module) -> list[Scenario]:
     """Every input the program reads driven both ways: all low, all high, and each one rising
     then falling on its own."""
     read = inputs_read(module)
-    out = [Scenario(name="inputs low")]
+    # levels stated, not left to each product's idle state: an input no scenario drives is inactive
+    # for the polarity in force, which is another level on another product (docs/SIMULATOR.md)
+    out = [Scenario(inputs={n: 0 for n in read}, name="inputs low")]
     if not read:
         return out
     out.append(Scenario(inputs={n: 1 for n in read}, name="inputs high"))
     for n in read:
-        out.append(Scenario(events=[InputEvent(n, 1, at=0.5), InputEvent(n, 0, at=2.5)],
+        out.append(Scenario(inputs={m: 0 for m in read}, events=[InputEvent(n, 1, at=0.5), InputEvent(n, 0, at=2.5)],
                             name=f"input {n} pulses high at 0.5 s"))
     return out
 
@@ -95,6 +119,7 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     Both modules must keep the IR contract (`interpreter.ContractError` otherwise)."""
     source, output = _stated_steps(source, output), _stated_steps(output, source)
     for scenario in scenarios or default_scenarios(source):
+        scenario = with_idle_levels(scenario, source, source_profile, inputs_read(output))
         opts = options or Options(until=scenario.until or VERIFY_UNTIL, max_steps=VERIFY_STEPS)
         opts.samples = False
         ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)

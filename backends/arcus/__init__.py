@@ -50,7 +50,8 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
 def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     """Passes 1-4: the program's statements in layout order (not yet priced), the context and
     how many routines became dispatch loops."""
-    module = with_fixed_speeds(module, profile)
+    lowest = lowest_speed() / float(Scale(module.steps_per_rev, profile.steps_per_rev).factor)
+    module = with_fixed_speeds(in_force.with_source_power_up(module, profile, lowest), profile)
     ctx = Context(module, profile)
     ctx.number_subroutines()
     main: list = []

@@ -15,14 +15,14 @@ from __future__ import annotations
 from mcc.backends.listing import Listing
 from mcc.compiler.x150 import naming
 from mcc.backends.x150.writer import write
-from mcc.compiler import ir
+from mcc.compiler import in_force, ir
 from mcc.compiler.profiles import Profile
 
 DIALECT = "x150"
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
-    written = write(module, profile)
+    written = write(in_force.with_source_power_up(module, profile), profile)
     listing = Listing(DIALECT)
     for line in written.header:
         listing.emit(line)

@@ -448,6 +448,7 @@ class Lowering:
             cond = self.cond(args[1]) if len(args) > 1 else None
             return ir.Call(self.target_label(args[0]), cond, span)
         if kind == "register" and args:
+            self.declare_register(command)
             return ir.Assign(ir.Var(name, stmt.head.span), self.expr(args[0]), span)
         if kind in ("increment", "decrement") and args:
             var = self.expr(args[0])
@@ -521,6 +522,14 @@ class Lowering:
             return ir.Native(DIALECT, "VA", args, form=" ", span=res.stmt.span)
         return None
 
+    def declare_register(self, command: cat.Command) -> None:
+        """Record a device register's type in the module: the catalog's default value says it, a
+        float for the floating-point registers F1-F8 (double precision, L2802-L2811), an integer for
+        R1-R4. Expressions assigned to a float64 register compute in floating point (L1249)."""
+        if command.name not in self.module.registers:
+            floating = isinstance(command.entry.default, float)
+            self.module.registers[command.name] = ir.VarType.FLOAT64 if floating else ir.VarType.INT32
+
     # expressions ---------------------------------------------------------------------------------
     def native_arg(self, command: cat.Command, node: st.Node):
         if isinstance(node, st.Name) and node.key in self.resolver.names.labels \
@@ -546,6 +555,7 @@ class Lowering:
                 return ir.Var(upper, node.span)
             command = self.cat.commands.get(upper)
             if command is not None and command.ir == "register":
+                self.declare_register(command)
                 return ir.Var(upper, node.span)
             if upper == "PI":
                 return ir.Func("pi", (), node.span)

@@ -6,8 +6,10 @@ read `A`, until either is assigned again (`A = B` then `MA A` becomes `MA B`). T
 
 Why it is safe: `A` and `B` hold the same value until one of them is assigned; a call or a
 native command may assign anything, so every copy is forgotten there, and variables an event
-handler assigns are never propagated. Only integer variables are propagated (a copy into a
-variable of another type converts the value). The copy itself stays.
+handler assigns are never propagated. Only integer variables are propagated, by the type the
+lowering declares for every variable and register: a copy into a variable of another type converts
+the value (MCode `RV=F3` drops the fraction, L2813, where `MA F3` rounds down, L2815), so it is
+not a copy. The copy itself stays.
 
 Needs: nothing beyond the block.
 """
@@ -16,7 +18,7 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.opt.common import clobbers_everything, handler_writes
-from mcc.compiler.opt.fold import rewrite_op
+from mcc.compiler.opt.fold import integer as is_integer, rewrite_op
 
 NAME = "copies"
 NEEDS = ()
@@ -26,8 +28,7 @@ def run(module: ir.Module, context) -> int:
     volatile, _ = handler_writes(module)
 
     def integer(name: str) -> bool:
-        variable = module.variables.get(name)
-        return variable is None or variable.type is ir.VarType.INT32
+        return is_integer(module, name)
 
     changed = 0
     for _, block in module.blocks():

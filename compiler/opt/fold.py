@@ -10,6 +10,9 @@ steps, which a backend converting to another dialect scales where it would not s
 Why it is safe: folding only happens where every dialect computes the same result: integers whose
 result fits in 32 bits without wrapping, an exact integer division, bitwise operators on integers,
 and units that agree; floating-point results are never folded (the dialects round differently).
+The arithmetic is the simulator's (`sim/values.py`). Only an int32 variable (the type the lowering
+declares) is taken as a known constant: a float register holding 142.0 prints and divides as a
+float (MCode F1-F8).
 A known value is forgotten at a call or a native command (either may assign any variable), and a
 variable an event handler assigns is never taken as known (a handler can run between any two
 operations). The assignment itself stays: a host may read the variable.
@@ -21,6 +24,7 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.opt.common import clobbers_everything, handler_writes
+from mcc.sim import values
 
 NAME = "fold"
 NEEDS = ()
@@ -43,8 +47,7 @@ def run(module: ir.Module, context) -> int:
             elif isinstance(op, ir.Assign):
                 name = op.target.name
                 known.pop(name, None)
-                if isinstance(op.value, ir.Const) and name not in volatile and \
-                        module.variables.get(name, ir.Variable(name)).type is ir.VarType.INT32 and \
+                if isinstance(op.value, ir.Const) and name not in volatile and integer(module, name) and \
                         isinstance(op.value.value, int):
                     known[name] = op.value
         term = block.terminator
@@ -54,6 +57,15 @@ def run(module: ir.Module, context) -> int:
                 term.cond = cond
                 changed += 1
     return changed
+
+
+def integer(module: ir.Module, name: str) -> bool:
+    """Whether `name` is an int32 variable or register (the type the lowering declares; a name the
+    module does not type is an integer, as in every dialect's default). A float64 register (MCode
+    F1-F8) holding 142.0 is not the integer 142: `PR F3` prints 142.000000, `F3/3` divides in floating
+    point (lexium-mcode.txt L1249, L2802-L2815)."""
+    vtype = module.type_of(name)
+    return vtype is None or vtype is ir.VarType.INT32
 
 
 def rewrite_op(op, known: dict[str, ir.Const]):
@@ -151,20 +163,11 @@ def compute(op: str, left: ir.Const, right: ir.Const):
     unit = unit_of(op, left.unit, right.unit)
     if unit is None:
         return None
-    if op == "+":
-        value = a + b
-    elif op == "-":
-        value = a - b
-    elif op == "*":
-        value = a * b
-    elif op == "/":
-        if b == 0 or a % b != 0:
-            return None
-        value = a // b
-    elif op in ("&", "|", "^") and unit is ir.Unit.NONE:
-        value = a & b if op == "&" else a | b if op == "|" else a ^ b
-    else:
+    if op == "/" and (b == 0 or a % b != 0):
+        return None  # only an exact quotient: the dialects round an inexact one differently
+    if op not in ("+", "-", "*", "/") and not (op in ("&", "|", "^") and unit is ir.Unit.NONE):
         return None
+    value = values.binary(op, a, b)  # the simulator's arithmetic (sim/values.py)
     if not INT32[0] <= value <= INT32[1]:
         return None
     return value, unit

@@ -161,7 +161,7 @@ class DeviceMachine:
             simulator = Simulator(module, Scenario(inputs=dict(self.machine.inputs)), options, self.profile)
         except ContractError as exc:
             return self._ended(Outcome("error", f"cannot run: {exc}"), program)
-        self.machine.shared["defaults"] = defaults(module.steps_per_rev)
+        self.machine.shared["defaults"] = defaults(module.steps_per_rev, simulator.product)
         simulator.machine = self.machine      # the device's machine: what earlier commands left
         self.moving.clear()
         self.slewing.clear()

@@ -42,8 +42,10 @@ LB K1
   RT
 PG
 """
+# Input 1 is low-active by default (IS, lexium-mcode.txt L3500) and a scenario gives levels, so a
+# press pulls the line low: TI fires "when input 1 is active" (L5716), at 1, 2 and 3 s.
 PULSES = "".join(f"[[events]]\nat = {t}\ninput = 1\nvalue = {v}\n" for t, v in
-                 ((1, 1), (1.5, 0), (2, 1), (2.5, 0), (3, 1), (3.5, 0)))
+                 ((1, 0), (1.5, 1), (2, 0), (2.5, 1), (3, 0), (3.5, 1)))
 
 
 def test_mcode_a_trip_without_its_te_bit_never_fires():
@@ -82,9 +84,10 @@ PG
 
 def test_the_scenario_names_the_capture_input():
     text = "PG 1\n  TC=K1\n  TE=4\n  H 2000\n  E\nLB K1\n  O2=1\n  RT\nPG\n"
-    on_two = "capture = 2\n[[events]]\nat = 0.5\ninput = 2\nvalue = 1\n"
+    # low-active by default (L3500): the capture input becomes active when its level goes low
+    on_two = "capture = 2\n[[events]]\nat = 0.5\ninput = 2\nvalue = 0\n"
     assert handlers(run("mcode", text, on_two)) == ["K1"]
-    assert handlers(run("mcode", text, "[[events]]\nat = 0.5\ninput = 2\nvalue = 1\n")) == []  # input 1 captures
+    assert handlers(run("mcode", text, "[[events]]\nat = 0.5\ninput = 2\nvalue = 0\n")) == []  # input 1 captures
 
 
 def test_mcode_power_loss_runs_the_tm_trip_else_stops_the_run():
@@ -106,7 +109,9 @@ def test_mcode_a_stall_stops_the_axis_and_runs_the_oe_handler():
 
 
 def test_mcode_a_stall_without_a_handler_stops_the_run_with_s011():
-    trace = run("mcode", "PG 1\n  MA 51200\n  H\n  E\nPG\n", '[[stall]]\nat = 0.5\naxis = "1"\n')
+    """MA 512000 at the power-up VI 1000, A = D 1e6 steps/s² (lexium-mcode.txt L662-L687) takes
+    2·(sqrt(1000² + 1e6·512000) - 1000) / 1e6 = 1.43 s, so the stall at 0.5 s is mid-move."""
+    trace = run("mcode", "PG 1\n  MA 512000\n  H\n  E\nPG\n", '[[stall]]\nat = 0.5\naxis = "1"\n')
     assert trace.stopped == "error" and trace.diagnostics[-1].code == "S011"
 
 

@@ -118,7 +118,7 @@ def test_a_homing_move_x150_cannot_write_is_refused_and_gh_is_refused_elsewhere(
                    accel=ir.Const(40000, ir.Unit.STEPS_PER_S2))
     main = ir.Routine("main", ir.RoutineKind.MAIN, [ir.Block("a", [seek, ir.WaitMotion("X", span)], ir.End(span),
                                                              span)], span)
-    listing = backend.emit(ir.Module("mcode", "lmd-e", routines=[main], steps_per_rev=4000), PROFILE)
+    listing = backend.emit(ir.Module("mcode", "", routines=[main], steps_per_rev=4000), PROFILE)
     [refusal] = [d for d in listing.diagnostics if d.severity.value == "error"]
     assert refusal.code == "G003" and "speed" in refusal.message and refusal.span.line == 2
     for target, words in (("mcode", "VM"), ("arcus", "HSPD")):
