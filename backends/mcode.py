@@ -305,6 +305,12 @@ class Writer:
                     self.line("PG")
                 self.line(f"PG {routine.origin if routine.origin is not None else 1}", routine.span)
                 region_open = True
+            if block is routine.entry and not region_open:
+                # after a closing PG a line runs at once (immediate mode, L510-L512) and its label
+                # is never stored: a routine there would run on download and CL could not find it
+                self.unsupported(routine.span or next((op.span for op in block.ops if op.span), None),
+                                 f"the routine {routine.name} outside any program region (PG <address> ... PG); "
+                                 "a program's subroutines belong inside it (L4794)")
             next_label = self.through(order[index + 1][1].label) if index + 1 < len(order) else None
             self.block(block, next_label)
         if region_open:
