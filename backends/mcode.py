@@ -97,6 +97,8 @@ class Writer:
         self.ramps = self.uses_ramp_times()
         self.states = self.settings_in_force() if self.foreign else {}
         self.written_ramp: dict[str, float] = {}
+        self.contexts = self.run_contexts() if self.foreign else {}
+        self.block_start = 0
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -164,6 +166,85 @@ class Writer:
                 states[id(op)] = state
         return states
 
+    # how each routine runs (another dialect's program) ----------------------------------------------
+    def run_contexts(self) -> dict[str, set[str]]:
+        """How each routine of another dialect's program can run: "called" (CL: its end returns to
+        the caller) and/or "top" (a program run by EX or at power-up: its end stops the program).
+
+        An X150 sequence ends at XT, which returns when it was run by XR/GOSUB and stops the program
+        otherwise (parker-x150.md L1750, L5138). MCode spells the two ends differently: RT returns
+        from a CL (lexium-mcode.txt L2121, L5232), E ends the program (L2527). XG/GOTO to another
+        sequence hands over without a new return address (L5077, L1790): it is written as `CL` of
+        that sequence followed by this routine's own end (Writer.goto), so the sequence it reaches
+        is a called one; a BR into another routine would leave MCode code that enters a routine
+        without CL and leaves it with RT (M302), which the MCode reading of the output cannot follow."""
+        contexts: dict[str, set[str]] = {r.name: set() for r in self.module.routines}
+        reached: set[str] = set()
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                targets = [op.routine for op in block.ops if isinstance(op, ir.Call)]
+                if isinstance(block.terminator, ir.GotoRoutine) and block.terminator.routine != routine.name:
+                    targets.append(block.terminator.routine)
+                for target in targets:
+                    if target in contexts:
+                        contexts[target].add("called")
+                        reached.add(target)
+        for routine in self.module.routines:
+            # a program: run at power-up, as the converted stream, or (a sequence nothing in the file
+            # runs) by the host
+            if routine.kind is ir.RoutineKind.POWERUP or self.as_program(routine) \
+                    or routine.kind is ir.RoutineKind.MAIN and routine.name not in reached:
+                contexts[routine.name].add("top")
+            if routine.kind is ir.RoutineKind.HANDLER:  # run like a CL, ends with RT (L5232)
+                contexts[routine.name].add("called")
+        return contexts
+
+    def goto_cycle(self, source: str, target: str) -> bool:
+        """Whether XG/GOTO from `source` to `target` can come back to `source` by XG/GOTO alone: written
+        as CL, each round would nest one call deeper until the device's stack overflows (Error 43)."""
+        edges: dict[str, set[str]] = {}
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                if isinstance(block.terminator, ir.GotoRoutine) and block.terminator.routine != routine.name:
+                    edges.setdefault(routine.name, set()).add(block.terminator.routine)
+        seen, todo = set(), [target]
+        while todo:
+            name = todo.pop()
+            if name == source:
+                return True
+            if name not in seen:
+                seen.add(name)
+                todo.extend(edges.get(name, ()))
+        return False
+
+    def goto(self, term: ir.GotoRoutine, routine: ir.Routine | None, span) -> None:
+        """XG/GOTO to another routine of another dialect's program: CL it, then end as this routine
+        ends (its XT would return to the same caller, or stop the program, as the sequence reached)."""
+        target = self.module.routine(term.routine)
+        if target is None or target.entry is None:
+            raise Unsupported(f"a jump to {term.routine}, which is not in this program")
+        if routine is None or target is routine:
+            self.line(f"BR {self.label(target.entry.label)}", span)
+            return
+        if self.goto_cycle(routine.name, target.name):
+            raise Unsupported(f"a jump (XG/GOTO) to {target.name} that leads back to {routine.name} by jumps alone "
+                              "(MCode has no jump into another routine that returns right, M302, and written as a "
+                              "call each round would nest deeper until the stack overflows, Error 43: make the "
+                              "loop inside one sequence)")
+        end = self.end_of(routine, f"a jump (XG/GOTO) to {target.name} at the end")
+        self.line(f"CL {self.label(target.entry.label)}", span)
+        self.line(end, span)
+
+    def end_of(self, routine: ir.Routine | None, what: str) -> str:
+        """RT or E for a routine's end (an X150 XT or XRT) in another dialect's program; refused when
+        the routine runs both called and as a program, since one line cannot both return and stop."""
+        contexts = self.contexts.get(routine.name, set()) if routine is not None else set()
+        if contexts == {"called", "top"}:
+            raise Unsupported(f"{what} of {routine.name} (it runs both as a subroutine, XR/GOSUB, where its end "
+                              "returns, and as a program, where its end stops; MCode's RT and E cannot do both: "
+                              "give each use its own sequence)")
+        return "RT" if contexts == {"called"} else "E"
+
     # labels --------------------------------------------------------------------------------------
     def used_names(self) -> set[str]:
         names = {name for name in self.module.variables if is_user_name(name, self.reserved)}
@@ -222,7 +303,8 @@ class Writer:
             if routine.kind is ir.RoutineKind.POWERUP and routine.entry:
                 needed.add(routine.entry.label)
         if self.foreign:  # another dialect's programs (X150 sequences) run by name: EX <label>
-            programs = [r for r in self.module.routines if r.kind is ir.RoutineKind.MAIN and r.entry]
+            programs = [r for r in self.program_order() if (r.kind is ir.RoutineKind.MAIN or self.as_program(r))
+                        and r.entry]
             needed.update(r.entry.label for r in programs[1:])
         return needed
 
@@ -312,7 +394,7 @@ class Writer:
                                  f"the routine {routine.name} outside any program region (PG <address> ... PG); "
                                  "a program's subroutines belong inside it (L4794)")
             next_label = self.through(order[index + 1][1].label) if index + 1 < len(order) else None
-            self.block(block, next_label)
+            self.block(block, next_label, routine)
         if region_open:
             self.line("PG")
         if self.foreign and any(self.as_program(r) for r in self.module.routines):
@@ -341,7 +423,9 @@ class Writer:
         routines = list(self.module.routines)
         if not self.foreign:
             return routines
-        first = [r for r in routines if self.as_program(r) or r.kind in (ir.RoutineKind.MAIN,)]
+        # the converted stream runs first (EX 1, its commands ran as they were sent); sequences are
+        # only stored until something runs them
+        first = [r for r in routines if self.as_program(r)] + [r for r in routines if r.kind is ir.RoutineKind.MAIN]
         rest = [r for r in routines if r not in first]
         immediate = [r for r in rest if r.kind is ir.RoutineKind.IMMEDIATE]
         program = first + [r for r in rest if r not in immediate]
@@ -362,7 +446,8 @@ class Writer:
             "routines": sum(1 for r in self.module.routines if r.kind is not ir.RoutineKind.IMMEDIATE),
         }
 
-    def block(self, block: ir.Block, next_label: str | None) -> None:
+    def block(self, block: ir.Block, next_label: str | None, routine: ir.Routine | None = None) -> None:
+        self.block_start = len(self.listing.lines)
         if block.named and not self.foreign or block.label in self.labels:
             self.line(f"LB {self.label(block.label)}", block.span)
         self.written_ramp.clear()  # a label can be reached from anywhere: nothing known written
@@ -373,27 +458,41 @@ class Writer:
         term = threaded(block.terminator, self.through)
         span = getattr(term, "span", None)
         try:
-            self.terminator(term, next_label, span)
+            self.terminator(term, next_label, span, routine)
         except Unsupported as exc:
             self.unsupported(span, str(exc))
 
-    def terminator(self, term, next_label: str | None, span) -> None:
+    def terminator(self, term, next_label: str | None, span, routine: ir.Routine | None = None) -> None:
         if isinstance(term, ir.Jump):
             if term.target != next_label:
                 self.line(f"BR {self.label(term.target)}", span)
         elif isinstance(term, ir.Branch):
             self.branch(term, next_label)
         elif isinstance(term, ir.Return):
-            self.line("RT", span)
+            end = self.end_of(routine, "a return (XRT)") if self.foreign else "RT"
+            if not self.repeats_end(end):
+                self.line(end, span)
         elif isinstance(term, ir.End):
             self.line("E", span)
+        elif isinstance(term, ir.GotoRoutine) and self.foreign:
+            self.goto(term, routine, span)
         elif isinstance(term, ir.GotoRoutine):
             target = self.module.routine(term.routine)
             if target is None or target.entry is None:
                 raise Unsupported(f"a jump to {term.routine}, which is not in this program")
             self.line(f"BR {self.label(target.entry.label)}", span)
-        elif isinstance(term, ir.FallOff) and self.foreign and next_label is not None:
-            self.line("E", span)  # another dialect's program stops at its end; MCode would run on
+        elif isinstance(term, ir.FallOff) and self.foreign:
+            # another dialect's routine returns or stops at its end; MCode would run on into the next
+            # line (or off the end of the region: a called routine must still return)
+            end = self.end_of(routine, "the end (XT)")
+            if (end == "RT" or next_label is not None) and not self.repeats_end(end):
+                self.line(end, span)
+
+    def repeats_end(self, end: str) -> bool:
+        """Whether this block wrote nothing (no label, no operation) and the line before it is
+        already the same end: the XT kept after an XG (written as CL then the end) adds no line."""
+        lines = self.listing.lines
+        return self.foreign and len(lines) == self.block_start and bool(lines) and lines[-1].text == end
 
     def branch(self, term: ir.Branch, next_label: str | None) -> None:
         if term.then == term.otherwise:  # both ways lead to one place: a jump
