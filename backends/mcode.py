@@ -182,7 +182,8 @@ class Writer:
         reached: set[str] = set()
         for routine in self.module.routines:
             for block in routine.blocks:
-                targets = [op.routine for op in block.ops if isinstance(op, ir.Call)]
+                # a handler runs like a CL and ends with RT (L5232)
+                targets = [op.routine for op in block.ops if isinstance(op, (ir.Call, ir.SetHandler)) and op.routine]
                 if isinstance(block.terminator, ir.GotoRoutine) and block.terminator.routine != routine.name:
                     targets.append(block.terminator.routine)
                 for target in targets:
@@ -235,14 +236,17 @@ class Writer:
         self.line(f"CL {self.label(target.entry.label)}", span)
         self.line(end, span)
 
-    def end_of(self, routine: ir.Routine | None, what: str) -> str:
+    def end_of(self, routine: ir.Routine | None, what: str, default: str = "E") -> str:
         """RT or E for a routine's end (an X150 XT or XRT) in another dialect's program; refused when
-        the routine runs both called and as a program, since one line cannot both return and stop."""
+        the routine runs both called and as a program, since one line cannot both return and stop.
+        A routine nothing runs keeps `default` (RT for a written return, E otherwise)."""
         contexts = self.contexts.get(routine.name, set()) if routine is not None else set()
         if contexts == {"called", "top"}:
             raise Unsupported(f"{what} of {routine.name} (it runs both as a subroutine, XR/GOSUB, where its end "
                               "returns, and as a program, where its end stops; MCode's RT and E cannot do both: "
                               "give each use its own sequence)")
+        if not contexts:
+            return default
         return "RT" if contexts == {"called"} else "E"
 
     # labels --------------------------------------------------------------------------------------
@@ -469,7 +473,7 @@ class Writer:
         elif isinstance(term, ir.Branch):
             self.branch(term, next_label)
         elif isinstance(term, ir.Return):
-            end = self.end_of(routine, "a return (XRT)") if self.foreign else "RT"
+            end = self.end_of(routine, "a return (XRT)", "RT") if self.foreign else "RT"
             if not self.repeats_end(end):
                 self.line(end, span)
         elif isinstance(term, ir.End):
