@@ -99,6 +99,8 @@ class Writer:
         self.written_ramp: dict[str, float] = {}
         self.contexts = self.run_contexts() if self.foreign else {}
         self.block_start = 0
+        self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
+        self.moving = moving_before(module)
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -378,7 +380,8 @@ class Writer:
         order = [(r, b) for r in self.program_order() for b in r.blocks]
         origin_given = any(r.origin is not None for r in self.module.routines)
         for index, (routine, block) in enumerate(order):
-            if routine.kind is ir.RoutineKind.IMMEDIATE and not self.as_program(routine):
+            self.immediate = routine.kind is ir.RoutineKind.IMMEDIATE and not self.as_program(routine)
+            if self.immediate:
                 if region_open:
                     self.line("PG")
                     region_open = False
@@ -571,7 +574,26 @@ class Writer:
         if isinstance(op, ir.Call) and op.cond is not None and not isinstance(simplify(op.cond), (ir.Compare, ir.Truth)):
             return self.guarded_call(op)
         text = self.op_text(op)
+        if isinstance(op, (ir.Move, ir.Home)) and text is not None:
+            before = self.hold_first(op) + before
         return before + ([text] if text is not None else [])
+
+    def hold_first(self, op) -> list[str]:
+        """`H` before a move or homing whose axis may still be moving. The manual never says what a
+        motion command does to a move in progress; it asks for `H` after every move (L3048) and for
+        motion to have stopped before the next motion command (L5404). The IR's move waits for its
+        axis to stop (docs/SIMULATOR.md, `move_while_busy = block`): the H makes the drive do the same."""
+        axis = op.targets[0][0] if isinstance(op, ir.Move) else op.axis
+        moving = self.moving.get(id(op))
+        if moving is not None and (not moving or axis not in moving and axis != ir.ALL_AXES):
+            return []
+        if self.immediate:  # H is a program statement (M112): an immediate line cannot hold
+            if self.foreign:
+                raise Unsupported("a move sent while the previous one may still run, among immediate commands "
+                                  "(MCode holds for a move only in a program, with H: L3048, M112); wait for the "
+                                  "move in the source")
+            return []  # an MCode source's own immediate lines: sent as the source sends them
+        return [f"{self.prefix(axis)}H"]
 
     def prefix(self, axis: str) -> str:
         if self.foreign:
@@ -1011,6 +1033,156 @@ def pattern_cond(pattern: ir.Pattern):
     for test in tests[1:]:
         cond = ir.Logic("and", cond, test, pattern.span)
     return cond
+
+
+def moving_before(module: ir.Module) -> dict[int, frozenset[str]]:
+    """The axes that may still be moving before each operation (by id), for `Writer.hold_first`.
+
+    A forward data flow over the blocks of every routine, and across calls: a move, homing or slew
+    starts its axes, a wait for motion (`H`) ends them, an arc or native command may leave any axis
+    running, and a call leaves what its routine may leave at its end. A program (main, power-up,
+    immediate) starts with nothing moving; a subroutine with what its callers may leave running; a
+    handler, which interrupts anywhere, with what may be running anywhere else or at the end of a
+    handler; and what a handler may leave running at its end may be running before any operation.
+    A block another routine jumps to, or that nothing reaches, may start with any axis moving."""
+    return Motion(module).run()
+
+
+class Motion:
+    """The data flow of `moving_before`; states are sets of the module's axis names."""
+
+    STARTS = (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)
+
+    def __init__(self, module: ir.Module):
+        self.module = module
+        axes = {axis for _, b in module.blocks() for op in b.ops for axis in op_axes(op)}
+        axes |= {op.axis for _, b in module.blocks() for op in b.ops if isinstance(op, ir.WaitMotion)}
+        axes.discard(ir.ALL_AXES)
+        self.anything = frozenset(axes or {ir.ALL_AXES})
+        self.seen: dict[str, frozenset[str]] = {}
+        self.foreign_jumps: set[str] = set()
+        for routine in module.routines:
+            own = {b.label for b in routine.blocks}
+            for block in routine.blocks:
+                self.foreign_jumps.update(t for t in successors(block.terminator) if t not in own)
+
+    def axes(self, axis: str) -> frozenset[str]:
+        return self.anything if axis == ir.ALL_AXES else frozenset({axis})
+
+    def after(self, op, moving: frozenset[str]) -> frozenset[str]:
+        if isinstance(op, ir.WaitMotion):
+            return moving - self.axes(op.axis)
+        if isinstance(op, ir.Move):
+            return moving.union(*(self.axes(axis) for axis, _ in op.targets))
+        if isinstance(op, (ir.Slew, ir.Home)):
+            return moving | self.axes(op.axis)
+        if isinstance(op, (ir.Arc, ir.Native)):
+            return self.anything
+        return moving
+
+    def run(self) -> dict[int, frozenset[str]]:
+        module = self.module
+        called = {op.routine for _, b in module.blocks() for op in b.ops if isinstance(op, ir.Call)}
+        called |= {b.terminator.routine for _, b in module.blocks() if isinstance(b.terminator, ir.GotoRoutine)}
+        handlers = [r for r in module.routines if r.kind is ir.RoutineKind.HANDLER]
+        entry: dict[str, frozenset[str]] = {}
+        for routine in module.routines:
+            known = routine.kind in self.STARTS or routine.kind is ir.RoutineKind.HANDLER \
+                or routine.kind is ir.RoutineKind.SUBROUTINE and routine.name in called
+            entry[routine.name] = frozenset() if known else self.anything  # else: filled below
+        exits: dict[str, frozenset[str]] = {r.name: frozenset() for r in module.routines}
+        handler_names = {r.name for r in handlers}
+        while True:
+            result: dict[int, frozenset[str]] = {}
+            self.seen = {}  # routine -> every state at any of its points
+            found: list[tuple[str, frozenset[str]]] = []
+            for routine in module.routines:
+                found += [(name, state) for name, state in self.flow(routine, entry[routine.name], exits, result)]
+            # what a handler starts and leaves running (from a standstill, in a scratch run); a
+            # handler does not interrupt another (docs/SIMULATOR.md), so it interrupts the others' states
+            scratch: dict[int, frozenset[str]] = {}
+            leftover = frozenset().union(*(state for r in handlers for name, state in self.flow(r, frozenset(), exits, scratch)
+                                           if name == "exit:" + r.name))
+            anywhere = frozenset().union(*(state for name, state in self.seen.items()
+                                           if name not in handler_names)) | leftover
+            changed = False
+            for name, state in found:
+                target = exits if name.startswith("exit:") else entry
+                key = name.removeprefix("exit:")
+                if key in target and not state <= target[key]:
+                    target[key] |= state
+                    changed = True
+            for routine in handlers:  # a handler interrupts wherever the others are
+                if not anywhere <= entry[routine.name]:
+                    entry[routine.name] |= anywhere
+                    changed = True
+            if not changed:
+                return {key: state | leftover for key, state in result.items()} if leftover else result
+
+    def visit(self, routine: ir.Routine, by_label: dict[str, ir.Block], state_in: dict[str, frozenset[str]],
+              reached: set[str], work: list[str], exits: dict[str, frozenset[str]], result: dict[int, frozenset[str]],
+              found: list[tuple[str, frozenset[str]]]) -> None:
+        """Run the work list to a fixed point, widening each block's entry state."""
+        while work:
+            label = work.pop()
+            reached.add(label)
+            block = by_label[label]
+            moving = state_in[label]
+            for op in block.ops:
+                self.seen[routine.name] = self.seen.get(routine.name, frozenset()) | moving
+                result[id(op)] = result.get(id(op), frozenset()) | moving
+                if isinstance(op, ir.Call):
+                    found.append((op.routine, moving))
+                    moving = exits[op.routine] if op.routine in exits else self.anything
+                else:
+                    moving = self.after(op, moving)
+            self.seen[routine.name] = self.seen.get(routine.name, frozenset()) | moving
+            term = block.terminator
+            if isinstance(term, ir.GotoRoutine):
+                found.append((term.routine, moving))
+            elif not isinstance(term, (ir.Jump, ir.Branch)):
+                found.append(("exit:" + routine.name, moving))
+            for target in successors(term):
+                if target not in by_label:
+                    continue
+                merged = state_in[target] | moving
+                if target not in reached or merged != state_in[target]:
+                    state_in[target] = merged
+                    work.append(target)
+
+    def flow(self, routine: ir.Routine, start: frozenset[str], exits: dict[str, frozenset[str]],
+             result: dict[int, frozenset[str]]) -> list[tuple[str, frozenset[str]]]:
+        """One routine's data flow from `start`: records each operation's state in `result`; returns
+        the entry states it gives the routines it calls or jumps to, and ("exit:" + its name) its end
+        states."""
+        if not routine.blocks:
+            return []
+        found: list[tuple[str, frozenset[str]]] = []
+        by_label = {b.label: b for b in routine.blocks}
+        first = routine.blocks[0].label
+        state_in: dict[str, frozenset[str]] = {label: frozenset() for label in by_label}
+        state_in[first] = start
+        for label in by_label:
+            if label in self.foreign_jumps:
+                state_in[label] = self.anything
+        reached: set[str] = set()
+        work = [first] + [label for label in by_label if label in self.foreign_jumps]
+        while work:
+            self.visit(routine, by_label, state_in, reached, work, exits, result, found)
+            # a block nothing here reaches (run by the host, EX <label>) may start with anything moving
+            unreached = [b.label for b in routine.blocks if b.label not in reached]
+            if unreached:
+                state_in[unreached[0]] = self.anything
+                work.append(unreached[0])
+        return found
+
+
+def successors(term) -> tuple[str, ...]:
+    if isinstance(term, ir.Jump):
+        return (term.target,)
+    if isinstance(term, ir.Branch):
+        return (term.then, term.otherwise)
+    return ()
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
