@@ -62,6 +62,7 @@ HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+
 # operations MCode writes with a program-only statement (CL, BR loops, H): an immediate stream of
 # another dialect holding one runs as a program
 PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
+OUTPUTS = 3  # O1-O3; OT sets them as a 3-bit value (L4669)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
 
@@ -573,6 +574,8 @@ class Writer:
             return self.wait_input(op)
         if isinstance(op, ir.Call) and op.cond is not None and not isinstance(simplify(op.cond), (ir.Compare, ir.Truth)):
             return self.guarded_call(op)
+        if isinstance(op, ir.SetOutput) and op.index is None:
+            return self.all_outputs(op)
         text = self.op_text(op)
         if isinstance(op, (ir.Move, ir.Home)) and text is not None:
             before = self.hold_first(op) + before
@@ -640,8 +643,6 @@ class Writer:
         if isinstance(op, ir.SetPosition):
             return f"{self.prefix(op.axis)}P={self.position(op.value)}"
         if isinstance(op, ir.SetOutput):
-            if op.index is None:
-                return f"OT={self.expr(op.value)}"
             if op.index not in range(1, 4):
                 raise Unsupported(f"output {op.index} (the drive has outputs 1 to 3)")
             return f"O{op.index}={self.expr(op.value)}"
@@ -798,6 +799,32 @@ class Writer:
                               "only the function)")
         active = pair.value
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
+
+    def all_outputs(self, op: ir.SetOutput) -> list[str]:
+        """Every output at once. OT sets outputs 1-3 from a 3-bit value, 0-7 (L4669; the range line
+        L4671 says 1-7, the catalog takes 0-7): a value with a higher bit would set outputs the drive
+        lacks, so it is refused; a pattern (X150 `O1X0`) becomes one `On=` per output it sets (an OT
+        would also set the outputs it leaves as they are), and is refused when it sets one above 3."""
+        value = op.value
+        if isinstance(value, ir.Pattern):
+            beyond = [n + 1 for n, bit in enumerate(value.bits) if n >= OUTPUTS and bit in "01"]
+            if beyond:
+                raise Unsupported(f"setting output {beyond[0]} in the pattern {value.bits} (the drive has outputs 1 "
+                                  f"to {OUTPUTS})")
+            return [f"O{n + 1}={bit}" for n, bit in enumerate(value.bits[:OUTPUTS]) if bit in "01"]
+        if isinstance(value, ir.Const):
+            number = value.value
+            if isinstance(number, float) and number.is_integer():
+                number = int(number)
+            if not isinstance(number, int) or not 0 <= number < 2 ** OUTPUTS:
+                raise Unsupported(f"all outputs set to {format_number(value.value)} (OT takes 0-7, outputs 1-3 as "
+                                  f"bits, L4669: a higher bit is an output the drive lacks)")
+            return [f"OT={number}"]
+        if self.foreign:
+            raise Unsupported("all outputs set from a value computed at run time (OT takes 0-7, outputs 1-3 as bits, "
+                              "L4669, and the source's value may set outputs the drive lacks: set outputs 1-3 "
+                              "one by one)")
+        return [f"OT={self.expr(value)}"]  # an MCode source's own OT: the drive checks it as the source's would
 
     def wait_input(self, op: ir.WaitInput) -> list[str]:
         """MCode has no wait-for-input statement: a loop that tests until the condition holds."""
