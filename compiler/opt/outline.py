@@ -24,7 +24,9 @@ Where the new subroutine goes (MCode): a device holds only what is sent between 
 a program's subroutines belong inside its region (`PG 1 [MAIN PROG] [SUBROUTINES]`, L4794). So on
 an MCode target a run is outlined only from the places of one program region, and the new
 subroutine is placed after that region's last routine, before its closing `PG` (the backend writes
-routines in module order and closes a region at the next `PG <address>` or immediate line).
+routines in module order and closes a region at the next `PG <address>` or immediate line). A region
+whose last routine runs off its end (no E or RT) is not outlined: that routine would run on into the
+new subroutine.
 
 Needs: the call graph (computed here) and the target profile's limits.
 """
@@ -195,6 +197,17 @@ def mcode_regions(module: ir.Module) -> dict[str, int | None]:
         if routine.origin is not None or not is_open and not origin_given:
             region, is_open = region + 1, True
         regions[routine.name] = region if is_open else None
+    # an MCode routine that runs off its end runs on into the next line (M323): a region whose last
+    # routine can do so has no place for a new subroutine, which would run after it
+    last: dict[int, ir.Routine] = {}
+    for routine in module.routines:
+        if regions[routine.name] is not None:
+            last[regions[routine.name]] = routine
+    for region, routine in last.items():
+        if any(isinstance(b.terminator, ir.FallOff) or b.terminator is None for b in routine.blocks):
+            for name, where in regions.items():
+                if where == region:
+                    regions[name] = None
     return regions
 
 

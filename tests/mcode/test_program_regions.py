@@ -73,3 +73,14 @@ def test_a_routine_outside_every_program_region_is_refused():
     listing = backend.emit(module, PROFILE)
     assert [(d.code, d.span.line) for d in listing.diagnostics] == [("G003", 7)]
     assert "outside any program region" in next(iter(listing.diagnostics)).message
+
+
+def test_a_region_whose_program_runs_off_its_end_gets_no_outlined_routine():
+    """A program without E runs on into the line after it (M323; the samples end programs with E and
+    put subroutines after it, L7617-L7658): an outlined routine placed there would run after the
+    program, and its RT would return with no call on the stack (L8489). Such a region is left as
+    written."""
+    source = "PG 100\nLB AA\n" + REPEATED * 3 + "PG\nS\n"
+    result = driver.compile_file("fall.mxt", "mcode", text=source, opt_level="Os")
+    assert not result.has_errors, [d.message for d in result.diagnostics]
+    assert "CL " not in result.listing.text and "RT" not in program_lines(result.listing.text)
