@@ -471,6 +471,12 @@ class Writer:
             self.unsupported(span, str(exc))
 
     def terminator(self, term, next_label: str | None, span, routine: ir.Routine | None = None) -> None:
+        if self.foreign and routine is not None and isinstance(term, (ir.Jump, ir.Branch)):
+            own = {b.label for b in routine.blocks}
+            away = [t for t in successors(term) if t not in own]
+            if away:  # a BR out of a routine leaves its return address on the stack (M302)
+                raise Unsupported(f"a jump from {routine.name} into another routine (MCode leaves a routine with RT "
+                                  "or E, not BR)")
         if isinstance(term, ir.Jump):
             if term.target != next_label:
                 self.line(f"BR {self.label(term.target)}", span)

@@ -130,3 +130,23 @@ def test_jumps_that_cycle_between_sequences_are_refused_at_each_jump():
     result = compile_to_mcode(source)
     assert sorted(line for code, line, message in errors(result) if code == "G003" and "leads back" in message) \
         == [4, 10]
+
+
+def test_a_jump_from_one_converted_routine_into_another_is_refused():
+    """A BR out of a routine leaves it without RT (M302: the return address stays on the stack,
+    lexium-mcode.txt L2121, L8489): another dialect's IR that jumps into another routine's block is
+    refused with G003 on the jump's line rather than written as a BR across routines."""
+    from mcc.backends import mcode as backend
+    from mcc.compiler import ir, profiles
+    from mcc.compiler.span import Span
+
+    span = Span("x.prg", 3, 1, 3, 5, 0, 4)
+    main = ir.Routine("main", ir.RoutineKind.MAIN,
+                      [ir.Block("%1", [ir.Call("S1"), ir.SetOutput(1, ir.Const(1))], ir.Jump("%3", span))])
+    sub = ir.Routine("S1", ir.RoutineKind.SUBROUTINE,
+                     [ir.Block("%2", [ir.SetOutput(2, ir.Const(1))], ir.Return()),
+                      ir.Block("%3", [ir.SetOutput(3, ir.Const(1))], ir.Return())])
+    module = ir.Module("arcus", "pmx-4ex-sa", {}, [main, sub])
+    listing = backend.emit(module, profiles.load("lmd-c"))
+    assert [(d.code, d.span.line) for d in listing.diagnostics] == [("G003", 3)]
+    assert "into another routine" in next(iter(listing.diagnostics)).message
