@@ -1134,7 +1134,8 @@ class Motion:
             # what a handler starts and leaves running (from a standstill, in a scratch run); a
             # handler does not interrupt another (docs/SIMULATOR.md), so it interrupts the others' states
             scratch: dict[int, frozenset[str]] = {}
-            leftover = frozenset().union(*(state for r in handlers for name, state in self.flow(r, frozenset(), exits, scratch)
+            ends = [(r, self.flow(r, frozenset(), exits, scratch)) for r in handlers]
+            leftover = frozenset().union(*(state for r, found_here in ends for name, state in found_here
                                            if name == "exit:" + r.name))
             anywhere = frozenset().union(*(state for name, state in self.seen.items()
                                            if name not in handler_names)) | leftover
