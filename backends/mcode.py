@@ -63,6 +63,7 @@ HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+
 # operations MCode writes with a program-only statement (CL, BR loops, H): an immediate stream of
 # another dialect holding one runs as a program
 PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
+OUTPUTS = 3  # O1-O3; OT sets them as a 3-bit value (L4669)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
 
@@ -98,6 +99,10 @@ class Writer:
         self.ramps = self.uses_ramp_times()
         self.states = self.settings_in_force() if self.foreign else {}
         self.written_ramp: dict[str, float] = {}
+        self.contexts = self.run_contexts() if self.foreign else {}
+        self.block_start = 0
+        self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
+        self.moving = moving_before(module)
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -165,6 +170,89 @@ class Writer:
                 states[id(op)] = state
         return states
 
+    # how each routine runs (another dialect's program) ----------------------------------------------
+    def run_contexts(self) -> dict[str, set[str]]:
+        """How each routine of another dialect's program can run: "called" (CL: its end returns to
+        the caller) and/or "top" (a program run by EX or at power-up: its end stops the program).
+
+        An X150 sequence ends at XT, which returns when it was run by XR/GOSUB and stops the program
+        otherwise (parker-x150.md L1750, L5138). MCode spells the two ends differently: RT returns
+        from a CL (lexium-mcode.txt L2121, L5232), E ends the program (L2527). XG/GOTO to another
+        sequence hands over without a new return address (L5077, L1790): it is written as `CL` of
+        that sequence followed by this routine's own end (Writer.goto), so the sequence it reaches
+        is a called one; a BR into another routine would leave MCode code that enters a routine
+        without CL and leaves it with RT (M302), which the MCode reading of the output cannot follow."""
+        contexts: dict[str, set[str]] = {r.name: set() for r in self.module.routines}
+        reached: set[str] = set()
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                # a handler runs like a CL and ends with RT (L5232)
+                targets = [op.routine for op in block.ops if isinstance(op, (ir.Call, ir.SetHandler)) and op.routine]
+                if isinstance(block.terminator, ir.GotoRoutine) and block.terminator.routine != routine.name:
+                    targets.append(block.terminator.routine)
+                for target in targets:
+                    if target in contexts:
+                        contexts[target].add("called")
+                        reached.add(target)
+        for routine in self.module.routines:
+            # a program: run at power-up, as the converted stream, or (a sequence nothing in the file
+            # runs) by the host
+            if routine.kind is ir.RoutineKind.POWERUP or self.as_program(routine) \
+                    or routine.kind is ir.RoutineKind.MAIN and routine.name not in reached:
+                contexts[routine.name].add("top")
+            if routine.kind is ir.RoutineKind.HANDLER:  # run like a CL, ends with RT (L5232)
+                contexts[routine.name].add("called")
+        return contexts
+
+    def goto_cycle(self, source: str, target: str) -> bool:
+        """Whether XG/GOTO from `source` to `target` can come back to `source` by XG/GOTO alone: written
+        as CL, each round would nest one call deeper until the device's stack overflows (Error 43)."""
+        edges: dict[str, set[str]] = {}
+        for routine in self.module.routines:
+            for block in routine.blocks:
+                if isinstance(block.terminator, ir.GotoRoutine) and block.terminator.routine != routine.name:
+                    edges.setdefault(routine.name, set()).add(block.terminator.routine)
+        seen, todo = set(), [target]
+        while todo:
+            name = todo.pop()
+            if name == source:
+                return True
+            if name not in seen:
+                seen.add(name)
+                todo.extend(edges.get(name, ()))
+        return False
+
+    def goto(self, term: ir.GotoRoutine, routine: ir.Routine | None, span) -> None:
+        """XG/GOTO to another routine of another dialect's program: CL it, then end as this routine
+        ends (its XT would return to the same caller, or stop the program, as the sequence reached)."""
+        target = self.module.routine(term.routine)
+        if target is None or target.entry is None:
+            raise Unsupported(f"a jump to {term.routine}, which is not in this program")
+        if routine is None or target is routine:
+            self.line(f"BR {self.label(target.entry.label)}", span)
+            return
+        if self.goto_cycle(routine.name, target.name):
+            raise Unsupported(f"a jump (XG/GOTO) to {target.name} that leads back to {routine.name} by jumps alone "
+                              "(MCode has no jump into another routine that returns right, M302, and written as a "
+                              "call each round would nest deeper until the stack overflows, Error 43: make the "
+                              "loop inside one sequence)")
+        end = self.end_of(routine, f"a jump (XG/GOTO) to {target.name} at the end")
+        self.line(f"CL {self.label(target.entry.label)}", span)
+        self.line(end, span)
+
+    def end_of(self, routine: ir.Routine | None, what: str, default: str = "E") -> str:
+        """RT or E for a routine's end (an X150 XT or XRT) in another dialect's program; refused when
+        the routine runs both called and as a program, since one line cannot both return and stop.
+        A routine nothing runs keeps `default` (RT for a written return, E otherwise)."""
+        contexts = self.contexts.get(routine.name, set()) if routine is not None else set()
+        if contexts == {"called", "top"}:
+            raise Unsupported(f"{what} of {routine.name} (it runs both as a subroutine, XR/GOSUB, where its end "
+                              "returns, and as a program, where its end stops; MCode's RT and E cannot do both: "
+                              "give each use its own sequence)")
+        if not contexts:
+            return default
+        return "RT" if contexts == {"called"} else "E"
+
     # labels --------------------------------------------------------------------------------------
     def used_names(self) -> set[str]:
         names = {name for name in self.module.variables if is_user_name(name, self.reserved)}
@@ -223,7 +311,8 @@ class Writer:
             if routine.kind is ir.RoutineKind.POWERUP and routine.entry:
                 needed.add(routine.entry.label)
         if self.foreign:  # another dialect's programs (X150 sequences) run by name: EX <label>
-            programs = [r for r in self.module.routines if r.kind is ir.RoutineKind.MAIN and r.entry]
+            programs = [r for r in self.program_order() if (r.kind is ir.RoutineKind.MAIN or self.as_program(r))
+                        and r.entry]
             needed.update(r.entry.label for r in programs[1:])
         return needed
 
@@ -293,7 +382,8 @@ class Writer:
         order = [(r, b) for r in self.program_order() for b in r.blocks]
         origin_given = any(r.origin is not None for r in self.module.routines)
         for index, (routine, block) in enumerate(order):
-            if routine.kind is ir.RoutineKind.IMMEDIATE and not self.as_program(routine):
+            self.immediate = routine.kind is ir.RoutineKind.IMMEDIATE and not self.as_program(routine)
+            if self.immediate:
                 if region_open:
                     self.line("PG")
                     region_open = False
@@ -306,8 +396,14 @@ class Writer:
                     self.line("PG")
                 self.line(f"PG {routine.origin if routine.origin is not None else 1}", routine.span)
                 region_open = True
+            if block is routine.entry and not region_open:
+                # after a closing PG a line runs at once (immediate mode, L510-L512) and its label
+                # is never stored: a routine there would run on download and CL could not find it
+                self.unsupported(routine.span or next((op.span for op in block.ops if op.span), None),
+                                 f"the routine {routine.name} outside any program region (PG <address> ... PG); "
+                                 "a program's subroutines belong inside it (L4794)")
             next_label = self.through(order[index + 1][1].label) if index + 1 < len(order) else None
-            self.block(block, next_label)
+            self.block(block, next_label, routine)
         if region_open:
             self.line("PG")
         if self.foreign and any(self.as_program(r) for r in self.module.routines):
@@ -336,7 +432,9 @@ class Writer:
         routines = list(self.module.routines)
         if not self.foreign:
             return routines
-        first = [r for r in routines if self.as_program(r) or r.kind in (ir.RoutineKind.MAIN,)]
+        # the converted stream runs first (EX 1, its commands ran as they were sent); sequences are
+        # only stored until something runs them
+        first = [r for r in routines if self.as_program(r)] + [r for r in routines if r.kind is ir.RoutineKind.MAIN]
         rest = [r for r in routines if r not in first]
         immediate = [r for r in rest if r.kind is ir.RoutineKind.IMMEDIATE]
         program = first + [r for r in rest if r not in immediate]
@@ -357,7 +455,8 @@ class Writer:
             "routines": sum(1 for r in self.module.routines if r.kind is not ir.RoutineKind.IMMEDIATE),
         }
 
-    def block(self, block: ir.Block, next_label: str | None) -> None:
+    def block(self, block: ir.Block, next_label: str | None, routine: ir.Routine | None = None) -> None:
+        self.block_start = len(self.listing.lines)
         if block.named and not self.foreign or block.label in self.labels:
             self.line(f"LB {self.label(block.label)}", block.span)
         self.written_ramp.clear()  # a label can be reached from anywhere: nothing known written
@@ -368,27 +467,47 @@ class Writer:
         term = threaded(block.terminator, self.through)
         span = getattr(term, "span", None)
         try:
-            self.terminator(term, next_label, span)
+            self.terminator(term, next_label, span, routine)
         except Unsupported as exc:
             self.unsupported(span, str(exc))
 
-    def terminator(self, term, next_label: str | None, span) -> None:
+    def terminator(self, term, next_label: str | None, span, routine: ir.Routine | None = None) -> None:
+        if self.foreign and routine is not None and isinstance(term, (ir.Jump, ir.Branch)):
+            own = {b.label for b in routine.blocks}
+            away = [t for t in successors(term) if t not in own]
+            if away:  # a BR out of a routine leaves its return address on the stack (M302)
+                raise Unsupported(f"a jump from {routine.name} into another routine (MCode leaves a routine with RT "
+                                  "or E, not BR)")
         if isinstance(term, ir.Jump):
             if term.target != next_label:
                 self.line(f"BR {self.label(term.target)}", span)
         elif isinstance(term, ir.Branch):
             self.branch(term, next_label)
         elif isinstance(term, ir.Return):
-            self.line("RT", span)
+            end = self.end_of(routine, "a return (XRT)", "RT") if self.foreign else "RT"
+            if not self.repeats_end(end):
+                self.line(end, span)
         elif isinstance(term, ir.End):
             self.line("E", span)
+        elif isinstance(term, ir.GotoRoutine) and self.foreign:
+            self.goto(term, routine, span)
         elif isinstance(term, ir.GotoRoutine):
             target = self.module.routine(term.routine)
             if target is None or target.entry is None:
                 raise Unsupported(f"a jump to {term.routine}, which is not in this program")
             self.line(f"BR {self.label(target.entry.label)}", span)
-        elif isinstance(term, ir.FallOff) and self.foreign and next_label is not None:
-            self.line("E", span)  # another dialect's program stops at its end; MCode would run on
+        elif isinstance(term, ir.FallOff) and self.foreign:
+            # another dialect's routine returns or stops at its end; MCode would run on into the next
+            # line (or off the end of the region: a called routine must still return)
+            end = self.end_of(routine, "the end (XT)")
+            if (end == "RT" or next_label is not None) and not self.repeats_end(end):
+                self.line(end, span)
+
+    def repeats_end(self, end: str) -> bool:
+        """Whether this block wrote nothing (no label, no operation) and the line before it is
+        already the same end: the XT kept after an XG (written as CL then the end) adds no line."""
+        lines = self.listing.lines
+        return self.foreign and len(lines) == self.block_start and bool(lines) and lines[-1].text == end
 
     def branch(self, term: ir.Branch, next_label: str | None) -> None:
         if term.then == term.otherwise:  # both ways lead to one place: a jump
@@ -462,8 +581,29 @@ class Writer:
             return self.wait_input(op)
         if isinstance(op, ir.Call) and op.cond is not None and not isinstance(simplify(op.cond), (ir.Compare, ir.Truth)):
             return self.guarded_call(op)
+        if isinstance(op, ir.SetOutput) and op.index is None:
+            return self.all_outputs(op)
         text = self.op_text(op)
+        if isinstance(op, (ir.Move, ir.Home)) and text is not None:
+            before = self.hold_first(op) + before
         return before + ([text] if text is not None else [])
+
+    def hold_first(self, op) -> list[str]:
+        """`H` before a move or homing whose axis may still be moving. The manual never says what a
+        motion command does to a move in progress; it asks for `H` after every move (L3048) and for
+        motion to have stopped before the next motion command (L5404). The IR's move waits for its
+        axis to stop (docs/SIMULATOR.md, `move_while_busy = block`): the H makes the drive do the same."""
+        axis = op.targets[0][0] if isinstance(op, ir.Move) else op.axis
+        moving = self.moving.get(id(op))
+        if moving is not None and (not moving or axis not in moving and axis != ir.ALL_AXES):
+            return []
+        if self.immediate:  # H is a program statement (M112): an immediate line cannot hold
+            if self.foreign:
+                raise Unsupported("a move sent while the previous one may still run, among immediate commands "
+                                  "(MCode holds for a move only in a program, with H: L3048, M112); wait for the "
+                                  "move in the source")
+            return []  # an MCode source's own immediate lines: sent as the source sends them
+        return [f"{self.prefix(axis)}H"]
 
     def prefix(self, axis: str) -> str:
         if self.foreign:
@@ -510,8 +650,6 @@ class Writer:
         if isinstance(op, ir.SetPosition):
             return f"{self.prefix(op.axis)}P={self.position(op.value)}"
         if isinstance(op, ir.SetOutput):
-            if op.index is None:
-                return f"OT={self.expr(op.value)}"
             if op.index not in range(1, 4):
                 raise Unsupported(f"output {op.index} (the drive has outputs 1 to 3)")
             return f"O{op.index}={self.expr(op.value)}"
@@ -671,6 +809,32 @@ class Writer:
                               "only the function)")
         active = pair.value
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
+
+    def all_outputs(self, op: ir.SetOutput) -> list[str]:
+        """Every output at once. OT sets outputs 1-3 from a 3-bit value, 0-7 (L4669; the range line
+        L4671 says 1-7, the catalog takes 0-7): a value with a higher bit would set outputs the drive
+        lacks, so it is refused; a pattern (X150 `O1X0`) becomes one `On=` per output it sets (an OT
+        would also set the outputs it leaves as they are), and is refused when it sets one above 3."""
+        value = op.value
+        if isinstance(value, ir.Pattern):
+            beyond = [n + 1 for n, bit in enumerate(value.bits) if n >= OUTPUTS and bit in "01"]
+            if beyond:
+                raise Unsupported(f"setting output {beyond[0]} in the pattern {value.bits} (the drive has outputs 1 "
+                                  f"to {OUTPUTS})")
+            return [f"O{n + 1}={bit}" for n, bit in enumerate(value.bits[:OUTPUTS]) if bit in "01"]
+        if isinstance(value, ir.Const):
+            number = value.value
+            if isinstance(number, float) and number.is_integer():
+                number = int(number)
+            if not isinstance(number, int) or not 0 <= number < 2 ** OUTPUTS:
+                raise Unsupported(f"all outputs set to {format_number(value.value)} (OT takes 0-7, outputs 1-3 as "
+                                  f"bits, L4669: a higher bit is an output the drive lacks)")
+            return [f"OT={number}"]
+        if self.foreign:
+            raise Unsupported("all outputs set from a value computed at run time (OT takes 0-7, outputs 1-3 as bits, "
+                              "L4669, and the source's value may set outputs the drive lacks: set outputs 1-3 "
+                              "one by one)")
+        return [f"OT={self.expr(value)}"]  # an MCode source's own OT: the drive checks it as the source's would
 
     def wait_input(self, op: ir.WaitInput) -> list[str]:
         """MCode has no wait-for-input statement: a loop that tests until the condition holds."""
@@ -915,6 +1079,157 @@ def pattern_cond(pattern: ir.Pattern):
     for test in tests[1:]:
         cond = ir.Logic("and", cond, test, pattern.span)
     return cond
+
+
+def moving_before(module: ir.Module) -> dict[int, frozenset[str]]:
+    """The axes that may still be moving before each operation (by id), for `Writer.hold_first`.
+
+    A forward data flow over the blocks of every routine, and across calls: a move, homing or slew
+    starts its axes, a wait for motion (`H`) ends them, an arc or native command may leave any axis
+    running, and a call leaves what its routine may leave at its end. A program (main, power-up,
+    immediate) starts with nothing moving; a subroutine with what its callers may leave running; a
+    handler, which interrupts anywhere, with what may be running anywhere else or at the end of a
+    handler; and what a handler may leave running at its end may be running before any operation.
+    A block another routine jumps to, or that nothing reaches, may start with any axis moving."""
+    return Motion(module).run()
+
+
+class Motion:
+    """The data flow of `moving_before`; states are sets of the module's axis names."""
+
+    STARTS = (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)
+
+    def __init__(self, module: ir.Module):
+        self.module = module
+        axes = {axis for _, b in module.blocks() for op in b.ops for axis in op_axes(op)}
+        axes |= {op.axis for _, b in module.blocks() for op in b.ops if isinstance(op, ir.WaitMotion)}
+        axes.discard(ir.ALL_AXES)
+        self.anything = frozenset(axes or {ir.ALL_AXES})
+        self.seen: dict[str, frozenset[str]] = {}
+        self.foreign_jumps: set[str] = set()
+        for routine in module.routines:
+            own = {b.label for b in routine.blocks}
+            for block in routine.blocks:
+                self.foreign_jumps.update(t for t in successors(block.terminator) if t not in own)
+
+    def axes(self, axis: str) -> frozenset[str]:
+        return self.anything if axis == ir.ALL_AXES else frozenset({axis})
+
+    def after(self, op, moving: frozenset[str]) -> frozenset[str]:
+        if isinstance(op, ir.WaitMotion):
+            return moving - self.axes(op.axis)
+        if isinstance(op, ir.Move):
+            return moving.union(*(self.axes(axis) for axis, _ in op.targets))
+        if isinstance(op, (ir.Slew, ir.Home)):
+            return moving | self.axes(op.axis)
+        if isinstance(op, (ir.Arc, ir.Native)):
+            return self.anything
+        return moving
+
+    def run(self) -> dict[int, frozenset[str]]:
+        module = self.module
+        called = {op.routine for _, b in module.blocks() for op in b.ops if isinstance(op, ir.Call)}
+        called |= {b.terminator.routine for _, b in module.blocks() if isinstance(b.terminator, ir.GotoRoutine)}
+        handlers = [r for r in module.routines if r.kind is ir.RoutineKind.HANDLER]
+        entry: dict[str, frozenset[str]] = {}
+        for routine in module.routines:
+            known = routine.kind in self.STARTS or routine.kind is ir.RoutineKind.HANDLER \
+                or routine.kind is ir.RoutineKind.SUBROUTINE and routine.name in called
+            entry[routine.name] = frozenset() if known else self.anything  # else: filled below
+        exits: dict[str, frozenset[str]] = {r.name: frozenset() for r in module.routines}
+        handler_names = {r.name for r in handlers}
+        while True:
+            result: dict[int, frozenset[str]] = {}
+            self.seen = {}  # routine -> every state at any of its points
+            found: list[tuple[str, frozenset[str]]] = []
+            for routine in module.routines:
+                found += [(name, state) for name, state in self.flow(routine, entry[routine.name], exits, result)]
+            # what a handler starts and leaves running (from a standstill, in a scratch run); a
+            # handler does not interrupt another (docs/SIMULATOR.md), so it interrupts the others' states
+            scratch: dict[int, frozenset[str]] = {}
+            ends = [(r, self.flow(r, frozenset(), exits, scratch)) for r in handlers]
+            leftover = frozenset().union(*(state for r, found_here in ends for name, state in found_here
+                                           if name == "exit:" + r.name))
+            anywhere = frozenset().union(*(state for name, state in self.seen.items()
+                                           if name not in handler_names)) | leftover
+            changed = False
+            for name, state in found:
+                target = exits if name.startswith("exit:") else entry
+                key = name.removeprefix("exit:")
+                if key in target and not state <= target[key]:
+                    target[key] |= state
+                    changed = True
+            for routine in handlers:  # a handler interrupts wherever the others are
+                if not anywhere <= entry[routine.name]:
+                    entry[routine.name] |= anywhere
+                    changed = True
+            if not changed:
+                return {key: state | leftover for key, state in result.items()} if leftover else result
+
+    def visit(self, routine: ir.Routine, by_label: dict[str, ir.Block], state_in: dict[str, frozenset[str]],
+              reached: set[str], work: list[str], exits: dict[str, frozenset[str]], result: dict[int, frozenset[str]],
+              found: list[tuple[str, frozenset[str]]]) -> None:
+        """Run the work list to a fixed point, widening each block's entry state."""
+        while work:
+            label = work.pop()
+            reached.add(label)
+            block = by_label[label]
+            moving = state_in[label]
+            for op in block.ops:
+                self.seen[routine.name] = self.seen.get(routine.name, frozenset()) | moving
+                result[id(op)] = result.get(id(op), frozenset()) | moving
+                if isinstance(op, ir.Call):
+                    found.append((op.routine, moving))
+                    moving = exits[op.routine] if op.routine in exits else self.anything
+                else:
+                    moving = self.after(op, moving)
+            self.seen[routine.name] = self.seen.get(routine.name, frozenset()) | moving
+            term = block.terminator
+            if isinstance(term, ir.GotoRoutine):
+                found.append((term.routine, moving))
+            elif not isinstance(term, (ir.Jump, ir.Branch)):
+                found.append(("exit:" + routine.name, moving))
+            for target in successors(term):
+                if target not in by_label:
+                    continue
+                merged = state_in[target] | moving
+                if target not in reached or merged != state_in[target]:
+                    state_in[target] = merged
+                    work.append(target)
+
+    def flow(self, routine: ir.Routine, start: frozenset[str], exits: dict[str, frozenset[str]],
+             result: dict[int, frozenset[str]]) -> list[tuple[str, frozenset[str]]]:
+        """One routine's data flow from `start`: records each operation's state in `result`; returns
+        the entry states it gives the routines it calls or jumps to, and ("exit:" + its name) its end
+        states."""
+        if not routine.blocks:
+            return []
+        found: list[tuple[str, frozenset[str]]] = []
+        by_label = {b.label: b for b in routine.blocks}
+        first = routine.blocks[0].label
+        state_in: dict[str, frozenset[str]] = {label: frozenset() for label in by_label}
+        state_in[first] = start
+        for label in by_label:
+            if label in self.foreign_jumps:
+                state_in[label] = self.anything
+        reached: set[str] = set()
+        work = [first] + [label for label in by_label if label in self.foreign_jumps]
+        while work:
+            self.visit(routine, by_label, state_in, reached, work, exits, result, found)
+            # a block nothing here reaches (run by the host, EX <label>) may start with anything moving
+            unreached = [b.label for b in routine.blocks if b.label not in reached]
+            if unreached:
+                state_in[unreached[0]] = self.anything
+                work.append(unreached[0])
+        return found
+
+
+def successors(term) -> tuple[str, ...]:
+    if isinstance(term, ir.Jump):
+        return (term.target,)
+    if isinstance(term, ir.Branch):
+        return (term.then, term.otherwise)
+    return ()
 
 
 def emit(module: ir.Module, profile: Profile) -> Listing:

@@ -19,6 +19,15 @@ runs CL only in programs; handlers are left as written). The pass stops when the
 subroutine numbers (Arcus SUB 1-30: SUB 31 is the error handler; X150 sequences 1-64) or its
 call nesting are used up.
 
+Where the new subroutine goes (MCode): a device holds only what is sent between `PG <address>` and
+`PG`; a line after the closing `PG` runs at once in immediate mode (lexium-mcode.txt L510-L512), and
+a program's subroutines belong inside its region (`PG 1 [MAIN PROG] [SUBROUTINES]`, L4794). So on
+an MCode target a run is outlined only from the places of one program region, and the new
+subroutine is placed after that region's last routine, before its closing `PG` (the backend writes
+routines in module order and closes a region at the next `PG <address>` or immediate line). A region
+whose last routine runs off its end (no E or RT) is not outlined: that routine would run on into the
+new subroutine.
+
 Needs: the call graph (computed here) and the target profile's limits.
 """
 
@@ -45,9 +54,10 @@ def run(module: ir.Module, context) -> int:
     if capacity <= 0 or not nesting_allows(module, context.profile):
         return 0
     cost = target_cost(context.profile, module.dialect)
+    target = context.profile.dialect if context.profile is not None else module.dialect
     saved = 0
     for _ in range(ROUNDS):
-        made, gained = one_round(module, capacity, cost)
+        made, gained = one_round(module, capacity, cost, target == "mcode")
         capacity -= made
         saved += gained
         if not made or capacity <= 0:
@@ -168,8 +178,67 @@ def benefit(count: int, run_cost: int, cost: Cost, has_move: bool) -> int:
     return count * run_cost - (count * cost.call + run_cost + cost.frame + (1 if has_move else 0))
 
 
-def one_round(module: ir.Module, capacity: int, cost: Cost) -> tuple[int, int]:
-    blocks = [b for r in module.routines if r.kind in ELIGIBLE for b in r.blocks]
+def mcode_regions(module: ir.Module) -> dict[str, int | None]:
+    """The MCode program region each routine is written in, as the backend lays them out
+    (backends/mcode.py Writer.run): a routine with a PG address opens a region, an immediate
+    stream closes it, a routine without an address continues the open one. None: outside any
+    region (never outlined into or from). Another dialect's program is written as one region (its
+    immediate lines are moved around it, Writer.program_order)."""
+    if module.dialect != "mcode":
+        return {r.name: (None if r.kind is ir.RoutineKind.IMMEDIATE else 0) for r in module.routines}
+    origin_given = any(r.origin is not None for r in module.routines)
+    regions: dict[str, int | None] = {}
+    region, is_open = -1, False
+    for routine in module.routines:
+        if routine.kind is ir.RoutineKind.IMMEDIATE:
+            regions[routine.name] = None
+            is_open = False
+            continue
+        if routine.origin is not None or not is_open and not origin_given:
+            region, is_open = region + 1, True
+        regions[routine.name] = region if is_open else None
+    # an MCode routine that runs off its end runs on into the next line (M323): a region whose last
+    # routine can do so has no place for a new subroutine, which would run after it
+    last: dict[int, ir.Routine] = {}
+    for routine in module.routines:
+        if regions[routine.name] is not None:
+            last[regions[routine.name]] = routine
+    for region, routine in last.items():
+        if any(isinstance(b.terminator, ir.FallOff) or b.terminator is None for b in routine.blocks):
+            for name, where in regions.items():
+                if where == region:
+                    regions[name] = None
+    return regions
+
+
+def one_region(places: list[tuple[int, int]], owner: list[int | None]) -> list[tuple[int, int]]:
+    """The places of the region holding most of them (the first such region on a tie)."""
+    counts: dict[int, int] = {}
+    for bi, _ in places:
+        if owner[bi] is not None:
+            counts[owner[bi]] = counts.get(owner[bi], 0) + 1
+    if not counts:
+        return []
+    best = max(counts, key=lambda r: (counts[r], -r))
+    return [(bi, start) for bi, start in places if owner[bi] == best]
+
+
+def place_routine(module: ir.Module, routine: ir.Routine, region: int | None,
+                  regions: dict[str, int | None] | None) -> None:
+    """Append the new subroutine; on MCode, right after the last routine of its callers' region."""
+    if regions is None:
+        module.routines.append(routine)
+        return
+    last = max(i for i, r in enumerate(module.routines) if regions.get(r.name) == region)
+    module.routines.insert(last + 1, routine)
+    regions[routine.name] = region
+
+
+def one_round(module: ir.Module, capacity: int, cost: Cost, mcode: bool = False) -> tuple[int, int]:
+    routines = [r for r in module.routines if r.kind in ELIGIBLE]
+    blocks = [b for r in routines for b in r.blocks]
+    regions = mcode_regions(module) if mcode else None
+    owner = [regions[r.name] if regions is not None else 0 for r in routines for _ in r.blocks]
     ids: dict = {}
     prices: list[int] = []
     moves: set[int] = set()
@@ -182,7 +251,7 @@ def one_round(module: ir.Module, capacity: int, cost: Cost) -> tuple[int, int]:
         if made >= capacity:
             break
         free = [(bi, start) for bi, start in places if not taken[bi].intersection(range(start, start + length))]
-        free = non_overlapping(free, length)
+        free = one_region(non_overlapping(free, length), owner)
         gain = benefit(len(free), run_cost, cost, has_move)
         if len(free) < 2 or gain <= 0:
             continue
@@ -191,7 +260,7 @@ def one_round(module: ir.Module, capacity: int, cost: Cost) -> tuple[int, int]:
         body = list(blocks[first_bi].ops[first_start:first_start + length])
         routine = ir.Routine(name, ir.RoutineKind.SUBROUTINE,
                              [ir.Block(name, body, ir.Return(body[-1].span))], span=body[0].span)
-        module.routines.append(routine)
+        place_routine(module, routine, owner[first_bi], regions)
         for bi, start in free:
             taken[bi].update(range(start, start + length))
             chosen.append((bi, start, length, name))

@@ -345,3 +345,25 @@ def test_outline_does_nothing_on_x150_with_sequences_stored_on_the_controller():
     m = module(block("a", body + [ir.Call("5")], ir.End()), dialect="x150")
     m.externals.append("5")
     assert len(run(m, "outline", "Os", X150).routines) == 1
+
+
+def test_outline_on_mcode_keeps_each_new_subroutine_in_its_callers_program_region():
+    """lexium-mcode.txt L4794 (`PG 1 [MAIN PROG] [SUBROUTINES]`) and L510-L512 (after the closing PG
+    a line runs at once): the new subroutine is placed after the last routine of its callers'
+    region, before the immediate stream that follows it, and never called from another region."""
+    first = ir.Routine("AA", ir.RoutineKind.MAIN, [block("AA", GRIP * 3, ir.End(), named=True)], origin=100)
+    second = ir.Routine("CC", ir.RoutineKind.MAIN, [block("CC", GRIP * 2, ir.End(), named=True)], origin=200)
+    tail = ir.Routine("immediate", ir.RoutineKind.IMMEDIATE, [block("%i", [ir.Save()], ir.FallOff())])
+    m = ir.Module("mcode", "lmd-c", {}, [first, second, tail], steps_per_rev=51200)
+    work = run(m, "outline", "Os", MCODE)
+    names = [r.name for r in work.routines]
+    assert names[-1] == "immediate", names
+    region_of = {}  # the region each routine is written in: a PG address opens one
+    for routine in work.routines[:-1]:
+        region_of[routine.name] = routine.origin if routine.origin is not None else region_of[names[len(region_of) - 1]]
+    new = [name for name in names if name.startswith("%sub")]
+    assert new
+    for name in new:
+        callers = {r.name for r in work.routines for b in r.blocks for op in b.ops
+                   if isinstance(op, ir.Call) and op.routine == name}
+        assert {region_of[c] for c in callers} == {region_of[name]}, (name, callers, names)
