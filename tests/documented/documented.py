@@ -25,6 +25,16 @@ A case (keys of one `[[case]]` table):
     targets   which of "sim" and "device" the case applies to (default both)
     note      how the set-up was derived from the manual, and any decision taken where the
               manual contradicts itself
+
+Hand-worked programs (handworked_<dialect>.toml, issue 22): small realistic programs whose
+results were worked out by hand from the manual's rules before running mcc, the arithmetic in a
+comment above each case. They use the keys above and three more:
+    output_order  [[output, level], ...]: every change of an output level, in the order they happen
+    duration      seconds from the start of the run to the end of its last move or delay
+    tolerance     the allowed difference on `duration`, in seconds, stated per case (1 ms, or the
+                  time of one step at the speed the last move ends at); required with `duration`
+On the virtual device the duration is its virtual clock (docs/LINK.md, "Running a program") and
+the output changes are those of every run the commands started.
 """
 
 from __future__ import annotations
@@ -57,6 +67,10 @@ class Case:
     stored: bool = False
     profile: str | None = None
     note: str = ""
+    output_order: list[tuple[int, int]] | None = None
+    duration: float | None = None
+    tolerance: float | None = None
+    handworked: bool = False
 
 
 @dataclass
@@ -68,15 +82,31 @@ class Outcome:
 
 
 KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "variables", "inputs", "device", "targets", "stored", "profile", "note"}
+HANDWORKED_KEYS = KEYS | {"output_order", "duration", "tolerance"}
 
 
 def load(dialect: str) -> list[Case]:
-    data = toml.loads((HERE / f"{dialect}.toml").read_text())
+    """The manual's printed results for `dialect` (<dialect>.toml)."""
+    return _load(dialect, f"{dialect}.toml", KEYS)
+
+
+def load_handworked(dialect: str) -> list[Case]:
+    """The hand-worked programs for `dialect` (handworked_<dialect>.toml)."""
+    return _load(dialect, f"handworked_{dialect}.toml", HANDWORKED_KEYS)
+
+
+def _load(dialect: str, name: str, keys: set[str]) -> list[Case]:
+    path = HERE / name
+    if not path.exists():
+        return []
+    data = toml.loads(path.read_text())
     cases = []
     for raw in data.get("case", []):
-        unknown = set(raw) - KEYS
+        unknown = set(raw) - keys
         if unknown:
-            raise ValueError(f"{dialect}.toml {raw.get('id')}: unknown keys {sorted(unknown)}")
+            raise ValueError(f"{name} {raw.get('id')}: unknown keys {sorted(unknown)}")
+        if ("duration" in raw) != ("tolerance" in raw):
+            raise ValueError(f"{name} {raw.get('id')}: a duration needs its explicit tolerance (and back)")
         cases.append(Case(
             dialect=dialect, id=raw["id"], manual=raw["manual"], program=raw.get("program", ""),
             prints=raw.get("prints"),
@@ -87,7 +117,11 @@ def load(dialect: str) -> list[Case]:
             device=[(c, r) for c, r in raw["device"]] if "device" in raw else None,
             targets=tuple(raw.get("targets", TARGETS)), stored=bool(raw.get("stored", False)),
             profile=raw.get("profile"),
-            note=raw.get("note", "")))
+            note=raw.get("note", ""),
+            output_order=[(int(n), int(v)) for n, v in raw["output_order"]] if "output_order" in raw else None,
+            duration=float(raw["duration"]) if "duration" in raw else None,
+            tolerance=float(raw["tolerance"]) if "tolerance" in raw else None,
+            handworked=name.startswith("handworked_")))
     return cases
 
 
@@ -129,7 +163,9 @@ def run_sim(case: Case) -> Outcome:
     got = _observed(got_prints if case.prints is not None else None,
                     {a: round(p) for a, p in trace.axes.items()},
                     {int(k): int(v) for k, v in trace.outputs.items()},
-                    {n: trace.variables.get(n) for n in case.variables})
+                    {n: trace.variables.get(n) for n in case.variables},
+                    [(int(e.data["output"]), int(e.data["value"])) for e in trace.events if e.kind == "output"],
+                    trace.time)
     return Outcome(_matches(case, got), _show(got, trace.stopped if trace.stopped != "end" else ""))
 
 
@@ -159,9 +195,20 @@ def run_device(case: Case) -> Outcome:
     if case.inputs:
         device.sim.machine.inputs.update({k: float(v) for k, v in case.inputs.items()})
     got_prints: list[str] = []
+    changes: list[tuple[int, int]] = []
+    seen = [device.sim.last]
+
+    def record() -> None:
+        """The output changes of the run the last command started, if it started one."""
+        if device.sim.last is not seen[0]:
+            seen[0] = device.sim.last
+            changes.extend((int(e.data["output"]), int(e.data["value"]))
+                           for e in device.sim.last.events if e.kind == "output")
+
     if case.stored:
         device.load_program(case.program.strip() + "\n", "case")
         started = replies(case.dialect, device, "SR=1")
+        record()
         if started != _ack(case.dialect):
             return Outcome(False, f"SR=1 -> {started!r}")
         exchange = list(case.device or [])
@@ -169,6 +216,7 @@ def run_device(case: Case) -> Outcome:
         exchange = case.device if case.device is not None else [(c, None) for c in lines(case.program)]
     for command, reply in exchange:
         answer = replies(case.dialect, device, command)
+        record()
         if reply is None:
             got_prints += answer
         elif answer != ([reply] if reply else _ack(case.dialect)):
@@ -188,7 +236,7 @@ def run_device(case: Case) -> Outcome:
         variables[name] = _number(answer[-1] if answer else "")
     # With an explicit exchange, its replies were the check of what the device answers.
     checked = case.prints is not None and case.device is None
-    got = _observed(got_prints if checked else None, positions, outputs, variables)
+    got = _observed(got_prints if checked else None, positions, outputs, variables, changes, device.sim.clock)
     return Outcome(_matches(case, got, prints=checked), _show(got))
 
 
@@ -212,8 +260,9 @@ def _number(text: str):
         return text
 
 
-def _observed(prints, positions, outputs, variables=None) -> dict:
-    return {"prints": prints, "positions": positions, "outputs": outputs, "variables": variables or {}}
+def _observed(prints, positions, outputs, variables=None, changes=None, duration=None) -> dict:
+    return {"prints": prints, "positions": positions, "outputs": outputs, "variables": variables or {},
+            "output_order": changes or [], "duration": duration}
 
 
 def _matches(case: Case, got: dict, prints: bool = True) -> bool:
@@ -222,6 +271,11 @@ def _matches(case: Case, got: dict, prints: bool = True) -> bool:
     if any(got["positions"].get(a, 0) != p for a, p in case.positions.items()):
         return False
     if any(got["variables"].get(n) != v for n, v in case.variables.items()):
+        return False
+    if case.output_order is not None and got["output_order"] != case.output_order:
+        return False
+    if case.duration is not None and (got["duration"] is None
+                                      or abs(got["duration"] - case.duration) > case.tolerance + 1e-9):
         return False
     return all(got["outputs"].get(n, 0) == v for n, v in case.outputs.items())
 
@@ -236,6 +290,10 @@ def _show(got: dict, stopped: str = "") -> str:
         parts.append("outputs " + repr(got["outputs"]))
     if got["variables"]:
         parts.append("variables " + repr(got["variables"]))
+    if got.get("output_order"):
+        parts.append("output changes " + repr(got["output_order"]))
+    if got.get("duration") is not None:
+        parts.append(f"duration {got['duration']:.6f} s")
     if stopped:
         parts.append(f"stopped: {stopped}")
     return ", ".join(parts)
@@ -248,4 +306,5 @@ def run(case: Case, target: str) -> Outcome:
 
 
 def all_cases() -> list[Case]:
-    return [case for dialect in DIALECTS for case in load(dialect)]
+    """Every case: the manuals' printed results, then the hand-worked programs."""
+    return [case for dialect in DIALECTS for case in load(dialect) + load_handworked(dialect)]

@@ -47,6 +47,10 @@ def _expected(case) -> str:
         parts.append(f"outputs {case.outputs!r}")
     if case.variables:
         parts.append(f"variables {case.variables!r}")
+    if case.output_order is not None:
+        parts.append(f"output changes {case.output_order!r}")
+    if case.duration is not None:
+        parts.append(f"duration {case.duration} s ± {case.tolerance} s")
     return ", ".join(parts)
 
 
@@ -56,12 +60,25 @@ def test_every_case_checks_something_on_each_target():
         assert " L" in case.manual, f"{case.id}: cite the manual line"
         for target in case.targets:
             assert target in documented.TARGETS, case.id
-            checks = [case.prints is not None, bool(case.positions), bool(case.outputs), bool(case.variables)]
+            checks = [case.prints is not None, bool(case.positions), bool(case.outputs), bool(case.variables),
+                      case.output_order is not None, case.duration is not None]
             if target == "device":
                 checks.append(bool(case.device) and any(reply for _c, reply in case.device))
             else:
                 assert case.program.strip(), f"{case.id}: the simulator needs a program"
             assert any(checks), f"{case.id} checks nothing on the {target}"
+
+
+def test_each_dialect_has_ten_hand_worked_programs_with_a_tight_duration():
+    """Issue 22: at least 10 hand-worked programs per dialect, each with its duration worked out
+    from the manual's ramp rules and an explicit tolerance of at most 1 ms (not a percentage)."""
+    for dialect in documented.DIALECTS:
+        cases = documented.load_handworked(dialect)
+        assert len(cases) >= 10, f"handworked_{dialect}.toml has {len(cases)} programs"
+        for case in cases:
+            assert case.handworked and case.program.strip(), case.id
+            assert case.duration is not None and 0 < case.tolerance <= 0.001, case.id
+            assert case.positions or case.outputs or case.variables or case.prints is not None, case.id
 
 
 def test_case_ids_are_unique_and_every_exception_names_a_case():
