@@ -212,11 +212,15 @@ class Simulator:
         entry = self._entry()
         if entry is None or entry.entry is None:
             raise Stop("end", "the module has no routine to run")
-        self.stack.append(Frame(entry, entry.entry))
         self._event(None, "start", routine=entry.name)
-        # commands sent outside any program (MCode settings before PG, X150 set-up) run first
+        # Commands sent outside any program (MCode settings before PG, X150 set-up) run first, in
+        # the order they were sent (X150 L177: buffered commands run "in sequential order"): the
+        # first stretch on top of the stack. When the entry is itself the first stretch (an X150
+        # stream without a main sequence), it is one of them, not run after them.
+        if entry.kind is not ir.RoutineKind.IMMEDIATE:
+            self.stack.append(Frame(entry, entry.entry))
         for routine in reversed(self.module.routines):
-            if routine.kind is ir.RoutineKind.IMMEDIATE and routine is not entry and routine.entry is not None:
+            if routine.kind is ir.RoutineKind.IMMEDIATE and routine.entry is not None:
                 self.stack.append(Frame(routine, routine.entry))
 
     def _entry(self) -> ir.Routine | None:
