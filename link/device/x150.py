@@ -38,6 +38,12 @@ def mnemonics() -> tuple[str, ...]:
     return tuple(sorted(words, key=len, reverse=True))
 
 
+@lru_cache(maxsize=None)
+def device_specific() -> frozenset[str]:
+    """Commands that "require a device address for execution" (L181: every report among them)."""
+    return frozenset(e.name for e in catalog.load("x150").entries if e.get("address") == "D")
+
+
 def parse(command: str) -> tuple[str, str, str]:
     """(address, mnemonic, argument): the longest catalog mnemonic at the start wins."""
     match = re.match(r"^(\d*)(.*)$", command, re.S)
@@ -93,6 +99,11 @@ class X150Device(VirtualDevice):
         text = raw.rstrip(b"\r\n").decode("latin-1").strip()
         address, word, arg = parse(text)
         targets = [self.units[address]] if address in self.units else ([] if address else list(self.units.values()))
+        if not address and word in device_specific() and not any(u.defining is not None for u in targets):
+            # L181: a device specific command (XU, XSD, R, PR, SV ...) needs an address; without
+            # one no device executes it (so several devices never answer at once): echo, prompt
+            first = targets[0]
+            return (raw if first.echo else b"") + (b">" if first.terminal else b"")
         if not targets:
             return raw if self.echo_on() else b""   # for a device not on this chain: passed along
         out: list[str] = []
