@@ -551,7 +551,7 @@ class Simulator:
         return None
 
     def _do_print(self, op) -> Wait | None:
-        text = "".join(self._text(item) for item in op.items) + ("\n" if op.newline else "")
+        text = "".join(self._text(item, op.signed) for item in op.items) + ("\n" if op.newline else "")
         self.trace.prints.append((self.now, text))
         self.changes += 1
         self._event(op, "print", text=text)
@@ -1161,13 +1161,12 @@ class Simulator:
             return not self._cond(cond.cond)
         return self._eval(cond) != 0
 
-    def _text(self, item) -> str:
+    def _text(self, item, signed: bool = False) -> str:
         if isinstance(item, ir.Text):
             return item.value
         value = values.plain(self._eval(item))
-        if isinstance(value, float) and value.is_integer():
-            return str(int(value))
-        return str(value)
+        text = str(int(value)) if isinstance(value, float) and value.is_integer() else str(value)
+        return "+" + text if signed and not text.startswith("-") else text  # `Print.signed`: +0, +4000
 
     # -- the trace -------------------------------------------------------------------------------
 

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
-from mcc.compiler.x150 import naming, neutral
+from mcc.compiler.x150 import naming, neutral, reports
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
@@ -1014,11 +1014,16 @@ class Writer:
         item = op.items[0] if len(op.items) == 1 else None
         report = report_command(op)
         if report is not None:
-            if report == "PR" and self.factor_of(item.axis or ir.ALL_AXES) != 1:
+            axis = reports.position_axis(op) if report == "PR" else item.axis
+            if report == "PR" and self.factor_of(axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
-            return self.address(op.axis or item.axis or ir.ALL_AXES) + report
-        text = item.value if isinstance(item, ir.Text) else ""
+            return self.address(op.axis or axis or ir.ALL_AXES) + report
+        if any(isinstance(i, ir.Status) and i.meaning == "position" for i in op.items):
+            raise CannotWrite("X150 sends a position only as its report, the sign always written (PR: *+4000, "
+                              "*-25600, L3141); this print sends it in another form, which the host would read "
+                              "differently", "G003")
+        text = item.value if isinstance(item, ir.Text) and not op.signed else ""
         if text and not op.newline and len(text) <= 50 and all(c == " " or 33 <= ord(c) <= 126 for c in text) \
                 and '"' not in text and "_" not in text:
             return '"' + text.replace(" ", "_") + '"'
@@ -1337,14 +1342,18 @@ def level_run(nodes: list, index: int) -> list:
     return group
 
 
-# The readings X150 reports with a command of their own, a line each: PR (*-25600, L3115), the
-# setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
-REPORTS = {"position": "PR", "following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
+# The readings X150 reports with a command of their own, a line each: PR (*-25600, L3141, the print
+# `reports.position` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
+# 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
+REPORTS = {"following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
 
 
 def report_command(op: ir.Print) -> str | None:
     """The X150 report a print is, when it is a line with one such reading alone."""
-    if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline:
+    if reports.position_axis(op) is not None:
+        return "PR"
+    if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline \
+            and not op.signed:
         return REPORTS.get(op.items[0].meaning)
     return None
 

@@ -226,8 +226,11 @@ class X150Device(VirtualDevice):
         return [("*B" if running else "*R") if not function_error else ("*C" if running else "*S")]
 
     def do_PR(self, unit: Unit, arg: str) -> list[str]:
-        """The absolute position counter (L3141-L3144), from the machine."""
-        return [f"*{number(self.sim.position(unit.address))}"]
+        """The absolute position counter (L3141-L3144: `*-25600`, `*+4000`), as the simulator prints
+        `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/reports.py)."""
+        module = module_of("x150", f"{unit.address}PR\n")
+        outcome = self.sim.run(module, None, program=False) if module is not None else None
+        return [text.rstrip("\n") for text in outcome.prints] if outcome is not None else []
 
     def do_IS(self, unit: Unit, arg: str) -> list[str]:
         """Input status (L2173-L2178): the 7 dedicated inputs (none active on a virtual device),
@@ -278,7 +281,3 @@ class X150Device(VirtualDevice):
 PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",
             "R", "PR", "IS", '"', "#"}
 
-
-def number(value: float) -> str:
-    """A position as the device reports it: whole steps."""
-    return str(int(round(value)))

@@ -10,7 +10,7 @@ import pytest
 
 from mcc.sim.interpreter import simulate
 
-from x150_helpers import module
+from x150_helpers import module, output
 
 
 def run(text: str):
@@ -50,3 +50,39 @@ def test_every_stretch_of_the_stream_runs_once_in_the_order_sent():
     positions = [text for _, text in trace.prints]
     assert [int(p.lstrip("*+")) for p in positions] == [1000, 2000, 3000]
     assert trace.axes == {"1": 3500}
+
+
+def test_a_position_report_is_a_star_and_a_signed_number():
+    """parker-x150.md L3141-L3143: PR answers "a number preceded by a sign ... *(s)n[CR]", e.g.
+    `*-25600`. Decision (docs/dialects/x150.md): the sign always, `+` for zero and positive
+    positions, no spaces (L2216's `* - 140000` is typesetting). 1D-25600 G from 0 is at -25600;
+    then MPA D4000 G at +4000; then D0 G at 0."""
+    trace = run("1A10\n1V5\n1D-25600\n1G\n1PR\n1MPA\n1D4000\n1G\n1PR\n1D0\n1G\n1PR\n")
+    assert [text for _, text in trace.prints] == ["*-25600\n", "*+4000\n", "*+0\n"]
+
+
+def test_the_report_is_written_back_as_pr_and_other_position_prints_are_refused():
+    """parker-x150.md L3141: X150 sends a position only as `*(s)n`. Its own PR round-trips; MCode
+    cannot write the `+` (refused, G003), and an MCode `PR P` (which sends `4000`) has no X150
+    form (refused, G003) rather than becoming a PR whose text the host would read as `*+4000`."""
+    from mcc.compiler import driver
+
+    assert output("1PR\n2PR\n") == ["1PR", "2PR"]
+    to_mcode = driver.compile_file("p.x150", "x150", target="mcode", text="1PR\n")
+    assert to_mcode.has_errors and [(d.code, d.span.line) for d in to_mcode.diagnostics
+                                    if d.severity == "error"] == [("G003", 1)]
+    from_mcode = driver.compile_file("p.mxt", "mcode", target="x150", text="PG 1\nPR P\nE\nPG\n")
+    assert [(d.code, d.span.line) for d in from_mcode.diagnostics if d.code == "G003"] == [("G003", 2)]
+
+
+def test_the_virtual_device_answers_pr_as_the_simulator_prints_it():
+    """parker-x150.md L3141-L3143: the virtual device's `1PR` answer is the simulator's print of
+    `1PR` (one format, compiler/x150/reports.py): `*-2000` after 1D-2000 G, `*+0` for a device
+    that has not moved."""
+    from mcc.link.device.x150 import X150Device
+
+    device = X150Device()
+    for command in (b"1A10\r", b"1V1\r", b"1D-2000\r", b"1G\r"):
+        device.feed(command)
+    assert device.feed(b"1PR\r") == b"1PR\r*-2000\r>"
+    assert device.feed(b"2PR\r") == b"2PR\r*+0\r>"
