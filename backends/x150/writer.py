@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
-from mcc.compiler.x150 import naming, neutral, reports
+from mcc.compiler.x150 import naming, neutral
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.in_force import InForce, lookup
@@ -1014,7 +1014,7 @@ class Writer:
         item = op.items[0] if len(op.items) == 1 else None
         report = report_command(op)
         if report is not None:
-            axis = reports.position_axis(op) if report == "PR" else item.axis
+            axis = neutral.report_axis(op) if report == "PR" else item.axis
             if report == "PR" and self.factor_of(axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
@@ -1343,14 +1343,14 @@ def level_run(nodes: list, index: int) -> list:
 
 
 # The readings X150 reports with a command of their own, a line each: PR (*-25600, L3141, the print
-# `reports.position` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
+# `neutral.position_report` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
 # 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
 REPORTS = {"following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
 
 
 def report_command(op: ir.Print) -> str | None:
     """The X150 report a print is, when it is a line with one such reading alone."""
-    if reports.position_axis(op) is not None:
+    if neutral.report_axis(op) is not None:
         return "PR"
     if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline \
             and not op.signed:

@@ -21,7 +21,7 @@
   mode commands disappear into the moves); T → Delay (s); TRE/TRN → WaitInput(InputMatch) /
   WaitInput(Not(...)); TRIP → WaitMotion; PZ → SetPosition(0); GH n → Home(speed) + WaitMotion;
   O → SetOutput; HALT → End; the configuration commands of neutral.SETTINGS → Setting;
-  the quote command and the reports PR (reports.py: `*`, the position with its sign), 1FOL, 1INL,
+  the quote command and the reports PR (neutral.position_report: `*`, the signed position), 1FOL, 1INL,
   1OUTL → Print (of a Status reading); PS →
   Pause (motion runs on), C → Resume, #n → Step; VARn= → Assign (left to right; POS/ABS are Status readings); SV → Save.
   Everything else is Native("x150", mnemonic, args as written, form="B" when B-prefixed, axis).
@@ -40,7 +40,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler import units
-from mcc.compiler.x150 import modes, naming, neutral, reports
+from mcc.compiler.x150 import modes, naming, neutral
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.structure import Unit, sequence_number, split_units
 
@@ -391,7 +391,7 @@ class Lowering:
         elif name == '"' and isinstance(arg, st.Text) and not command.buffered:  # '_' is sent as a space (L5589)
             self.emit(ir.Print((ir.Text(arg.text.replace("_", " "), arg.span),), False, span, self.sender(command)))
         elif name == "PR" and arg is None and not command.buffered:  # the position counter, e.g. *-25600 (L3141)
-            self.emit(reports.position(axis, span, self.sender(command)))
+            self.emit(neutral.position_report(axis, span, self.sender(command)))
         elif name == "SB" and arg is None and axis_ok:  # a stop in its turn in the buffer (L3694)
             self.emit(ir.Stop(axis, True, span))
         elif name == "ST" and isinstance(arg, st.Number) and arg.value in (0, 1) and axis_ok:  # ST1 shuts down

@@ -227,7 +227,7 @@ class X150Device(VirtualDevice):
 
     def do_PR(self, unit: Unit, arg: str) -> list[str]:
         """The absolute position counter (L3141-L3144: `*-25600`, `*+4000`), as the simulator prints
-        `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/reports.py)."""
+        `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/neutral.py)."""
         module = module_of("x150", f"{unit.address}PR\n")
         outcome = self.sim.run(module, None, program=False) if module is not None else None
         return [text.rstrip("\n") for text in outcome.prints] if outcome is not None else []

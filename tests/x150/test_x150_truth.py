@@ -77,7 +77,7 @@ def test_the_report_is_written_back_as_pr_and_other_position_prints_are_refused(
 
 def test_the_virtual_device_answers_pr_as_the_simulator_prints_it():
     """parker-x150.md L3141-L3143: the virtual device's `1PR` answer is the simulator's print of
-    `1PR` (one format, compiler/x150/reports.py): `*-2000` after 1D-2000 G, `*+0` for a device
+    `1PR` (one format, compiler/x150/neutral.py): `*-2000` after 1D-2000 G, `*+0` for a device
     that has not moved."""
     from mcc.link.device.x150 import X150Device
 
