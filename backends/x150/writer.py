@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -102,6 +103,25 @@ def meet(a: State, b: State) -> State:
     return {k: v for k, v in a.items() if b.get(k) == v}
 
 
+def register_direction(value) -> int | None:
+    """The sign an H+ (abs, 1) or H- (minus abs, -1) gives the distance register; None otherwise."""
+    if isinstance(value, ir.Func) and value.name == "abs":
+        return 1
+    if isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Func) and value.operand.name == "abs":
+        return -1
+    return None
+
+
+def signed_text(distance: str | None, sign: int | None) -> str | None:
+    """A written constant distance with its sign changed by H (`sign` None: reversed), H+ (1) or
+    H- (-1); None when it is not a non-zero constant (D0 has no side to change to)."""
+    if distance is None or not re.fullmatch(r"-?\d+(\.\d+)?", distance) or float(distance) == 0:
+        return None
+    magnitude = distance.lstrip("-")
+    negative = not distance.startswith("-") if sign is None else sign < 0
+    return "-" + magnitude if negative else magnitude
+
+
 def waited_moves(module: ir.Module) -> set[int]:
     """The moves (by id) the program waits for at once: the next operation waits for their axis."""
     found: set[int] = set()
@@ -152,6 +172,8 @@ class Writer:
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
         self.previous: ir.Op | None = None  # the operation written last
+        self.upcoming: ir.Op | None = None  # the operation written next in the same list, if simple
+        self.rest: list = []  # the nodes after the one being written, in the same list
         self.reported: set[tuple[int, str]] = set()
 
     # -- the target's step and axes -----------------------------------------------------------------
@@ -430,10 +452,14 @@ class Writer:
                     except CannotWrite as exc:
                         self.refuse(exc, node.op.span)
                     continue
+                following = nodes[index + 1] if index + 1 < len(nodes) else None
+                self.upcoming = following.op if isinstance(following, Simple) else None
+                self.rest = nodes[index + 1:]
                 try:
                     self.write_op(node.op)
                 except CannotWrite as exc:
                     self.refuse(exc, node.op.span)
+                self.upcoming, self.rest = None, []
             elif isinstance(node, IfNode):
                 self.if_node(node.arms, node.orelse, node.spans, node.else_span, node.end_span)
             elif isinstance(node, WhileNode):
@@ -633,7 +659,7 @@ class Writer:
         elif isinstance(op, ir.WaitMotion):
             # in MN the command after G runs when the move has ended (MQ exists to change that, L2631)
             key = self.address(op.axis) or ir.ALL_AXES
-            if self.state.get(("move", key), self.state.get(("move", ir.ALL_AXES))) != "MN":
+            if self.known("move", key) != "MN":
                 self.emit(self.address(op.axis) + "TRIP", span)
         elif isinstance(op, ir.SetOutput):
             self.emit(self.address() + "O" + self.outputs(op), span)
@@ -821,11 +847,28 @@ class Writer:
             self.distance(prefix, key, distance, first)
         self.emit(prefix + "G", last)
 
+    def overwritten(self, name: str) -> bool:
+        """The register `name` is set again, later in this list, before any operation reads it: the
+        value written now is never used (an optimizer may leave such a store; the output compiled
+        again would drop it, so writing it would make compile(compile(p)) differ)."""
+        for node in self.rest:
+            if not isinstance(node, Simple):
+                return False
+            op = node.op
+            if isinstance(op, (ir.Call, ir.Native, ir.SetHandler)):
+                return False
+            reads = {e.name for expr in ir.op_exprs(op) for e in ir.walk_expr(expr) if isinstance(e, ir.Var)}
+            if name in reads:
+                return False
+            if isinstance(op, ir.Assign) and op.target.name == name:
+                return True
+        return False
+
     def distance(self, prefix: str, key: str, distance: str, span) -> None:
-        if self.state.get(("D", key)) != distance:
+        if self.known("D", key) != distance:
             self.emit(prefix + "D" + distance, span)
-            self.state[("D", key)] = distance
-            self.state.pop(("sign", key), None)
+            self.record("D", key, distance)
+            self.record("sign", key, None)
 
     def register(self, op: ir.Assign) -> None:
         """The X150 frontend's distance register: `D<n>`, or `H` / `H+` / `H-` for its sign."""
@@ -833,24 +876,43 @@ class Writer:
         prefix = self.address(axis)
         key = prefix or ir.ALL_AXES
         value = op.value
-        self.state.pop(("D", key), None)
-        sign = self.state.pop(("sign", key), None)
+        upcoming = self.upcoming
+        if isinstance(upcoming, ir.Slew) and upcoming.velocity is None and (self.address(upcoming.axis) or
+                                                                             ir.ALL_AXES) == key \
+                and register_direction(value) == (-1 if upcoming.direction < 0 else 1):
+            return  # the slew after it writes this H+/H- itself, after its MC (as the X150 source has it)
+        if self.overwritten(op.target.name):
+            return  # set again before anything reads it (an H the optimizer folded into D-8000)
+        if isinstance(value, ir.Const) and isinstance(upcoming, ir.Move) and len(upcoming.targets) == 1 \
+                and (self.address(upcoming.targets[0][0]) or ir.ALL_AXES) == key \
+                and isinstance(upcoming.targets[0][1], ir.Const) \
+                and upcoming.targets[0][1].value == value.value:
+            return  # the move after it writes this D itself, after its modes (where a source's D is read)
+        sign = self.known("sign", key)
+        old = self.known("D", key)
+        self.record("D", key, None)
+        self.record("sign", key, None)
+        # H, H+, H- change the sign of a D the output wrote: the value they leave is known, so a
+        # move by it writes no D again (which, compiled again, would make the H dead: issue 23)
         if isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Var):
             self.emit(prefix + "H", op.span)
             if sign is not None:
-                self.state[("sign", key)] = -sign
+                self.record("sign", key, -sign)
+            self.record("D", key, signed_text(old, None))
         elif isinstance(value, ir.Func) and value.name == "abs":
             self.emit(prefix + "H+", op.span)
-            self.state[("sign", key)] = 1
+            self.record("sign", key, 1)
+            self.record("D", key, signed_text(old, 1))
         elif isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Func):
             self.emit(prefix + "H-", op.span)
-            self.state[("sign", key)] = -1
+            self.record("sign", key, -1)
+            self.record("D", key, signed_text(old, -1))
         else:
             distance = self.position(value, axis)
             self.emit(prefix + "D" + distance, op.span)
-            self.state[("D", key)] = distance
+            self.record("D", key, distance)
             if isinstance(value, ir.Const) and value.value:
-                self.state[("sign", key)] = 1 if value.value > 0 else -1
+                self.record("sign", key, 1 if value.value > 0 else -1)
 
     def slew(self, op: ir.Slew) -> None:
         prefix = self.address(op.axis)
@@ -865,17 +927,36 @@ class Writer:
             self.emit(prefix + "V" + self.rate(ir.Const(abs(value), ir.Unit.STEPS_PER_S), "speed"), op.span)
         self.set_mode("move", key, "MC", prefix, op.span)
         sign = -1 if direction < 0 else 1
-        if self.state.get(("sign", key)) != sign:
+        if self.known("sign", key) != sign:
             self.emit(prefix + ("H-" if sign < 0 else "H+"), op.span)
-            self.state.pop(("D", key), None)
-            self.state[("sign", key)] = sign
+            self.record("D", key, None)
+            self.record("sign", key, sign)
         self.emit(prefix + "G", op.span)
 
     def set_mode(self, kind: str, key: str, mode: str, prefix: str, span) -> None:
-        if self.state.get((kind, key), self.state.get((kind, ir.ALL_AXES))) == mode:
+        if self.known(kind, key) == mode:
             return
         self.emit(prefix + mode, span)
-        self.state[(kind, key)] = mode
+        self.record(kind, key, mode)
+
+    def known(self, kind: str, key: str):
+        """What the output last set for `kind` ("move", "pos", "D", "sign") on device `key`, else
+        for every device ("*"); None when not known."""
+        return self.state.get((kind, key), self.state.get((kind, ir.ALL_AXES)))
+
+    def record(self, kind: str, key: str, value) -> None:
+        """`kind` is now `value` on device `key` (None: not known). A command for every device
+        ("*") replaces what each device had; a device's own replaces what every device had, so the
+        state never holds both and an unaddressed G is never taken to find device 1 in the mode
+        an earlier unaddressed command set when `1MPI` has changed it since (issue 23)."""
+        if key == ir.ALL_AXES:
+            for other in [k for k in self.state if k[0] == kind]:
+                del self.state[other]
+        else:
+            self.state.pop((kind, ir.ALL_AXES), None)
+            self.state.pop((kind, key), None)
+        if value is not None:
+            self.state[(kind, key)] = value
 
     def setting(self, op: ir.Setting) -> str:
         """A neutral setting in its X150 command (the B prefix inside a sequence where the command

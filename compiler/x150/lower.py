@@ -135,7 +135,8 @@ class Lowering:
         for unit in self.units:
             self.lower_unit(unit, kinds)
         self.module.externals = external_routines(self.module)
-        modes.resolve(self.module, self.diags)
+        devices = {str(a) for a in self.profile.axes} | {str(a) for a in self.addresses}
+        modes.resolve(self.module, self.diags, tuple(sorted(devices, key=lambda d: (len(d), d))))
         return self.module
 
     def resolution(self) -> int:

@@ -8,9 +8,11 @@ import math
 
 import pytest
 
+from mcc.compiler import profiles
 from mcc.sim.interpreter import simulate
 
-from x150_helpers import module, output
+from conftest import SAMPLES
+from x150_helpers import module, output, src
 
 
 def run(text: str):
@@ -86,3 +88,72 @@ def test_the_virtual_device_answers_pr_as_the_simulator_prints_it():
         device.feed(command)
     assert device.feed(b"1PR\r") == b"1PR\r*-2000\r>"
     assert device.feed(b"2PR\r") == b"2PR\r*+0\r>"
+
+
+# -- issue 23: X150 to X150 keeps what the program means, and the output is a fixed point ---------
+
+# An unaddressed sequence run on the one device of the profile (x150-pdhx: axes = ["1"]), whose
+# position mode is set with the device's address: `1MPA` holds for the unaddressed `D0 G` after it.
+ADDRESSED_MODE = "XE1\nXD1\n1MPA\nD0\nG\nVAR1=12000\nL4\nD(VAR1)\nG\nVAR1=VAR1+12000\nN\nXT\nXR1\n"
+
+# Programs from the manual's examples (the moves, H, MC and the loop they show), in this project's
+# own words, and the shapes whose second compile differed (issue 23).
+ROUND_TRIP = {
+    "addressed_mode": ADDRESSED_MODE,
+    "h_reverse": "D8000\nG\nH\nG\n",                                     # H, L1828
+    "xd_download": "XE1\nXD1\nA10\nV10\nD8000\nG\nD4000\nH\nG\nXT\nXR1\n",  # XD, L4904-L4918
+    "continuous": "MC\nA10\nV10\nG\nT1\nSB\n",                            # MC, L2498
+    "loop_h_minus": "MN\nA10\nV10\nL3\nD8000\nG\nH-\nG\nN\n",             # L, H-, L1864
+    "dead_distance": "1VAR1=12000\n1XE39\n1XD39\n1D4000\n1L2\n1A0.5\n1H+\n1D-400\n1G\n1N\n1A10\n1G\n1D0\n1XT\n"
+                     "1XR39\n",
+    "d_before_go": "1D4000\n1L2\n1N\n1XE24\n1XD24\n1MPI\n1G\n1XT\n1V5\n1G\n1XR24\n",
+}
+
+
+def move_ends(text: str) -> list[tuple[str, float]]:
+    """Where each move goes, in order, on the default profile's device (an unaddressed command
+    drives every device of the profile)."""
+    trace = simulate(module(text), profile=profiles.load("x150-pdhx"))
+    return [(axis, to) for e in trace.events if e.kind == "move" for axis, to in e.data["to"].items()]
+
+
+def test_an_absolute_move_after_an_addressed_mpa_stays_absolute():
+    """parker-x150.md L2608 (MPA: "positions relative to zero"), L181 (an unaddressed command is
+    run by every device): on the profile's one device, `1MPA` makes the unaddressed `D0 G` a move
+    to 0 and every `D(VAR1) G` a move to VAR1: 0, 12000, 24000, 36000, 48000, not 12000, 36000,
+    72000, 120000 (issue 23). The X150 output at -O0 moves the same, and is written in MPA."""
+    assert [p for _, p in move_ends(ADDRESSED_MODE)] == [0, 12000, 24000, 36000, 48000]
+    written = compiled(ADDRESSED_MODE, "O0")
+    assert "MPI" not in written.splitlines()
+    assert move_ends(written) == move_ends(ADDRESSED_MODE)
+
+
+def compiled(text: str, level: str) -> str:
+    from mcc.compiler import driver
+
+    result = driver.compile_file("p.x150", "x150", text=src(text), opt_level=level)
+    assert not result.has_errors, [(d.code, d.span.line, d.message) for d in result.diagnostics]
+    return result.listing.text
+
+
+@pytest.mark.parametrize("level", ["O0", "O1", "O2"])
+@pytest.mark.parametrize("name", sorted(ROUND_TRIP))
+def test_compiling_the_x150_output_again_gives_it_back_and_it_moves_the_same(name, level):
+    """Issue 23: X150 to X150, compile(compile(p)) == compile(p), and the output's moves end where
+    the source's do (the simulator, L177 stream order). A D that H, H+ or H- (L1828, L1864) makes
+    dead, a D the optimizer leaves set twice, and a D written just before its G are written where
+    the second compile writes them."""
+    first = compiled(ROUND_TRIP[name], level)
+    assert compiled(first, level) == first
+    assert move_ends(first) == move_ends(ROUND_TRIP[name])
+
+
+@pytest.mark.parametrize("level", ["O0", "O1", "O2"])
+@pytest.mark.parametrize("path", sorted(SAMPLES.glob("x150/*.x150")), ids=lambda p: p.name)
+def test_every_x150_sample_compiles_to_a_fixed_point_that_moves_the_same(path, level):
+    """Issue 23 on the project's samples, at every -O level: the output compiled again is the same
+    text, and its moves end where the source's do."""
+    text = path.read_text()
+    first = compiled(text, level)
+    assert compiled(first, level) == first
+    assert move_ends(first) == move_ends(text)
