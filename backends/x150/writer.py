@@ -597,6 +597,15 @@ class Writer:
         axis = self.axis(axis)
         return axis if axis.isdigit() else ""
 
+    def save_addresses(self) -> list[str]:
+        """Where `Save` goes: SV is device specific (L181; unaddressed it is X117), so it keeps an
+        address: the sequence's device, else each device of the profile (`1SV` for the built-in
+        profiles' one device; issue 23: `1SV` in an unaddressed stream was written `SV`)."""
+        if self.device is not None:
+            return [str(self.device)]
+        devices = [str(axis) for axis in self.profile.axes if str(axis).isdigit()]
+        return devices or [""]
+
     def target(self, name: str) -> tuple[str, int]:
         """The address and number to write for a command naming routine `name`."""
         device = naming.device_of(name) if self.native else None
@@ -678,7 +687,12 @@ class Writer:
         elif isinstance(op, ir.Assign):
             self.emit(self.address() + self.assign(op), span)
         elif isinstance(op, ir.Save):
-            self.emit(self.address() + "SV", span)
+            if self.in_sequence:
+                raise CannotWrite("X150 saves with SV, an immediate command that a sequence cannot store "
+                                  "(\"Immediate, Device Specific\", L4087): save from the host, after the "
+                                  "definitions", "G003")
+            for device in self.save_addresses():
+                self.emit(device + "SV", span)
         elif isinstance(op, ir.Call):
             prefix, n = self.target(op.routine)
             if op.cond is None:

@@ -157,3 +157,15 @@ def test_every_x150_sample_compiles_to_a_fixed_point_that_moves_the_same(path, l
     first = compiled(text, level)
     assert compiled(first, level) == first
     assert move_ends(first) == move_ends(text)
+
+
+def test_save_keeps_its_device_address():
+    """parker-x150.md L181: SV is device specific ("require a device address for execution"; the
+    checker's X117 without one). `1SV` after unaddressed commands is written `1SV`, not `SV`, and the
+    output compiles again without X117 (issue 23)."""
+    from mcc.compiler import driver
+
+    written = compiled("A10\nV1\nD4000\nG\n1SV\n", "O0")
+    assert written.splitlines()[-1] == "1SV"
+    again = driver.check_file("o.x150", "x150", text=written)
+    assert "X117" not in [d.code for d in again.diagnostics]
