@@ -765,6 +765,9 @@ class Writer:
         prefix = self.address(op.axis)
         if param is ir.MotionParam.MAX_SPEED:
             self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
+            again = self.ramp_again(op)
+            if again is not None:
+                self.emit(prefix + "A" + again, span)
         elif param in (ir.MotionParam.ACCEL, ir.MotionParam.ACCEL_TIME):
             text = self.rate(op.value, "acceleration") if param is ir.MotionParam.ACCEL else self.ramp(op)
             self.emit(prefix + "A" + text, span)
@@ -806,14 +809,33 @@ class Writer:
         force where it is set (values known only at run time are refused: X150 cannot compute A)."""
         state = self.forces.get(id(op), {})
         high = lookup(state, ir.MotionParam.MAX_SPEED, op.axis)
-        low = lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis)
         if not isinstance(op.value, ir.Const) or high is None:
             raise CannotWrite("this ramp time becomes an X150 acceleration only with the speeds in force, which "
                               "are not known here (set the maximum speed with a constant before it)", "X206")
-        accel = units.accel_from_ramp(float(op.value.value), float(low.value) if low else 0.0, float(high.value))
+        return self.ramp_accel(op.value, high, lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis))
+
+    def ramp_accel(self, time: ir.Const, high: ir.Const, low: ir.Const | None) -> str:
+        accel = units.accel_from_ramp(float(time.value), float(low.value) if low else 0.0, float(high.value))
         if accel is None:
-            raise CannotWrite(f"a ramp time of {number(op.value.value)} s has no finite acceleration", "X206")
+            raise CannotWrite(f"a ramp time of {number(time.value)} s has no finite acceleration", "X206")
         return self.rate(ir.Const(accel, ir.Unit.STEPS_PER_S2), "acceleration")
+
+    def ramp_again(self, op: ir.SetMotion) -> str | None:
+        """The A to write again after a change of the max speed, when the source ramps in a time
+        (Arcus ACC): X150's A is an acceleration (rev/s^2, L199), the ramp time a time, so the same
+        time at the new speed is another acceleration (issue 23: the A of the old speed was kept,
+        and a move after `HSPD` doubled ramped half as fast). None when no ramp time is in force or
+        an acceleration set as such (MCode A, X150 A) is: it does not change with the speed."""
+        state = self.forces.get(id(op), {})
+        if lookup(state, ir.MotionParam.ACCEL, op.axis) is not None:
+            return None
+        time = lookup(state, ir.MotionParam.ACCEL_TIME, op.axis)
+        if time is None:  # none set yet (or not the same on every path: docs/dialects/x150.md, Limitations)
+            return None
+        if not isinstance(time, ir.Const) or not isinstance(op.value, ir.Const):
+            raise CannotWrite("a ramp time with a speed known only at run time has no X150 acceleration: X150 "
+                              "cannot compute A", "X206")
+        return self.ramp_accel(time, op.value, lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis))
 
     def same_as_accel(self, op: ir.SetMotion) -> None:
         """X150 decelerates at A: a deceleration equal to the acceleration in force needs nothing."""

@@ -169,3 +169,25 @@ def test_save_keeps_its_device_address():
     assert written.splitlines()[-1] == "1SV"
     again = driver.check_file("o.x150", "x150", text=written)
     assert "X117" not in [d.code for d in again.diagnostics]
+
+
+def test_a_ramp_time_is_converted_again_after_a_speed_change():
+    """parker-x150.md L199: X150's A is an acceleration in rev/s^2; an Arcus ACC is a ramp time
+    (arcus-pmx-4ex-sa ACC: ms from low to high speed). With ACC=100 (0.1 s) the move at HSPD=1000
+    (0.25 rev/s at 4000 steps/rev) ramps at 0.25/0.1 = A2.5; after HSPD=4000 (V1) the same 0.1 s
+    is A10, written after the V (issue 23: the A2.5 was kept, so the second move ramped 4 times
+    too slowly and --verify refused it, S010)."""
+    from mcc.compiler import driver
+
+    source = "HSPD=1000\nACC=100\nX1000\nWAITX\nHSPD=4000\nX5000\nWAITX\nEND\n"
+    result = driver.compile_file("p.prg", "arcus", target="x150", text=source)
+    assert not result.has_errors, [(d.code, d.message) for d in result.diagnostics]
+    lines = [line for line in result.listing.text.splitlines() if not line.startswith(";")]
+    assert lines[lines.index("V0.25") + 1] == "A2.5"
+    assert lines[lines.index("V1") + 1] == "A10"
+    # an acceleration (MCode A, steps/s^2) does not change with the speed: no A after the second VM
+    mcode = driver.compile_file("p.mxt", "mcode", target="x150",
+                                text="PG 1\nVM=4000\nA=40000\nD=40000\nMA 4000\nH\nVM=8000\nMA 0\nH\nE\nPG\n",
+                                profile=profiles.load("x150-pdhx"))
+    written = [line for line in mcode.listing.text.splitlines() if not line.startswith(";")]
+    assert len([w for w in written if w.lstrip("0123456789").startswith("A")]) == 1, written
