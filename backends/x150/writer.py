@@ -695,10 +695,16 @@ class Writer:
                 self.emit(device + "SV", span)
         elif isinstance(op, ir.Call):
             prefix, n = self.target(op.routine)
+            call = f"{prefix}XR{n}"
+            other = naming.device_of(op.routine) if self.native else None
+            if self.device is not None and other is not None and other != self.device:
+                # a sequence of another device, run from device a's stream or sequence: device a sends
+                # the command string to it over the daisy chain (the quote command, L5593, L5614)
+                call = f'{self.device}"{other}XR{n}"'
             if op.cond is None:
-                self.emit(f"{prefix}XR{n}", span)
+                self.emit(call, span)
             else:
-                self.conditional_call(op.cond, f"{prefix}XR{n}", span)
+                self.conditional_call(op.cond, call, span)
             if op.routine in self.touches:
                 self.state = {}
         elif isinstance(op, ir.SetHandler):

@@ -176,6 +176,13 @@ class Resolver:
         self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
         self.plans: dict[int, tuple] = {}  # id(routine) -> what its walks look at (`plan`)
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
+        # routines whose last walk stopped at a call still waiting for its callee: their exit is not
+        # known yet either, so a call of one waits too (else the code after it went on with nothing
+        # known and met that into its callees' entries: `1XR3` then `2XR3`, where sequence 3 of
+        # device 1 runs sequence 3 of device 2 with `1"2XR3"`, made 2XD3's G X142)
+        self.incomplete: set[str] = set()
+        self.waited = False  # the walk in progress stopped at a call that waits
+        self.patient_done = False  # True: a call of an incomplete routine no longer waits
         self.names = {routine.name for routine in module.routines}  # `module.routine` is a linear search
 
     def touching(self) -> dict[str, bool]:
@@ -207,7 +214,7 @@ class Resolver:
 
     def solve(self) -> None:
         routines = self.module.routines
-        for _ in range(2 * len(routines) + 3):
+        for _ in range(3 * len(routines) + 5):
             sites: dict[str, State | None] = {}
             carried: State = dict(DEFAULTS)
             changed = False
@@ -236,6 +243,11 @@ class Resolver:
                         self.entries[routine.name] = new
                         changed = True
             if not changed:
+                if self.incomplete and not self.patient_done:
+                    # calls that still wait wait on each other (recursion): go on past them with
+                    # nothing known, as before a routine's exit could be awaited
+                    self.patient_done = True
+                    continue
                 break
 
     def walk(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
@@ -243,18 +255,25 @@ class Resolver:
         walk reaches them); the walk of an earlier round when its inputs are exactly the same."""
         calls = self.calls(routine)
         called = [self.exits.get(op.routine) for op in calls]
-        known = [op.routine in self.analysed for op in calls]  # a call to an unanalysed routine waits
+        known = [op.routine in self.analysed and (self.patient_done or op.routine not in self.incomplete)
+                 for op in calls]  # a call to an unanalysed routine waits
         memo = self.memo.get(id(routine))
         if memo is not None and identical(memo[0], start) and len(memo[1]) == len(called) \
                 and all(identical(a, b) for a, b in zip(memo[1], called)) and memo[4] == known:
-            end, reached = memo[2], memo[3]
+            end, reached, waited = memo[2], memo[3], memo[5]
         else:
             before = self.before
             for op in self.plan(routine)[1]:  # a new walk: the states it no longer reaches are not kept
                 before.pop(id(op), None)
             reached = []
+            self.waited = False
             end = self.routine(routine, start, reached)
-            self.memo[id(routine)] = (dict(start), called, end, reached, known)
+            waited = self.waited
+            self.memo[id(routine)] = (dict(start), called, end, reached, known, waited)
+        if waited and end is None:  # no path has reached the routine's end yet
+            self.incomplete.add(routine.name)
+        else:
+            self.incomplete.discard(routine.name)
         for name, state in reached:  # (the first state met is kept as it is: no state is changed once made)
             earlier = sites.get(name)
             sites[name] = state if earlier is None else meet(earlier, state)
@@ -339,8 +358,10 @@ class Resolver:
                     reached.append((op.routine, state))
                     shared = True
                     touches = touched.get(op.routine, True)
-                    if touches and op.routine in names and op.routine not in analysed:
+                    if touches and op.routine in names and (op.routine not in analysed or (
+                            not self.patient_done and op.routine in self.incomplete)):
                         waiting = True  # what it leaves is not known yet: the next round goes on from here
+                        self.waited = True
                         break
                     if not touches:
                         continue  # `transfer` leaves the state as it is

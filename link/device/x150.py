@@ -112,8 +112,22 @@ class X150Device(VirtualDevice):
         first = targets[0]
         if first.defining is None and word not in PROTOCOL and word != ";" and text:
             self.on_machine(first, text, word)
+        relayed = self.relayed(first, word, arg)
+        if relayed is not None and first.defining is None:
+            self.command((relayed + "\r").encode("latin-1"))   # device b's echo goes on to the host
         reply = (raw if first.echo else b"") + "".join(line + "\r" for line in out).encode("latin-1")
         return reply + (b">" if first.terminal else b"")
+
+    def relayed(self, sender: Unit, word: str, arg: str) -> str | None:
+        """The command string a quote sends to another device of the chain (`1"2XR3"`: device 2
+        runs sequence 3; L5593 "to command other devices to move", example L5614), else None."""
+        if word != '"':
+            return None
+        inner = arg.strip().removesuffix('"')
+        match = re.fullmatch(r"(\d+)[A-Za-z].*", inner)
+        if match is None or match.group(1) == sender.address or match.group(1) not in self.units:
+            return None
+        return inner
 
     def echo_on(self) -> bool:
         return any(u.echo for u in self.units.values())
@@ -266,6 +280,12 @@ class X150Device(VirtualDevice):
             unit.xsr = "0"
             for n, body in sorted(unit.sequences.items()):
                 lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
+            if any('"' in line for body in unit.sequences.values() for line in body):
+                # a quote may start another device's sequence (`1"2XR3"`): theirs are in the program too
+                for other in self.units.values():
+                    if other is not unit:
+                        for n, body in sorted(other.sequences.items()):
+                            lines += [f"{other.address}XD{n}", *body, f"{other.address}XT"]
         module = module_of("x150", "\n".join([*lines, text]) + "\n")
         if module is None:
             return

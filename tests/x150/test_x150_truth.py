@@ -191,3 +191,54 @@ def test_a_ramp_time_is_converted_again_after_a_speed_change():
                                 profile=profiles.load("x150-pdhx"))
     written = [line for line in mcode.listing.text.splitlines() if not line.startswith(";")]
     assert len([w for w in written if w.lstrip("0123456789").startswith("A")]) == 1, written
+
+
+# -- a quoted command string sent to another device ---------------------------------------------
+
+REMOTE = "1XE5\n1XD5\n1A10\n1V1\n1D4000\n1G\n1\"2XR3\"\n1XT\n2XE3\n2XD3\n2A10\n2V1\n2D2000\n2G\n2XT\n1XR5\n"
+
+
+def test_a_quoted_run_command_starts_the_sequence_on_the_other_device():
+    """parker-x150.md L5593: the quote command is used "to command other devices to move"; L5614:
+    `1"2XR1"`: "Once the move is done, Go Sequence 1 is commanded on a unit with device address 2".
+    `1"2XR3"` is a call of SEQ3@2, not a print: device 1 moves 4000 (1.1 s at V1 A10: 0.1 s ramps
+    of 200 steps each and 3600 steps at 4000 steps/s), then device 2 runs sequence 3 (2000 steps)."""
+    trace = simulate(module(REMOTE), profile=profiles.load("x150-pdhx"))
+    assert trace.prints == []
+    assert [e.data["routine"] for e in trace.events if e.kind == "call"] == ["SEQ5@1", "SEQ3@2"]
+    assert trace.axes == {"1": 4000, "2": 2000}
+
+
+def test_a_quoted_run_command_is_written_back_as_a_quote_and_refused_where_it_cannot_be():
+    """parker-x150.md L5593, L5614: inside device 1's sequence only the quote can start device 2's
+    sequence, so the writer writes `1"2XR3"` (and the output compiles to itself); MCode, one drive,
+    refuses device 2's moves, and a sequence stored on the controller is refused by MCode and Arcus
+    with the quote's line."""
+    from mcc.compiler import driver
+
+    written = compiled(REMOTE, "O0")
+    assert '1"2XR3"' in written.splitlines() and compiled(written, "O0") == written
+    for target in ("mcode", "arcus"):
+        result = driver.compile_file("p.x150", "x150", target=target, text='MN\nA10\nV5\nD12500\nG\n1"2XR1"\n')
+        assert [(d.code, d.span.line) for d in result.diagnostics if d.severity == "error"] == [("G003", 6)]
+
+
+def test_a_message_is_still_a_print():
+    """parker-x150.md L5593-L5605: any other quoted text is transmitted to the host (`1"MOVE_DONE"`,
+    '_' sent as a space), and a command string for the sender itself is text too."""
+    trace = simulate(module('1"MOVE_DONE"\n1"1XR3"\n'))
+    assert [text for _, text in trace.prints] == ["MOVE DONE", "1XR3"]
+
+
+def test_the_virtual_chain_relays_a_quoted_command_to_the_other_device():
+    """parker-x150.md L5614: device 1 sends `2XR3` to device 2, which runs its sequence 3, whether
+    the quote is sent by the host or stored in device 1's sequence 5."""
+    from mcc.link.device.x150 import X150Device
+
+    device = X150Device()
+    for line in REMOTE.splitlines()[:-1]:
+        device.feed((line + "\r").encode())
+    device.feed(b'1"2XR3"\r')
+    assert device.feed(b"2PR\r") == b"2PR\r*+2000\r>"
+    device.feed(b"1XR5\r")
+    assert (device.feed(b"1PR\r"), device.feed(b"2PR\r")) == (b"1PR\r*+4000\r>", b"2PR\r*+4000\r>")
