@@ -654,6 +654,9 @@ class Writer:
                 raise Unsupported(f"output {op.index} (the drive has outputs 1 to 3)")
             return f"O{op.index}={self.expr(op.value)}"
         if isinstance(op, ir.Print):
+            if op.signed:
+                raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
+                                  "MCode prints positive numbers unsigned),")
             items = ",".join(self.item(item) for item in op.items)
             prefix = self.prefix(op.axis) if op.axis else ""
             return f"{prefix}PR {items}{'' if op.newline else ';'}"

@@ -354,12 +354,15 @@ class WaitInput:
 @dataclass(slots=True)
 class Print:
     """Send text and values to the host. `axis` names the device that sends them when the line is
-    addressed to one (an MCode party address); empty for the device the program runs on."""
+    addressed to one (an MCode party address); empty for the device the program runs on. `signed`:
+    every value is sent with its sign, `+` for zero and positive numbers too (the X150's position
+    report `*+4000`, L3141); a backend that cannot write the sign refuses the print."""
 
     items: tuple[Expr, ...]
     newline: bool = True
     span: Span | None = None
     axis: str = ""
+    signed: bool = False
 
 
 @dataclass(slots=True)

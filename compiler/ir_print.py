@@ -91,7 +91,7 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
     if isinstance(op, ir.Print):
         items = ", ".join(expr_text(item) for item in op.items)
         device = f" on {op.axis}" if op.axis else ""
-        return f"print{device} {items}{'' if op.newline else ' no-newline'}"
+        return f"print{device} {items}{'' if op.newline else ' no-newline'}{' signed' if op.signed else ''}"
     if isinstance(op, ir.DriveEnable):
         return f"enable {op.axis} = {expr_text(op.on)}"
     if isinstance(op, ir.Call):

@@ -7,6 +7,12 @@ in CR; in terminal mode (EX1, the default) messages start with `;` and each comm
 prompt `>`. mcc works in terminal mode, because the prompt is the only documented end of a reply.
 Download errors are read where the manual reports them: `XSD` after each `XT` (0 OK, 1 sequence
 exists, 2 buffer full), `XSS` (0 empty, 2 exists) and the `R` status (`*R` ready, no error).
+
+Every command that asks a device for a report is sent with a device address: "All commands that
+request data to be transmitted back to the host are device specific" (L181). A sequence defined
+without an address (`XD1`) is stored by every device on the chain (XD is Universal, L4899), so its
+download status and its read-back are asked of each device the program names (or the one given
+with --address, else device 1), each compared with what was sent.
 """
 
 from __future__ import annotations
@@ -126,6 +132,8 @@ class Protocol:
 
     # -- download --------------------------------------------------------------------------
     def plan(self, lines) -> list[Step]:
+        lines = list(lines)
+        chain = self.addresses([Step(line.text.strip()) for line in lines])
         steps: list[Step] = []
         defining = False
         opened: tuple = ()   # the sources of the XD that opened the sequence being defined
@@ -140,7 +148,8 @@ class Protocol:
             elif word == "XT":
                 defining = False
                 steps.append(Step(text, "send", line.sources, False, number))
-                steps.append(Step(f"{address}XSD", "verify", tuple(opened) + tuple(line.sources), False, number))
+                for device in [address] if address else chain:  # XSD is device specific (L181)
+                    steps.append(Step(f"{device}XSD", "verify", tuple(opened) + tuple(line.sources), False, number))
             elif defining:
                 steps.append(Step(text, "send", line.sources, True, number))
             elif word in SAVE_MNEMONICS:
@@ -217,7 +226,10 @@ class Protocol:
     def verify(self, steps: list[Step]) -> tuple[list[Mismatch], str]:
         mismatches = []
         held = []
-        for (address, number), sent in self.sequences(steps).items():
+        chain = self.addresses(steps)
+        stored = [((device, number), sent) for (address, number), sent in self.sequences(steps).items()
+                  for device in ([address] if address else chain)]  # an unaddressed XD: every device
+        for (address, number), sent in stored:
             found = self.read_sequence(address, number)
             if found is None:
                 mismatches.append(Mismatch(f"device {address} sequence {number}", "stored", "missing (XSS 0)"))

@@ -267,11 +267,15 @@ class Simulator:
         entry = self._entry()
         if entry is None or entry.entry is None:
             raise Stop("end", "the module has no routine to run")
-        self.stack.append(Frame(entry, entry.entry))
         self._event(None, "start", routine=entry.name)
-        # commands sent outside any program (MCode settings before PG, X150 set-up) run first
+        # Commands sent outside any program (MCode settings before PG, X150 set-up) run first, in
+        # the order they were sent (X150 L177: buffered commands run "in sequential order"): the
+        # first stretch on top of the stack. When the entry is itself the first stretch (an X150
+        # stream without a main sequence), it is one of them, not run after them.
+        if entry.kind is not ir.RoutineKind.IMMEDIATE:
+            self.stack.append(Frame(entry, entry.entry))
         for routine in reversed(self.module.routines):
-            if routine.kind is ir.RoutineKind.IMMEDIATE and routine is not entry and routine.entry is not None:
+            if routine.kind is ir.RoutineKind.IMMEDIATE and routine.entry is not None:
                 self.stack.append(Frame(routine, routine.entry))
 
     def _entry(self) -> ir.Routine | None:
@@ -667,7 +671,7 @@ class Simulator:
         return None
 
     def _do_print(self, op) -> Wait | None:
-        text = "".join(self._text(item) for item in op.items) + ("\n" if op.newline else "")
+        text = "".join(self._text(item, op.signed) for item in op.items) + ("\n" if op.newline else "")
         self.trace.prints.append((self.now, text))
         self.changes += 1
         self._event(op, "print", text=text)
@@ -1396,15 +1400,14 @@ class Simulator:
             return not self._cond(cond.cond)
         return self._eval(cond) != 0
 
-    def _text(self, item) -> str:
+    def _text(self, item, signed: bool = False) -> str:
         if isinstance(item, ir.Text):
             return item.value
         if self.float_format and self._reads_float(item):
             return values.float_text(float(self._eval(item)), self.float_format, self.float_pad)
         value = values.plain(self._eval(item))
-        if isinstance(value, float) and value.is_integer():
-            return str(int(value))
-        return str(value)
+        text = str(int(value)) if isinstance(value, float) and value.is_integer() else str(value)
+        return "+" + text if signed and not text.startswith("-") else text  # `Print.signed`: +0, +4000
 
     def _reads_float(self, item) -> bool:
         """Whether a printed item reads a float64 variable: then it prints in the product's float

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -103,6 +104,25 @@ def meet(a: State, b: State) -> State:
     return {k: v for k, v in a.items() if b.get(k) == v}
 
 
+def register_direction(value) -> int | None:
+    """The sign an H+ (abs, 1) or H- (minus abs, -1) gives the distance register; None otherwise."""
+    if isinstance(value, ir.Func) and value.name == "abs":
+        return 1
+    if isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Func) and value.operand.name == "abs":
+        return -1
+    return None
+
+
+def signed_text(distance: str | None, sign: int | None) -> str | None:
+    """A written constant distance with its sign changed by H (`sign` None: reversed), H+ (1) or
+    H- (-1); None when it is not a non-zero constant (D0 has no side to change to)."""
+    if distance is None or not re.fullmatch(r"-?\d+(\.\d+)?", distance) or float(distance) == 0:
+        return None
+    magnitude = distance.lstrip("-")
+    negative = not distance.startswith("-") if sign is None else sign < 0
+    return "-" + magnitude if negative else magnitude
+
+
 def waited_moves(module: ir.Module) -> set[int]:
     """The moves (by id) the program waits for at once: the next operation waits for their axis."""
     found: set[int] = set()
@@ -153,6 +173,8 @@ class Writer:
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
         self.previous: ir.Op | None = None  # the operation written last
+        self.upcoming: ir.Op | None = None  # the operation written next in the same list, if simple
+        self.rest: list = []  # the nodes after the one being written, in the same list
         self.reported: set[tuple[int, str]] = set()
 
     # -- the target's step and axes -----------------------------------------------------------------
@@ -431,10 +453,14 @@ class Writer:
                     except CannotWrite as exc:
                         self.refuse(exc, node.op.span)
                     continue
+                following = nodes[index + 1] if index + 1 < len(nodes) else None
+                self.upcoming = following.op if isinstance(following, Simple) else None
+                self.rest = nodes[index + 1:]
                 try:
                     self.write_op(node.op)
                 except CannotWrite as exc:
                     self.refuse(exc, node.op.span)
+                self.upcoming, self.rest = None, []
             elif isinstance(node, IfNode):
                 self.if_node(node.arms, node.orelse, node.spans, node.else_span, node.end_span)
             elif isinstance(node, WhileNode):
@@ -572,6 +598,15 @@ class Writer:
         axis = self.axis(axis)
         return axis if axis.isdigit() else ""
 
+    def save_addresses(self) -> list[str]:
+        """Where `Save` goes: SV is device specific (L181; unaddressed it is X117), so it keeps an
+        address: the sequence's device, else each device of the profile (`1SV` for the built-in
+        profiles' one device; issue 23: `1SV` in an unaddressed stream was written `SV`)."""
+        if self.device is not None:
+            return [str(self.device)]
+        devices = [str(axis) for axis in self.profile.axes if str(axis).isdigit()]
+        return devices or [""]
+
     def target(self, name: str) -> tuple[str, int]:
         """The address and number to write for a command naming routine `name`."""
         device = naming.device_of(name) if self.native else None
@@ -634,7 +669,7 @@ class Writer:
         elif isinstance(op, ir.WaitMotion):
             # in MN the command after G runs when the move has ended (MQ exists to change that, L2631)
             key = self.address(op.axis) or ir.ALL_AXES
-            if self.state.get(("move", key), self.state.get(("move", ir.ALL_AXES))) != "MN":
+            if self.known("move", key) != "MN":
                 self.emit(self.address(op.axis) + "TRIP", span)
         elif isinstance(op, ir.SetOutput):
             self.emit(self.address() + "O" + self.outputs(op), span)
@@ -653,13 +688,24 @@ class Writer:
         elif isinstance(op, ir.Assign):
             self.emit(self.address() + self.assign(op), span)
         elif isinstance(op, ir.Save):
-            self.emit(self.address() + "SV", span)
+            if self.in_sequence:
+                raise CannotWrite("X150 saves with SV, an immediate command that a sequence cannot store "
+                                  "(\"Immediate, Device Specific\", L4087): save from the host, after the "
+                                  "definitions", "G003")
+            for device in self.save_addresses():
+                self.emit(device + "SV", span)
         elif isinstance(op, ir.Call):
             prefix, n = self.target(op.routine)
+            call = f"{prefix}XR{n}"
+            other = naming.device_of(op.routine) if self.native else None
+            if self.device is not None and other is not None and other != self.device:
+                # a sequence of another device, run from device a's stream or sequence: device a sends
+                # the command string to it over the daisy chain (the quote command, L5593, L5614)
+                call = f'{self.device}"{other}XR{n}"'
             if op.cond is None:
-                self.emit(f"{prefix}XR{n}", span)
+                self.emit(call, span)
             else:
-                self.conditional_call(op.cond, f"{prefix}XR{n}", span)
+                self.conditional_call(op.cond, call, span)
             if op.routine in self.touches:
                 self.state = {}
         elif isinstance(op, ir.SetHandler):
@@ -729,6 +775,9 @@ class Writer:
         prefix = self.address(op.axis)
         if param is ir.MotionParam.MAX_SPEED:
             self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
+            again = self.ramp_again(op)
+            if again is not None:
+                self.emit(prefix + "A" + again, span)
         elif param in (ir.MotionParam.ACCEL, ir.MotionParam.ACCEL_TIME):
             text = self.rate(op.value, "acceleration") if param is ir.MotionParam.ACCEL else self.ramp(op)
             self.emit(prefix + "A" + text, span)
@@ -770,14 +819,33 @@ class Writer:
         force where it is set (values known only at run time are refused: X150 cannot compute A)."""
         state = self.forces.get(id(op), {})
         high = lookup(state, ir.MotionParam.MAX_SPEED, op.axis)
-        low = lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis)
         if not isinstance(op.value, ir.Const) or high is None:
             raise CannotWrite("this ramp time becomes an X150 acceleration only with the speeds in force, which "
                               "are not known here (set the maximum speed with a constant before it)", "X206")
-        accel = units.accel_from_ramp(float(op.value.value), float(low.value) if low else 0.0, float(high.value))
+        return self.ramp_accel(op.value, high, lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis))
+
+    def ramp_accel(self, time: ir.Const, high: ir.Const, low: ir.Const | None) -> str:
+        accel = units.accel_from_ramp(float(time.value), float(low.value) if low else 0.0, float(high.value))
         if accel is None:
-            raise CannotWrite(f"a ramp time of {number(op.value.value)} s has no finite acceleration", "X206")
+            raise CannotWrite(f"a ramp time of {number(time.value)} s has no finite acceleration", "X206")
         return self.rate(ir.Const(accel, ir.Unit.STEPS_PER_S2), "acceleration")
+
+    def ramp_again(self, op: ir.SetMotion) -> str | None:
+        """The A to write again after a change of the max speed, when the source ramps in a time
+        (Arcus ACC): X150's A is an acceleration (rev/s^2, L199), the ramp time a time, so the same
+        time at the new speed is another acceleration (issue 23: the A of the old speed was kept,
+        and a move after `HSPD` doubled ramped half as fast). None when no ramp time is in force or
+        an acceleration set as such (MCode A, X150 A) is: it does not change with the speed."""
+        state = self.forces.get(id(op), {})
+        if lookup(state, ir.MotionParam.ACCEL, op.axis) is not None:
+            return None
+        time = lookup(state, ir.MotionParam.ACCEL_TIME, op.axis)
+        if time is None:  # none set yet (or not the same on every path: docs/dialects/x150.md, Limitations)
+            return None
+        if not isinstance(time, ir.Const) or not isinstance(op.value, ir.Const):
+            raise CannotWrite("a ramp time with a speed known only at run time has no X150 acceleration: X150 "
+                              "cannot compute A", "X206")
+        return self.ramp_accel(time, op.value, lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis))
 
     def same_as_accel(self, op: ir.SetMotion) -> None:
         """X150 decelerates at A: a deceleration equal to the acceleration in force needs nothing."""
@@ -825,11 +893,28 @@ class Writer:
             self.distance(prefix, key, distance, first)
         self.emit(prefix + "G", last)
 
+    def overwritten(self, name: str) -> bool:
+        """The register `name` is set again, later in this list, before any operation reads it: the
+        value written now is never used (an optimizer may leave such a store; the output compiled
+        again would drop it, so writing it would make compile(compile(p)) differ)."""
+        for node in self.rest:
+            if not isinstance(node, Simple):
+                return False
+            op = node.op
+            if isinstance(op, (ir.Call, ir.Native, ir.SetHandler)):
+                return False
+            reads = {e.name for expr in ir.op_exprs(op) for e in ir.walk_expr(expr) if isinstance(e, ir.Var)}
+            if name in reads:
+                return False
+            if isinstance(op, ir.Assign) and op.target.name == name:
+                return True
+        return False
+
     def distance(self, prefix: str, key: str, distance: str, span) -> None:
-        if self.state.get(("D", key)) != distance:
+        if self.known("D", key) != distance:
             self.emit(prefix + "D" + distance, span)
-            self.state[("D", key)] = distance
-            self.state.pop(("sign", key), None)
+            self.record("D", key, distance)
+            self.record("sign", key, None)
 
     def register(self, op: ir.Assign) -> None:
         """The X150 frontend's distance register: `D<n>`, or `H` / `H+` / `H-` for its sign."""
@@ -837,24 +922,43 @@ class Writer:
         prefix = self.address(axis)
         key = prefix or ir.ALL_AXES
         value = op.value
-        self.state.pop(("D", key), None)
-        sign = self.state.pop(("sign", key), None)
+        upcoming = self.upcoming
+        if isinstance(upcoming, ir.Slew) and upcoming.velocity is None and (self.address(upcoming.axis) or
+                                                                             ir.ALL_AXES) == key \
+                and register_direction(value) == (-1 if upcoming.direction < 0 else 1):
+            return  # the slew after it writes this H+/H- itself, after its MC (as the X150 source has it)
+        if self.overwritten(op.target.name):
+            return  # set again before anything reads it (an H the optimizer folded into D-8000)
+        if isinstance(value, ir.Const) and isinstance(upcoming, ir.Move) and len(upcoming.targets) == 1 \
+                and (self.address(upcoming.targets[0][0]) or ir.ALL_AXES) == key \
+                and isinstance(upcoming.targets[0][1], ir.Const) \
+                and upcoming.targets[0][1].value == value.value:
+            return  # the move after it writes this D itself, after its modes (where a source's D is read)
+        sign = self.known("sign", key)
+        old = self.known("D", key)
+        self.record("D", key, None)
+        self.record("sign", key, None)
+        # H, H+, H- change the sign of a D the output wrote: the value they leave is known, so a
+        # move by it writes no D again (which, compiled again, would make the H dead: issue 23)
         if isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Var):
             self.emit(prefix + "H", op.span)
             if sign is not None:
-                self.state[("sign", key)] = -sign
+                self.record("sign", key, -sign)
+            self.record("D", key, signed_text(old, None))
         elif isinstance(value, ir.Func) and value.name == "abs":
             self.emit(prefix + "H+", op.span)
-            self.state[("sign", key)] = 1
+            self.record("sign", key, 1)
+            self.record("D", key, signed_text(old, 1))
         elif isinstance(value, ir.UnOp) and isinstance(value.operand, ir.Func):
             self.emit(prefix + "H-", op.span)
-            self.state[("sign", key)] = -1
+            self.record("sign", key, -1)
+            self.record("D", key, signed_text(old, -1))
         else:
             distance = self.position(value, axis)
             self.emit(prefix + "D" + distance, op.span)
-            self.state[("D", key)] = distance
+            self.record("D", key, distance)
             if isinstance(value, ir.Const) and value.value:
-                self.state[("sign", key)] = 1 if value.value > 0 else -1
+                self.record("sign", key, 1 if value.value > 0 else -1)
 
     def slew(self, op: ir.Slew) -> None:
         prefix = self.address(op.axis)
@@ -869,17 +973,36 @@ class Writer:
             self.emit(prefix + "V" + self.rate(ir.Const(abs(value), ir.Unit.STEPS_PER_S), "speed"), op.span)
         self.set_mode("move", key, "MC", prefix, op.span)
         sign = -1 if direction < 0 else 1
-        if self.state.get(("sign", key)) != sign:
+        if self.known("sign", key) != sign:
             self.emit(prefix + ("H-" if sign < 0 else "H+"), op.span)
-            self.state.pop(("D", key), None)
-            self.state[("sign", key)] = sign
+            self.record("D", key, None)
+            self.record("sign", key, sign)
         self.emit(prefix + "G", op.span)
 
     def set_mode(self, kind: str, key: str, mode: str, prefix: str, span) -> None:
-        if self.state.get((kind, key), self.state.get((kind, ir.ALL_AXES))) == mode:
+        if self.known(kind, key) == mode:
             return
         self.emit(prefix + mode, span)
-        self.state[(kind, key)] = mode
+        self.record(kind, key, mode)
+
+    def known(self, kind: str, key: str):
+        """What the output last set for `kind` ("move", "pos", "D", "sign") on device `key`, else
+        for every device ("*"); None when not known."""
+        return self.state.get((kind, key), self.state.get((kind, ir.ALL_AXES)))
+
+    def record(self, kind: str, key: str, value) -> None:
+        """`kind` is now `value` on device `key` (None: not known). A command for every device
+        ("*") replaces what each device had; a device's own replaces what every device had, so the
+        state never holds both and an unaddressed G is never taken to find device 1 in the mode
+        an earlier unaddressed command set when `1MPI` has changed it since (issue 23)."""
+        if key == ir.ALL_AXES:
+            for other in [k for k in self.state if k[0] == kind]:
+                del self.state[other]
+        else:
+            self.state.pop((kind, ir.ALL_AXES), None)
+            self.state.pop((kind, key), None)
+        if value is not None:
+            self.state[(kind, key)] = value
 
     def setting(self, op: ir.Setting) -> str:
         """A neutral setting in its X150 command (the B prefix inside a sequence where the command
@@ -1021,11 +1144,16 @@ class Writer:
         item = op.items[0] if len(op.items) == 1 else None
         report = report_command(op)
         if report is not None:
-            if report == "PR" and self.factor_of(item.axis or ir.ALL_AXES) != 1:
+            axis = neutral.report_axis(op) if report == "PR" else item.axis
+            if report == "PR" and self.factor_of(axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
-            return self.address(op.axis or item.axis or ir.ALL_AXES) + report
-        text = item.value if isinstance(item, ir.Text) else ""
+            return self.address(op.axis or axis or ir.ALL_AXES) + report
+        if any(isinstance(i, ir.Status) and i.meaning == "position" for i in op.items):
+            raise CannotWrite("X150 sends a position only as its report, the sign always written (PR: *+4000, "
+                              "*-25600, L3141); this print sends it in another form, which the host would read "
+                              "differently", "G003")
+        text = item.value if isinstance(item, ir.Text) and not op.signed else ""
         if text and not op.newline and len(text) <= 50 and all(c == " " or 33 <= ord(c) <= 126 for c in text) \
                 and '"' not in text and "_" not in text:
             return '"' + text.replace(" ", "_") + '"'
@@ -1344,14 +1472,18 @@ def level_run(nodes: list, index: int) -> list:
     return group
 
 
-# The readings X150 reports with a command of their own, a line each: PR (*-25600, L3115), the
-# setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
-REPORTS = {"position": "PR", "following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
+# The readings X150 reports with a command of their own, a line each: PR (*-25600, L3141, the print
+# `neutral.position_report` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
+# 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
+REPORTS = {"following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
 
 
 def report_command(op: ir.Print) -> str | None:
     """The X150 report a print is, when it is a line with one such reading alone."""
-    if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline:
+    if neutral.report_axis(op) is not None:
+        return "PR"
+    if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline \
+            and not op.signed:
         return REPORTS.get(op.items[0].meaning)
     return None
 

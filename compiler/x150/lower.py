@@ -21,7 +21,8 @@
   mode commands disappear into the moves); T → Delay (s); TRE/TRN → WaitInput(InputMatch) /
   WaitInput(Not(...)); TRIP → WaitMotion; PZ → SetPosition(0); GH n → Home(speed) + WaitMotion;
   O → SetOutput; HALT → End; the configuration commands of neutral.SETTINGS → Setting;
-  the quote command and the reports PR, 1FOL, 1INL, 1OUTL → Print (of a Status reading); PS →
+  the quote command and the reports PR (neutral.position_report: `*`, the signed position), 1FOL, 1INL,
+  1OUTL → Print (of a Status reading); PS →
   Pause (motion runs on), C → Resume, #n → Step; VARn= → Assign (left to right; POS/ABS are Status readings); SV → Save.
   Everything else is Native("x150", mnemonic, args as written, form="B" when B-prefixed, axis).
 - Device addresses are axes "1".."32", "*" for none. Operations without an axis field (Assign,
@@ -31,6 +32,7 @@
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
@@ -68,6 +70,9 @@ OPENERS = {"loop": "L", "if": "IF", "while": "WHILE", "repeat": "REPEAT"}
 CLOSERS = {"loop_end": "L", "endif": "IF", "endwhile": "WHILE", "until": "REPEAT", "else": "IF"}
 CLOSER_NAMES = {"L": "N", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL(...)"}
 LOOP_VAR = "%L"
+# A quoted command string that starts a sequence on another device (`1"2XR3"`, L5593: the quote
+# command is used "to command other devices to move"; the example L5614 starts sequence 1 on unit 2)
+REMOTE_RUN = re.compile(r"(\d+)(XR|GOSUB)(\d+)", re.IGNORECASE)
 
 
 @dataclass
@@ -135,7 +140,8 @@ class Lowering:
         for unit in self.units:
             self.lower_unit(unit, kinds)
         self.module.externals = external_routines(self.module)
-        modes.resolve(self.module, self.diags)
+        devices = {str(a) for a in self.profile.axes} | {str(a) for a in self.addresses}
+        modes.resolve(self.module, self.diags, tuple(sorted(devices, key=lambda d: (len(d), d))))
         return self.module
 
     def resolution(self) -> int:
@@ -201,6 +207,12 @@ class Lowering:
                 info = command.info
                 if info is None:
                     continue
+                remote = self.remote_run(command, device)
+                if remote is not None:  # a sequence another device is told to run: a subroutine
+                    for name in self.resolve(remote[1], remote[0]):
+                        if KIND_RANK[ir.RoutineKind.SUBROUTINE] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:
+                            kinds[name] = ir.RoutineKind.SUBROUTINE
+                    continue
                 kind = ROLE_KINDS.get(info.ir)
                 if kind is None or not command.ok:
                     continue
@@ -211,6 +223,26 @@ class Lowering:
                     if KIND_RANK[kind] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:
                         kinds[name] = kind
         return kinds
+
+    def remote_run(self, command: st.Command, device: int | None) -> tuple[int, int] | None:
+        """(device, sequence) when `command` is a quote whose text starts a sequence on another
+        device (`1"2XR3"`): the sender transmits the text over the daisy chain, where device 2
+        receives it as a command (L5593, example L5614). The sender is the command's address, else
+        the sequence's device, else the profile's one device; None for any other quote."""
+        arg = command.arg
+        if command.mnemonic != '"' or not isinstance(arg, st.Text) or command.buffered or not command.ok:
+            return None
+        match = REMOTE_RUN.fullmatch(arg.text)
+        if match is None:
+            return None
+        sender = command.address if command.address is not None else device
+        axes = [str(a) for a in self.profile.axes]
+        if sender is None and len(axes) == 1 and axes[0].isdigit():
+            sender = int(axes[0])
+        target, number = int(match.group(1)), int(match.group(3))
+        if sender is None or target == sender or not 1 <= target <= 32 or not 1 <= number <= 64:
+            return None
+        return target, number
 
     def resolve(self, number: int, address: int | None) -> tuple[str, ...]:
         """The routines of this file a command naming sequence `number` may run."""
@@ -389,10 +421,15 @@ class Lowering:
             self.emit(ir.Assign(ir.Var(arg.var.name, arg.var.span), self.chain(arg.value, axis), span))
         elif role == "save" and fits:
             self.emit(ir.Save(span))
+        elif (remote := self.remote_run(command, self.device)) is not None:  # 1"2XR3": device 2 runs sequence 3
+            device, number = remote
+            targets = self.resolve(number, device)
+            self.sites.append(Site(command, "call", number, targets, self.routine.name, self.depths(), self.unit))
+            self.emit(ir.Call(targets[0] if targets else naming.sequence_name(number, device), None, span))
         elif name == '"' and isinstance(arg, st.Text) and not command.buffered:  # '_' is sent as a space (L5589)
             self.emit(ir.Print((ir.Text(arg.text.replace("_", " "), arg.span),), False, span, self.sender(command)))
-        elif name == "PR" and arg is None and not command.buffered:  # the position counter, e.g. *-25600 (L3115)
-            self.emit(ir.Print((ir.Status("position", axis, None, span),), True, span, self.sender(command)))
+        elif name == "PR" and arg is None and not command.buffered:  # the position counter, e.g. *-25600 (L3141)
+            self.emit(neutral.position_report(axis, span, self.sender(command)))
         elif name == "SB" and arg is None and axis_ok:  # a stop in its turn in the buffer (L3694)
             self.emit(ir.Stop(axis, True, span))
         elif name == "ST" and isinstance(arg, st.Number) and arg.value in (0, 1) and axis_ok:  # ST1 shuts down

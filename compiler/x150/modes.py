@@ -79,6 +79,16 @@ def get_key(state: State, kind: str, axis: str):
     return found if found is not None else state.get((kind, ir.ALL_AXES))
 
 
+def lookup(state: State, kind: str, axis: str, devices: tuple[str, ...]):
+    """What `kind` is for a G on `axis`. An unaddressed G ("*") is run by every device, each in its
+    own modes and with its own D: the value all of `devices` have, None when they differ (issue 23:
+    `1MPA` then an unaddressed `D0 G` on a single device moves to 0, not by 0)."""
+    if axis != ir.ALL_AXES or not devices:
+        return get_key(state, kind, axis)
+    first = get_key(state, kind, devices[0])
+    return first if all(same(get_key(state, kind, d), first) for d in devices[1:]) else None
+
+
 def meet(a: State | None, b: State) -> State:
     if a is None:
         return dict(b)
@@ -141,6 +151,7 @@ def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State 
         value = register_value(op, state)
         set_key(state, "sign", axis, register_sign(op, state, value))
         set_key(state, "D", axis, value)
+        set_key(state, "reg", axis, op.target.name)  # which hidden register holds the device's D
     elif kind is ir.Call and touched.get(op.routine, True):
         end = exits.get(op.routine)
         state.clear()
@@ -150,9 +161,10 @@ def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State 
 
 
 class Resolver:
-    def __init__(self, module: ir.Module, diags: Diagnostics):
+    def __init__(self, module: ir.Module, diags: Diagnostics, devices: tuple[str, ...] = ()):
         self.module = module
         self.diags = diags
+        self.devices = devices  # the devices an unaddressed G moves (the profile's and the file's)
         self.touched = self.touching()
         self.entries: dict[str, State | None] = {}
         self.exits: dict[str, State | None] = {}
@@ -164,6 +176,13 @@ class Resolver:
         self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
         self.plans: dict[int, tuple] = {}  # id(routine) -> what its walks look at (`plan`)
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
+        # routines whose last walk stopped at a call still waiting for its callee: their exit is not
+        # known yet either, so a call of one waits too (else the code after it went on with nothing
+        # known and met that into its callees' entries: `1XR3` then `2XR3`, where sequence 3 of
+        # device 1 runs sequence 3 of device 2 with `1"2XR3"`, made 2XD3's G X142)
+        self.incomplete: set[str] = set()
+        self.waited = False  # the walk in progress stopped at a call that waits
+        self.patient_done = False  # True: a call of an incomplete routine no longer waits
         self.names = {routine.name for routine in module.routines}  # `module.routine` is a linear search
 
     def touching(self) -> dict[str, bool]:
@@ -195,7 +214,7 @@ class Resolver:
 
     def solve(self) -> None:
         routines = self.module.routines
-        for _ in range(2 * len(routines) + 3):
+        for _ in range(3 * len(routines) + 5):
             sites: dict[str, State | None] = {}
             carried: State = dict(DEFAULTS)
             changed = False
@@ -224,6 +243,11 @@ class Resolver:
                         self.entries[routine.name] = new
                         changed = True
             if not changed:
+                if self.incomplete and not self.patient_done:
+                    # calls that still wait wait on each other (recursion): go on past them with
+                    # nothing known, as before a routine's exit could be awaited
+                    self.patient_done = True
+                    continue
                 break
 
     def walk(self, routine: ir.Routine, start: State, sites: dict[str, State | None]) -> State | None:
@@ -231,18 +255,25 @@ class Resolver:
         walk reaches them); the walk of an earlier round when its inputs are exactly the same."""
         calls = self.calls(routine)
         called = [self.exits.get(op.routine) for op in calls]
-        known = [op.routine in self.analysed for op in calls]  # a call to an unanalysed routine waits
+        known = [op.routine in self.analysed and (self.patient_done or op.routine not in self.incomplete)
+                 for op in calls]  # a call to an unanalysed routine waits
         memo = self.memo.get(id(routine))
         if memo is not None and identical(memo[0], start) and len(memo[1]) == len(called) \
                 and all(identical(a, b) for a, b in zip(memo[1], called)) and memo[4] == known:
-            end, reached = memo[2], memo[3]
+            end, reached, waited = memo[2], memo[3], memo[5]
         else:
             before = self.before
             for op in self.plan(routine)[1]:  # a new walk: the states it no longer reaches are not kept
                 before.pop(id(op), None)
             reached = []
+            self.waited = False
             end = self.routine(routine, start, reached)
-            self.memo[id(routine)] = (dict(start), called, end, reached, known)
+            waited = self.waited
+            self.memo[id(routine)] = (dict(start), called, end, reached, known, waited)
+        if waited and end is None:  # no path has reached the routine's end yet
+            self.incomplete.add(routine.name)
+        else:
+            self.incomplete.discard(routine.name)
         for name, state in reached:  # (the first state met is kept as it is: no state is changed once made)
             earlier = sites.get(name)
             sites[name] = state if earlier is None else meet(earlier, state)
@@ -327,8 +358,10 @@ class Resolver:
                     reached.append((op.routine, state))
                     shared = True
                     touches = touched.get(op.routine, True)
-                    if touches and op.routine in names and op.routine not in analysed:
+                    if touches and op.routine in names and (op.routine not in analysed or (
+                            not self.patient_done and op.routine in self.incomplete)):
                         waiting = True  # what it leaves is not known yet: the next round goes on from here
+                        self.waited = True
                         break
                     if not touches:
                         continue  # `transfer` leaves the state as it is
@@ -393,11 +426,12 @@ class Resolver:
             return [op]
         state = self.before.get(id(op), {})
         axis = op.targets[0][0]
-        move = get_key(state, "move", axis)
-        register = get_key(state, "D", axis)
+        devices = self.devices
+        move = lookup(state, "move", axis, devices)
+        register = lookup(state, "D", axis, devices)
         go = ir.Native(DIALECT, "G", (), axis=axis, span=op.span)
         if move == "MC":
-            sign = get_key(state, "sign", axis)
+            sign = lookup(state, "sign", axis, devices)
             if sign is not None:
                 return [ir.Slew(axis, None, sign, op.span)]
             self.report(op.span, "G in MC runs in the direction of D's sign, which is not known here")
@@ -406,7 +440,7 @@ class Resolver:
             self.report(op.span, "G moves in the move mode in force (MN, MC or MQ), which differs on the paths "
                                  "that reach it")
             return [go]
-        pos = get_key(state, "pos", axis)
+        pos = lookup(state, "pos", axis, devices)
         if pos not in POSITION_MODES:
             self.report(op.span, "G moves by D in the position mode in force (MPA or MPI), which differs on the "
                                  "paths that reach it")
@@ -419,8 +453,9 @@ class Resolver:
                     and source.span.start < span.start:
                 span = source.span.to(span)
         else:
-            target = ir.Var(distance_var(axis), span)
-            self.declare(axis)
+            name = lookup(state, "reg", axis, devices) or distance_var(axis)
+            target = ir.Var(name, span)
+            self.declare(name)
         moved = [ir.Move(POSITION_MODES[pos], ((axis, target),), op.options, span)]
         if move == "MN":
             moved.append(ir.WaitMotion(axis, op.span))
@@ -434,8 +469,7 @@ class Resolver:
                 return op
         return None
 
-    def declare(self, axis: str) -> None:
-        name = distance_var(axis)
+    def declare(self, name: str) -> None:
         if name not in self.module.variables:
             self.module.variables[name] = ir.Variable(name, ir.VarType.INT32, None, "global")
 
@@ -448,13 +482,20 @@ class Resolver:
             relevant = {id(block): liveness_ops(block.ops) for routine in self.module.routines
                         for block in routine.blocks}
         op_reads = self.op_reads
-        if self.module.externals:
-            read = {n for n in self.module.variables if is_distance(n)}
-        else:
-            read = {name for ops in relevant.values() for op in ops if type(op) is not ir.Call
-                    for name in op_reads(op)}
-        for routine in self.module.routines:
-            self.drop_dead_in(routine, read, relevant)
+        # Until nothing more goes: an assignment dropped (an `H` whose D is set again before any G)
+        # may be the only reader of an earlier one (the `D4000` before that `H`), which the output,
+        # compiled again, would drop; dropping it now makes compile(compile(p)) == compile(p).
+        for _ in range(16):
+            before = sum(map(len, relevant.values()))
+            if self.module.externals:
+                read = {n for n in self.module.variables if is_distance(n)}
+            else:
+                read = {name for ops in relevant.values() for op in ops if type(op) is not ir.Call
+                        for name in op_reads(op)}
+            for routine in self.module.routines:
+                self.drop_dead_in(routine, read, relevant)
+            if sum(map(len, relevant.values())) == before:
+                break
         used: set[str] = set()
         for ops in relevant.values():
             for op in ops:
@@ -465,12 +506,14 @@ class Resolver:
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
 
-    @staticmethod
-    def op_reads(op) -> frozenset[str] | set[str]:
+    def op_reads(self, op) -> frozenset[str] | set[str]:
         """The registers an operation reads: only moves, a G kept as text and H/H+/H- (the lowering
         puts %D nowhere else). Not to be changed by the caller (most operations share NOTHING)."""
         if isinstance(op, ir.Native):
-            return {distance_var(op.axis), distance_var(ir.ALL_AXES)} if op.mnemonic == "G" else NOTHING
+            if op.mnemonic != "G":
+                return NOTHING
+            devices = self.devices if op.axis == ir.ALL_AXES else ()
+            return {distance_var(op.axis), distance_var(ir.ALL_AXES), *map(distance_var, devices)}
         if isinstance(op, ir.Move):
             return {e.name for _, e in op.targets if isinstance(e, ir.Var) and is_distance(e.name)}
         if isinstance(op, ir.Assign) and is_distance(op.target.name) and not isinstance(op.value, ir.Const):
@@ -610,8 +653,9 @@ def states_equal(a: State | None, b: State | None) -> bool:
     return a.keys() == b.keys() and all(a[k] is b[k] or same(a[k], b[k]) for k in a)
 
 
-def resolve(module: ir.Module, diags: Diagnostics) -> None:
-    resolver = Resolver(module, diags)
+def resolve(module: ir.Module, diags: Diagnostics, devices: tuple[str, ...] = ()) -> None:
+    """`devices`: the devices of the profile and the file, which an unaddressed G moves."""
+    resolver = Resolver(module, diags, devices)
     resolver.solve()
     checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
     resolver.rewrite()

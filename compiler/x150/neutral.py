@@ -14,6 +14,7 @@ terms joined by `and`. The backend merges such a conjunction back into one X150 
 from __future__ import annotations
 
 from mcc.compiler import ir
+from mcc.compiler.span import Span
 
 # The dedicated group, left to right (L3778): LMT+ LMT- HOME AUX_IN STOP ENERGISE INDEX.
 DEDICATED = ("limit_plus", "limit_minus", "home_switch", "aux_input", "stop_input", "enable_input",
@@ -145,3 +146,30 @@ OUTPUT_FUNCTIONS = {"A": "general", "B": "moving", "C": "program_running", "F": 
 INPUT_LETTERS = {name: letter for letter, name in INPUT_FUNCTIONS.items()}
 OUTPUT_LETTERS = {name: letter for letter, name in OUTPUT_FUNCTIONS.items()}
 OUTPUTS = 6
+
+
+# The position report, defined once. `aPR` answers "a number preceded by a sign and followed by a
+# carriage return *(s)n[CR]" (L3141), e.g. `*-25600` (L3143). mcc's decisions (docs/dialects/x150.md,
+# "Decisions"): the sign is always sent, `+` for zero and positive positions (`*+4000`, `*+0`): the
+# manual says "preceded by a sign", and "the sign indicates which side of the absolute zero position
+# the motor is on"; no spaces (the `* - 140000` of the IV example, L2216, is the typesetting of the
+# same report, whose own definition and example have none). The lowering makes `aPR` this print,
+# the X150 writer writes it back as `PR` (and refuses a position printed any other way), and the
+# virtual device answers `PR` by running it on the simulator: the text is the IR's alone.
+REPORT_PREFIX = "*"  # every X150 report starts with it (L3141; `*R` L235, `*122` L289, `*0000000_...` L2134)
+
+
+def position_report(axis: str, span: Span | None, sender: str = "") -> ir.Print:
+    """`aPR`: the prefix, then the position counter with its sign, then a line end."""
+    return ir.Print((ir.Text(REPORT_PREFIX, span), ir.Status("position", axis, None, span)), True, span, sender,
+                    signed=True)
+
+
+def report_axis(op: ir.Print) -> str | None:
+    """The axis whose position `op` reports in the PR format, or None when it is another print."""
+    items = op.items
+    if op.signed and op.newline and len(items) == 2 and isinstance(items[0], ir.Text) \
+            and items[0].value == REPORT_PREFIX and isinstance(items[1], ir.Status) \
+            and items[1].meaning == "position" and items[1].index is None:
+        return items[1].axis
+    return None

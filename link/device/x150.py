@@ -38,6 +38,12 @@ def mnemonics() -> tuple[str, ...]:
     return tuple(sorted(words, key=len, reverse=True))
 
 
+@lru_cache(maxsize=None)
+def device_specific() -> frozenset[str]:
+    """Commands that "require a device address for execution" (L181: every report among them)."""
+    return frozenset(e.name for e in catalog.load("x150").entries if e.get("address") == "D")
+
+
 def parse(command: str) -> tuple[str, str, str]:
     """(address, mnemonic, argument): the longest catalog mnemonic at the start wins."""
     match = re.match(r"^(\d*)(.*)$", command, re.S)
@@ -93,6 +99,11 @@ class X150Device(VirtualDevice):
         text = raw.rstrip(b"\r\n").decode("latin-1").strip()
         address, word, arg = parse(text)
         targets = [self.units[address]] if address in self.units else ([] if address else list(self.units.values()))
+        if not address and word in device_specific() and not any(u.defining is not None for u in targets):
+            # L181: a device specific command (XU, XSD, R, PR, SV ...) needs an address; without
+            # one no device executes it (so several devices never answer at once): echo, prompt
+            first = targets[0]
+            return (raw if first.echo else b"") + (b">" if first.terminal else b"")
         if not targets:
             return raw if self.echo_on() else b""   # for a device not on this chain: passed along
         out: list[str] = []
@@ -101,8 +112,22 @@ class X150Device(VirtualDevice):
         first = targets[0]
         if first.defining is None and word not in PROTOCOL and word != ";" and text:
             out += self.on_machine(first, text, word)   # what the command or the sequence transmits
+        relayed = self.relayed(first, word, arg)
+        if relayed is not None and first.defining is None:
+            self.command((relayed + "\r").encode("latin-1"))   # device b's echo goes on to the host
         reply = (raw if first.echo else b"") + "".join(line + "\r" for line in out).encode("latin-1")
         return reply + (b">" if first.terminal else b"")
+
+    def relayed(self, sender: Unit, word: str, arg: str) -> str | None:
+        """The command string a quote sends to another device of the chain (`1"2XR3"`: device 2
+        runs sequence 3; L5593 "to command other devices to move", example L5614), else None."""
+        if word != '"':
+            return None
+        inner = arg.strip().removesuffix('"')
+        match = re.fullmatch(r"(\d+)[A-Za-z].*", inner)
+        if match is None or match.group(1) == sender.address or match.group(1) not in self.units:
+            return None
+        return inner
 
     def echo_on(self) -> bool:
         return any(u.echo for u in self.units.values())
@@ -215,8 +240,11 @@ class X150Device(VirtualDevice):
         return [("*B" if running else "*R") if not function_error else ("*C" if running else "*S")]
 
     def do_PR(self, unit: Unit, arg: str) -> list[str]:
-        """The absolute position counter (L3141-L3144), from the machine."""
-        return [f"*{number(self.sim.position(unit.address))}"]
+        """The absolute position counter (L3141-L3144: `*-25600`, `*+4000`), as the simulator prints
+        `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/neutral.py)."""
+        module = module_of("x150", f"{unit.address}PR\n")
+        outcome = self.sim.run(module, None, program=False) if module is not None else None
+        return [text.rstrip("\n") for text in outcome.prints] if outcome is not None else []
 
     def do_IS(self, unit: Unit, arg: str) -> list[str]:
         """Input status (L2173-L2178): the 7 dedicated inputs (none active on a virtual device),
@@ -258,6 +286,13 @@ class X150Device(VirtualDevice):
                 lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
             if not parse(text)[0]:
                 text = unit.address + text   # an unaddressed XR1 runs the unit's sequence 1, stored as 1XD1
+
+            if any('"' in line for body in unit.sequences.values() for line in body):
+                # a quote may start another device's sequence (`1"2XR3"`): theirs are in the program too
+                for other in self.units.values():
+                    if other is not unit:
+                        for n, body in sorted(other.sequences.items()):
+                            lines += [f"{other.address}XD{n}", *body, f"{other.address}XT"]
         module = module_of("x150", "\n".join([*lines, text]) + "\n")
         if module is None:
             return []
@@ -274,7 +309,3 @@ class X150Device(VirtualDevice):
 PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",
             "R", "PR", "IS", '"', "#"}
 
-
-def number(value: float) -> str:
-    """A position as the device reports it: whole steps."""
-    return str(int(round(value)))

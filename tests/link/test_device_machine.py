@@ -63,7 +63,8 @@ def test_x150_commands_one_at_a_time_end_where_the_simulator_says(tmp_path_facto
     device = X150Device()
     for command in commands:
         device.feed(f"{command}\r".encode())
-    assert reply_lines(device, b"1PR\r")[1] == f"*{round(trace.axes.get('1', 0))}".encode()
+    # PR: "a number preceded by a sign" (parker-x150.md L3141), + included: *+4000, *-25600
+    assert reply_lines(device, b"1PR\r")[1] == f"*{round(trace.axes.get('1', 0)):+d}".encode()
     assert math.isclose(device.sim.clock, trace.time, abs_tol=1e-6)
 
 

@@ -19,8 +19,9 @@ SPAN = Span("m", 1, 1, 1, 2, 0, 1)
 def test_canonical_form():
     text = "xd1 ;stored\n1a10 v5 d4000 g\nIF (IN_1) gosub2 NIF GOTO 3\nxt\nSAVE\n"
     # the modes are written before the first move of a sequence (the device may be in any mode then)
+    # SV is device specific (parker-x150.md L181, L4087): written with the profile's device, 1SV
     assert output(text) == ["XE1", "XD1", "1A10", "V5", "MN", "MPI", "D4000", "G", "IF(IN_1)", "XR2", "NIF", "XG3",
-                            "XT", "SV"]
+                            "XT", "1SV"]
 
 
 def test_addresses_of_a_device_sequence_are_written_on_every_line():
@@ -92,12 +93,22 @@ def test_foreign_routines_get_free_sequence_numbers_and_modes():
     main = ir.Routine("main", ir.RoutineKind.MAIN, [block("a", [
         ir.Move(ir.MoveMode.ABSOLUTE, (("1", ir.Const(2000, ir.Unit.STEPS)),), span=SPAN),
         ir.Delay(ir.Const(250, ir.Unit.MS), SPAN), ir.Call("sub", None, SPAN)])], SPAN)
-    sub = ir.Routine("sub", ir.RoutineKind.SUBROUTINE, [block("b", [ir.Save(SPAN)])], SPAN, number=64)
+    sub = ir.Routine("sub", ir.RoutineKind.SUBROUTINE, [block("b", [ir.Delay(ir.Const(1, ir.Unit.S), SPAN)])], SPAN,
+                     number=64)
     listing = backend.emit(module(main, sub, dialect="mcode"), PROFILE)
     assert not listing.diagnostics.items
     # no WaitMotion after the move: the delay runs during it, which is X150's MQ (MN would wait, L2631)
     assert [t for t in listing.text.splitlines() if not t.startswith(";")] == [
-        "XE1", "XD1", "1MQ", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT", "XE64", "XD64", "SV", "XT"]
+        "XE1", "XD1", "1MQ", "1MPA", "1D2000", "1G", "T0.25", "XR64", "XT", "XE64", "XD64", "T1", "XT"]
+
+
+def test_a_save_in_a_sequence_is_refused():
+    """parker-x150.md L4087: SV is "Immediate, Device Specific": a sequence cannot store it (it
+    would run at download time, X113), so a Save inside a routine is refused with its line."""
+    sub = ir.Routine("sub", ir.RoutineKind.SUBROUTINE, [block("b", [ir.Save(SPAN)])], SPAN, number=64)
+    main = ir.Routine("main", ir.RoutineKind.MAIN, [block("a", [ir.Call("sub", None, SPAN)])], SPAN)
+    listing = backend.emit(module(main, sub, dialect="mcode"), PROFILE)
+    assert [(d.code, "L4087" in d.message) for d in listing.diagnostics.items] == [("G003", True)]
 
 
 def test_irreducible_flow_is_x201():
