@@ -11,6 +11,23 @@ from dataclasses import dataclass
 
 
 @dataclass(frozen=True)
+class RoutineNumbers:
+    """How a target numbers the routines it writes, so the optimizer knows how many new ones
+    (outlined subroutines) fit: the numbers are the profile's `range_key` range (else `default`),
+    new routines take them from `first_key` (else the range's start) upward, `reserved` ones are
+    never given, and `every_routine` says the main program takes a number too. None of these: the
+    target names its routines (MCode labels) and takes at most `named` new ones."""
+
+    range_key: str = ""
+    default: tuple[int, int] = (0, 0)
+    first_key: str = ""
+    first: int = 0  # where new numbers start when the profile has no `first_key`
+    reserved: tuple[int, ...] = ()
+    every_routine: bool = False
+    named: int = 0
+
+
+@dataclass(frozen=True)
 class Dialect:
     name: str
     title: str
@@ -24,6 +41,20 @@ class Dialect:
     # reads (64-character MCode lines and Arcus commands, an X150 store of 8000 bytes), and a
     # megabyte line would otherwise take the parser many seconds and hundreds of megabytes.
     longest_line: int = 4096
+    # What the dialect's programs are made of, for the passes that must not name a dialect
+    # (compiler/opt, sim/): the type of a variable used without a declaration (an ir.VarType value),
+    # whether its backend writes jumps as jumps (labels) rather than rebuilding structure, whether
+    # its routines are reached only through the calls written in the program (a host cannot start
+    # one), whether its routines are laid out in numbered program regions (MCode PG), whether the
+    # text after a transfer to another routine (X150 XG) is kept as written, how it numbers routines,
+    # and its line-cost table in the profile (the key, and whether a move costs a line per axis).
+    variable_type: str = "int32"
+    writes_jumps: bool = False
+    private_routines: bool = False
+    program_regions: bool = False
+    keeps_code_after_transfer: bool = False
+    routine_numbers: RoutineNumbers = RoutineNumbers(named=32)
+    cost_key: str = ""
 
     def load_frontend(self):
         return importlib.import_module(self.frontend)
@@ -33,12 +64,26 @@ class Dialect:
 
 
 DIALECTS: dict[str, Dialect] = {
+    # MCode: user variables are 32-bit integers (VA, L6036); labels name routines in PG regions, and
+    # a host may run any label with EX, so no routine is private; labels share the 192-name table,
+    # so outlining stays modest (32 new labels at most)
     "mcode": Dialect("mcode", "Lexium MCode", (".mxt", ".ixt", ".mcode"),
-                     "mcc.compiler.mcode.frontend", "mcc.backends.mcode", "lmd-c", ".mxt", "'"),
+                     "mcc.compiler.mcode.frontend", "mcc.backends.mcode", "lmd-c", ".mxt", "'",
+                     writes_jumps=True, program_regions=True),
+    # X150: VARn hold decimals (parker-x150.md VAR); a host may start any sequence with XR/XG; the
+    # sequence text after XG is stored as written; every routine but the stream is a sequence
     "x150": Dialect("x150", "Parker/Digiplan X150/X150E", (".x150",),
-                    "mcc.compiler.x150.frontend", "mcc.backends.x150", "x150-pdhx", ".x150", ";", 8000),
+                    "mcc.compiler.x150.frontend", "mcc.backends.x150", "x150-pdhx", ".x150", ";", 8000,
+                    variable_type="decimal", keeps_code_after_transfer=True,
+                    routine_numbers=RoutineNumbers("limits.sequences", (1, 64), every_routine=True)),
+    # Arcus: V1-V64 are 32-bit integers; a SUB runs only by GOSUB (or as SUB 31 on an error, which
+    # is never given to a new routine); program memory is priced per statement and per axis
     "arcus": Dialect("arcus", "Arcus Performax PMX-4EX-SA", (".prg",),
-                     "mcc.compiler.arcus.frontend", "mcc.backends.arcus", "pmx-4ex-sa", ".prg", ";"),
+                     "mcc.compiler.arcus.frontend", "mcc.backends.arcus", "pmx-4ex-sa", ".prg", ";",
+                     private_routines=True,
+                     routine_numbers=RoutineNumbers("arcus.subroutines", (0, 31), "arcus.allocate_subroutines_from",
+                                                    first=1, reserved=(31,)),
+                     cost_key="arcus.cost"),
 }
 
 

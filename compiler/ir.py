@@ -584,6 +584,16 @@ class Module:
     # The type of each device register the program uses without declaring it (MCode F1..F8 hold
     # float64, R1..R4 int32): declared by the lowering, never written as a declaration by a backend.
     registers: dict[str, VarType] = field(default_factory=dict)
+    # The type of a variable the program uses without declaring it: the dialect's (compiler/dialects.py,
+    # `variable_type`: MCode and Arcus int32, X150 decimal) unless the module says otherwise.
+    default_type: VarType | None = None
+
+    def __post_init__(self) -> None:
+        if self.default_type is None:
+            from mcc.compiler import dialects
+
+            known = dialects.DIALECTS.get(self.dialect)
+            self.default_type = VarType(known.variable_type) if known is not None else VarType.FLOAT64
 
     def type_of(self, name: str) -> VarType | None:
         """The type of a variable or register, or None when the module does not say."""

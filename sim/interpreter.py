@@ -32,7 +32,6 @@ from mcc.sim.scenario import Scenario
 from mcc.sim.trace import Event, Trace
 
 # The type of a variable the module does not declare (registers used without a declaration).
-DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": ir.VarType.DECIMAL}
 DEFAULT_NESTING = 16  # calls deep, when the profile does not say (limits.nesting)
 # The bit of the `handler_enable` setting (MCode TE) that lets a gated handler of each event fire.
 ENABLE_BITS = {event: bit for bit, event in ir_names.HANDLER_ENABLE_BITS.items()}
@@ -210,7 +209,7 @@ class Simulator:
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
-        self.default_type = DEFAULT_TYPES.get(module.dialect, ir.VarType.FLOAT64)
+        self.default_type = module.default_type or ir.VarType.FLOAT64
         self.vars: dict[str, values.Number] = {}
         self.trace = Trace(module.path, module.dialect, module.steps_per_rev)
         self.diags = Diagnostics(self.trace.diagnostics)

@@ -16,12 +16,11 @@ Needs: nothing beyond the module.
 
 from __future__ import annotations
 
-from mcc.compiler import ir
+from mcc.compiler import dialects, ir
 from mcc.compiler.opt.fold import decide
 
 NAME = "branches"
 NEEDS = ()
-LABELLED_TARGETS = frozenset({"mcode"})  # targets that write jumps as jumps
 
 
 def run(module: ir.Module, context) -> int:
@@ -29,7 +28,7 @@ def run(module: ir.Module, context) -> int:
     blocks = {block.label: block for _, block in module.blocks()}
     order = {label: index for index, label in enumerate(blocks)}
     target = context.profile.dialect if context.profile is not None else module.dialect
-    thread = target in LABELLED_TARGETS
+    thread = dialects.get(target).writes_jumps  # a target that rebuilds structure keeps its shape
     for _, block in module.blocks():
         term = block.terminator
         if isinstance(term, ir.Branch):

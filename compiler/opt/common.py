@@ -8,10 +8,6 @@ from enum import Enum
 
 from mcc.compiler import ir
 
-# Routines of these source dialects are reached only through calls written in the program: an
-# Arcus SUB runs only by GOSUB (or as SUB 31 on an error). MCode labels can be run by a host with
-# EX and X150 sequences with XG, so their routines are never removed.
-PRIVATE_ROUTINES = frozenset({"arcus"})
 MAX_KEY_DEPTH = 200
 
 

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mcc.compiler import ir
+from mcc.compiler import dialects, ir
 from mcc.compiler.opt.common import key
 
 NAME = "outline"
@@ -46,7 +46,6 @@ ELIGIBLE = (ir.RoutineKind.MAIN, ir.RoutineKind.SUBROUTINE, ir.RoutineKind.POWER
 # host controls stay where they are: X150 never saves C or # in a sequence, and a pause moved into a
 # subroutine could no longer be shown to follow the end of a move (ir.settled_ops)
 NOT_OUTLINED = (ir.Call, ir.Native, ir.SetHandler, ir.Save, ir.Pause, ir.Resume, ir.Step)
-ERROR_SUB = 31  # Arcus: SUB 31 runs when an error occurs
 
 
 def run(module: ir.Module, context) -> int:
@@ -57,7 +56,7 @@ def run(module: ir.Module, context) -> int:
     target = context.profile.dialect if context.profile is not None else module.dialect
     saved = 0
     for _ in range(ROUNDS):
-        made, gained = one_round(module, capacity, cost, target == "mcode")
+        made, gained = one_round(module, capacity, cost, dialects.get(target).program_regions)
         capacity -= made
         saved += gained
         if not made or capacity <= 0:
@@ -66,35 +65,36 @@ def run(module: ir.Module, context) -> int:
 
 
 def free_subroutines(module: ir.Module, profile) -> int:
-    """How many new subroutines the target can number.
+    """How many new subroutines the target can number (its `dialects.RoutineNumbers`).
 
-    Arcus: the backend numbers routines without a number of their own in ascending order from
-    `allocate_subroutines_from` up to the top of the range, so the new ones (appended last) get the
-    highest free numbers; SUB 31 runs on an error and must never be one of them. X150: every
-    routine but the immediate stream is a sequence (the main program too); a module that calls
-    sequences stored on the controller outlines nothing, since the writer does not know their
-    numbers and could give one of them to a new sequence."""
+    A numbering target (Arcus SUB n, X150 sequences) gives routines without a number of their own
+    the free numbers of its range in ascending order from its first one, so the new ones (appended
+    last) get the highest free numbers; a reserved number (Arcus SUB 31 runs on an error) is never
+    given. Where every routine takes a number (X150: the main program is a sequence too), a module
+    that calls routines stored on the device outlines nothing, since the writer does not know their
+    numbers and could give one of them to a new routine. A naming target (MCode labels) takes a
+    fixed number of new ones."""
     target = profile.dialect if profile is not None else module.dialect
-    subs = [r for r in module.routines if r.kind is ir.RoutineKind.SUBROUTINE]
-    if target == "arcus":
-        low, high = profile.get("arcus.subroutines", [0, 31]) if profile else (0, 31)
-        start = max(int(low), int(profile.get("arcus.allocate_subroutines_from", 1)) if profile else 1)
-        taken: set[int] = set()
-        pending = 0
-        for routine in subs:
-            if routine.number is not None and low <= routine.number <= high and routine.number not in taken:
-                taken.add(routine.number)
-            else:
-                pending += 1
-        free = [n for n in range(start, int(high) + 1) if n not in taken and n != ERROR_SUB]
-        return len(free) - pending
-    if target == "x150":
-        if module.externals:
-            return 0
-        low, high = profile.get("limits.sequences", [1, 64]) if profile else (1, 64)
-        sequences = sum(1 for r in module.routines if r.kind is not ir.RoutineKind.IMMEDIATE)
-        return (int(high) - int(low) + 1) - sequences
-    return 32 - len(subs)  # MCode: labels share the 192-name table; keep the outlining modest
+    numbers = dialects.get(target).routine_numbers
+    counted = [r for r in module.routines if r.kind is not ir.RoutineKind.IMMEDIATE] if numbers.every_routine \
+        else [r for r in module.routines if r.kind is ir.RoutineKind.SUBROUTINE]
+    if not numbers.range_key:
+        return numbers.named - len(counted)
+    if numbers.every_routine and module.externals:
+        return 0
+    low, high = (int(n) for n in (profile.get(numbers.range_key, list(numbers.default)) if profile
+                                  else numbers.default))
+    first = int(profile.get(numbers.first_key, numbers.first or low)) if profile and numbers.first_key \
+        else (numbers.first or low)
+    taken: set[int] = set()
+    pending = 0
+    for routine in counted:
+        if routine.number is not None and low <= routine.number <= high and routine.number not in taken:
+            taken.add(routine.number)
+        else:
+            pending += 1
+    free = [n for n in range(max(low, first), high + 1) if n not in taken and n not in numbers.reserved]
+    return len(free) - pending
 
 
 def nesting_allows(module: ir.Module, profile) -> bool:
@@ -161,12 +161,14 @@ ARCUS_KEYS = {ir.Delay: "DELAY", ir.SetOutput: "DO", ir.WaitMotion: "WAIT", ir.H
 
 
 def target_cost(profile, dialect: str) -> Cost:
-    target = profile.dialect if profile is not None else dialect
-    if target == "arcus" and profile is not None:
-        table = profile.get("arcus.cost", {}) or {}
+    """The target's price of a statement: its profile's cost table (Arcus assembly lines per
+    statement, per axis of a move), else one line a statement."""
+    key = dialects.get(profile.dialect if profile is not None else dialect).cost_key
+    if key and profile is not None:
+        table = profile.get(key, {}) or {}
         statements = {str(k).upper(): int(v) for k, v in (table.get("statements") or {}).items()}
         return Cost(statements, int(table.get("default", 1)), per_axis=True)
-    if target == "arcus":
+    if key:
         return Cost({}, 1, per_axis=True)
     return Cost({})
 
@@ -178,13 +180,13 @@ def benefit(count: int, run_cost: int, cost: Cost, has_move: bool) -> int:
     return count * run_cost - (count * cost.call + run_cost + cost.frame + (1 if has_move else 0))
 
 
-def mcode_regions(module: ir.Module) -> dict[str, int | None]:
+def program_regions(module: ir.Module) -> dict[str, int | None]:
     """The MCode program region each routine is written in, as the backend lays them out
     (backends/mcode.py Writer.run): a routine with a PG address opens a region, an immediate
     stream closes it, a routine without an address continues the open one. None: outside any
     region (never outlined into or from). Another dialect's program is written as one region (its
     immediate lines are moved around it, Writer.program_order)."""
-    if module.dialect != "mcode":
+    if not dialects.get(module.dialect).program_regions:
         return {r.name: (None if r.kind is ir.RoutineKind.IMMEDIATE else 0) for r in module.routines}
     origin_given = any(r.origin is not None for r in module.routines)
     regions: dict[str, int | None] = {}
@@ -234,10 +236,10 @@ def place_routine(module: ir.Module, routine: ir.Routine, region: int | None,
     regions[routine.name] = region
 
 
-def one_round(module: ir.Module, capacity: int, cost: Cost, mcode: bool = False) -> tuple[int, int]:
+def one_round(module: ir.Module, capacity: int, cost: Cost, in_regions: bool = False) -> tuple[int, int]:
     routines = [r for r in module.routines if r.kind in ELIGIBLE]
     blocks = [b for r in routines for b in r.blocks]
-    regions = mcode_regions(module) if mcode else None
+    regions = program_regions(module) if in_regions else None
     owner = [regions[r.name] if regions is not None else 0 for r in routines for _ in r.blocks]
     ids: dict = {}
     prices: list[int] = []

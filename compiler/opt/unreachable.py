@@ -18,8 +18,8 @@ Needs: the call graph and the CFG's edges (computed here).
 
 from __future__ import annotations
 
-from mcc.compiler import ir
-from mcc.compiler.opt.common import PRIVATE_ROUTINES, referenced_labels
+from mcc.compiler import dialects, ir
+from mcc.compiler.opt.common import referenced_labels
 
 NAME = "unreachable"
 NEEDS = ()
@@ -27,7 +27,9 @@ NEEDS = ()
 
 def run(module: ir.Module, context) -> int:
     removed = blocks(module)
-    if context.global_scope and module.dialect in PRIVATE_ROUTINES:
+    # routines of a dialect whose routines only the program's own calls reach (an Arcus SUB runs
+    # only by GOSUB): a host cannot start one (MCode EX, X150 XR), so an uncalled one is dead
+    if context.global_scope and dialects.get(module.dialect).private_routines:
         removed += routines(module)
     return removed
 
@@ -42,7 +44,7 @@ def blocks(module: ir.Module) -> int:
             targets_from_elsewhere |= {t for t in ir.successors(block.terminator) if t not in own}
     removed = 0
     for routine in module.routines:
-        if not routine.blocks or module.dialect == "x150" and any(
+        if not routine.blocks or dialects.get(module.dialect).keeps_code_after_transfer and any(
                 isinstance(b.terminator, ir.GotoRoutine) for b in routine.blocks):
             continue
         by_label = {b.label: b for b in routine.blocks}

@@ -20,7 +20,6 @@ later command starts from that state, and a stop command ends the program.
 from __future__ import annotations
 
 import dataclasses
-import re
 from dataclasses import dataclass, field
 
 from mcc.compiler import ir
@@ -33,8 +32,6 @@ RUN_LIMIT = 60.0         # virtual seconds a run may take (the default of `mcc s
 # operations a run may execute: a fifth of `mcc sim`'s default, so that a loop that never waits
 # ends in well under a second and the device answers within the host's timeout (2 s by default)
 MAX_STEPS = 200_000
-# the type of a variable the module does not declare (as the simulator decides, docs/SIMULATOR.md)
-DEFAULT_TYPES = {"mcode": ir.VarType.INT32, "arcus": ir.VarType.INT32, "x150": ir.VarType.DECIMAL}
 
 
 @dataclass
@@ -146,14 +143,11 @@ class DeviceMachine:
         `program`: this run is the device's program (its end sets the program's status); an
         immediate command runs on the same machine without changing the program's status."""
         module = self._slews_go_on(starting_at(module, entry))
-        default = DEFAULT_TYPES.get(module.dialect, ir.VarType.FLOAT64)
         for name in variables_used(module):
             if name not in self.variables:
                 continue
             declared = module.variables.get(name)
-            vtype = declared.type if declared is not None else default
-            if module.dialect == "mcode" and declared is None and re.fullmatch(r"F\d+", name):
-                vtype = ir.VarType.FLOAT64
+            vtype = module.type_of(name) or module.default_type or ir.VarType.FLOAT64  # registers: the lowering's
             scope = declared.scope if declared is not None else "global"
             module.variables[name] = ir.Variable(name, vtype, ir.Const(self.variables[name]), scope)
         options = Options(until=self.run_limit, max_steps=MAX_STEPS, samples=False)

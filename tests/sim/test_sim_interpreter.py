@@ -298,7 +298,7 @@ def test_a_call_to_an_external_routine_stops_with_s005():
 
 
 def test_the_documentation_demo_runs_three_cycles():
-    from mcc.sim import demo
+    import demo_program as demo
 
     trace = simulate(demo.program(), demo.scenario(), Options(until=30))
     assert trace.stopped == "end" and trace.variables["V1"] == 3

@@ -1,6 +1,6 @@
 """A demonstration run for the documentation's plot: a small pick-and-place cycle in hand-built IR.
 
-    python -m mcc.sim.demo docs/sim-sample.png
+    python tests/sim/demo_program.py run.png
 
 X homes against its switch, then three cycles: an interpolated X/Y move to the pick point,
 output 1 (the gripper) on, a relative move back while Y runs an S-curve, and a wait for the
