@@ -48,6 +48,10 @@ class OptStats:
     lines_before: int | None = None  # target lines at -O0 (set by the driver)
     lines_after: int | None = None
     fallback: bool = False  # the optimized program could not be written: the -O0 one was kept
+    # Whether the passes left a program other than the one they were given (`fingerprint` before and
+    # after, not only the passes' own counts): a compile whose passes changed nothing writes the
+    # program as written, and needs no validation (driver.needs_validation).
+    changed: bool = False
 
     @property
     def lines_saved(self) -> int | None:
@@ -112,6 +116,7 @@ def optimize(module: ir.Module, level: str = "O1", profile: Profile | None = Non
     """Run the passes of `level` (or `passes`) over `module` in place; returns the statistics."""
     names = pass_names(level, passes)
     stats = OptStats(level, ops_before=count_ops(module))
+    before_all = fingerprint(module) if names else ""
     context = Context(module, level if level in LEVELS else "O1", profile)
     for name in names:
         unit = importlib.import_module(f"mcc.compiler.opt.{name}")
@@ -124,7 +129,25 @@ def optimize(module: ir.Module, level: str = "O1", profile: Profile | None = Non
         if verify:
             check(module, name)
     stats.ops_after = count_ops(module)
+    stats.changed = bool(names) and (any(p.changed for p in stats.passes) or fingerprint(module) != before_all)
     return stats
+
+
+def fingerprint(module: ir.Module) -> str:
+    """The program `module` is, source lines aside: its variables, routines, blocks, operations and
+    terminators as text. Two modules with the same fingerprint run alike."""
+    from mcc.compiler.ir_print import expr_text, op_text, term_text
+
+    lines = [f"{module.dialect} {module.steps_per_rev}"]
+    lines += [f"{name} {v.type.value} {v.scope} {expr_text(v.init) if v.init is not None else ''}"
+              for name, v in module.variables.items()]
+    for routine in module.routines:
+        lines.append(f"routine {routine.name} {routine.kind.value} {routine.number} {routine.origin}")
+        for block in routine.blocks:
+            lines.append(f"{block.label}:")
+            lines += [op_text(op) for op in block.ops]
+            lines.append(term_text(block.terminator))
+    return "\n".join(lines)
 
 
 def check(module: ir.Module, name: str) -> None:
