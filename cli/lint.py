@@ -103,8 +103,9 @@ def common_options(func):
 @click.option("--fix", is_flag=True, help="Apply the safe fixes and report what remains.")
 @click.option("--unsafe-fixes", is_flag=True, help="Also apply (or show) fixes that may change behaviour.")
 @click.option("--diff", is_flag=True, help="Show the fixes as a unified diff; write nothing.")
-@click.option("--verify", is_flag=True, help="With --fix: simulate each file before and after its fixes and "
-                                             "leave it unchanged (S010) if they behave differently.")
+@click.option("--verify/--no-verify", default=True, show_default=True,
+              help="With --fix: simulate each file before and after its fixes and leave it unchanged (S010) if "
+                   "they behave differently. --no-verify writes the fixes unvalidated (and says so).")
 @click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
 @click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
               help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
@@ -127,6 +128,9 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
     """
     from mcc.compiler.lint import engine
 
+    if fix and not verify:
+        click.echo("mcc: note: --no-verify: the fixed files are not validated against the originals in the "
+                   "simulator", err=True)
     resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
     targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
@@ -213,7 +217,8 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 and list the files that would change.")
 @click.option("--diff", is_flag=True, help="Write nothing; print the changes as a unified diff (exit 1 if any).")
 @click.option("--verify", is_flag=True, help="Also simulate each file before and after formatting and leave it "
-                                             "unchanged if they behave differently.")
+                                             "unchanged if they behave differently (formatting is always checked "
+                                             "to leave the program's IR unchanged, which needs no simulation).")
 @common_options
 def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs) -> None:
     """Rewrite PATHS (files or directories; default: the current directory) in the canonical style

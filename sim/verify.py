@@ -28,8 +28,8 @@ import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
 
-from mcc.compiler import ir, units
-from mcc.sim.interpreter import Options, simulate
+from mcc.compiler import ir, ir_verify, units
+from mcc.sim.interpreter import ContractError, Options, simulate
 from mcc.sim.scenario import AxisSwitches, InputEvent, Scenario
 from mcc.sim.trace import Event, Trace
 
@@ -217,7 +217,8 @@ def default_scenarios(module: ir.Module, profile=None, low: Trace | None = None)
     times = toggle_times(low)
     out.append(Scenario(inputs={n: 1 for n in read}, name="inputs high"))
     for n in read:
-        out.append(Scenario(inputs={n: 1}, name=f"input {n} high"))
+        if len(read) > 1:  # with one input, "inputs high" is this one
+            out.append(Scenario(inputs={n: 1}, name=f"input {n} high"))
         events = [InputEvent(n, 1 - k % 2, at=t) for k, t in enumerate(times)]
         out.append(Scenario(events=events, name=f"input {n} toggles at {', '.join(f'{t:g}' for t in times)} s"))
     return out
@@ -232,7 +233,7 @@ def toggle_times(low: Trace) -> list[float]:
     times = [round(p + TOGGLE_AFTER, 6) for p in points]
     while len(times) < MAX_TOGGLES and times[-1] + 1.0 < VERIFY_UNTIL:
         times.append(round(times[-1] + 1.0, 6))
-    return times
+    return [t for t in times if t < VERIFY_UNTIL]
 
 
 def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | None = None,
@@ -247,20 +248,24 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     one that never lets time pass is. Both modules must keep the IR contract
     (`interpreter.ContractError` otherwise)."""
     source, output = _stated_steps(source, output), _stated_steps(output, source)
+    for module in (source, output):  # once here, not at each of the runs below
+        problems = ir_verify.verify(module)
+        if problems:
+            raise ContractError(problems[0])
     tol = within or tolerance(source, output, source_profile, output_profile)
     ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
     known: dict[int, Trace] = {}
     if scenarios is None:
         lows = Scenario(name="inputs low")
-        known[id(lows)] = simulate(source, lows, _copy(options or default_options(lows)), source_profile)
+        known[id(lows)] = simulate(source, lows, _copy(options or default_options(lows)), source_profile, checked=True)
         scenarios = [lows] + default_scenarios(source, source_profile, known[id(lows)])[1:]
     for scenario in scenarios:
         opts = options or default_options(scenario)
-        a = known.get(id(scenario)) or simulate(source, scenario, _copy(opts), source_profile)
-        b = simulate(output, scenario, _copy(opts), output_profile)
+        a = known.get(id(scenario)) or simulate(source, scenario, _copy(opts), source_profile, checked=True)
+        b = simulate(output, scenario, _copy(opts), output_profile, checked=True)
         moved = _translated(scenario, _axis_map(a, b), ratio)
         if moved is not scenario:  # the switches and positions of the output's axes, in its steps
-            b = simulate(output, moved, _copy(opts), output_profile)
+            b = simulate(output, moved, _copy(opts), output_profile, checked=True)
         a = _longer(source, scenario, opts, source_profile, a, b, tol)
         b = _longer(output, moved, opts, output_profile, b, a, tol)
         found = compare_traces(a, b, ratio, scenario.name, kinds, by_count, tol)
@@ -279,7 +284,7 @@ def _longer(module: ir.Module, scenario: Scenario, opts: Options, profile, trace
         if trace.stopped != "step-limit" or trace.time >= other.time - tol.at(other.time, _motions(other)):
             break
         budget *= 4
-        trace = simulate(module, scenario, dataclasses.replace(_copy(opts), max_steps=budget), profile)
+        trace = simulate(module, scenario, dataclasses.replace(_copy(opts), max_steps=budget), profile, checked=True)
     return trace
 
 
@@ -294,7 +299,7 @@ def _another_interleaving(source: ir.Module, scenario: Scenario, opts: Options, 
     take the other way, which the source could take too. Asked only after a divergence, so a
     scenario costs no more otherwise."""
     for offset in range(1, RACE_POINTS + 1):
-        other = simulate(source, scenario, dataclasses.replace(_copy(opts), poll_offset=offset), profile)
+        other = simulate(source, scenario, dataclasses.replace(_copy(opts), poll_offset=offset), profile, checked=True)
         if compare_traces(other, output, ratio, scenario.name, kinds, by_count, tol) is None:
             return True
     return False
@@ -427,8 +432,10 @@ def _axis_map(a: Trace, b: Trace) -> dict[str, str]:
     def order(trace: Trace) -> list[str]:
         seen: list[str] = []
         for event in trace.events:
-            names = list(event.data.get("to", {})) + ([event.data["axis"]] if "axis" in event.data else [])
-            names += list(event.data.get("axes", []))
+            if len(seen) >= len(trace.axes) and trace.axes:
+                break  # every axis named: the order is known
+            data = event.data
+            names = list(data.get("to", ())) + ([data["axis"]] if "axis" in data else []) + list(data.get("axes", ()))
             seen += [n for n in names if n not in seen]
         return seen + [n for n in trace.axes if n not in seen]
 
@@ -533,8 +540,9 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
 
 
 def same_program(a: ir.Module, b: ir.Module) -> bool:
-    """Whether two modules are the same program, source lines aside: a rewrite that only re-spells
-    the text (spacing, case, comments) lowers to the same IR, and needs no simulation."""
+    """Whether two modules are the same program, source lines aside, in the code that can run: a
+    rewrite that only re-spells the text (spacing, case, comments) or drops blocks no path reaches
+    lowers to the same IR there, and needs no simulation."""
     from mcc.compiler.opt.manager import fingerprint
 
     return fingerprint(a) == fingerprint(b)

@@ -81,3 +81,19 @@ def test_verify_checks_even_a_plain_respelling(tmp_path, monkeypatch):
     monkeypatch.setattr(verify, "check_translation", lambda *a, **k: calls.append(a[4]) or "")
     result, out = run(["-O0", "--verify"], tmp_path)
     assert result.exit_code == 0 and calls == ["mcode"], result.output
+
+
+def test_lint_fix_validates_by_default_and_no_verify_says_so(tmp_path, monkeypatch):
+    """`lint --fix` rewrites the program, so it is validated unless --no-verify (issue 23). The
+    fix here adds `S` after the final PG (lexium-mcode.txt L5269: save to non-volatile memory)."""
+    from mcc.sim import verify
+
+    calls = []
+    monkeypatch.setattr(verify, "check_translation", lambda *a, **k: calls.append(a[0]) or "")
+    source = tmp_path / "p.mxt"
+    source.write_text(PROGRAM)
+    result = CliRunner().invoke(cli, ["lint", "--fix", "--unsafe-fixes", "--jobs", "1", str(source)])
+    assert len(calls) == 1 and source.read_text() != PROGRAM, result.output
+    source.write_text(PROGRAM)
+    result = CliRunner().invoke(cli, ["lint", "--fix", "--unsafe-fixes", "--no-verify", "--jobs", "1", str(source)])
+    assert len(calls) == 1 and "--no-verify" in result.output and source.read_text() != PROGRAM
