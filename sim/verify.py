@@ -199,12 +199,13 @@ def default_options(scenario: Scenario | None = None) -> Options:
                    max_steps=VERIFY_STEPS, samples=False)
 
 
-def default_scenarios(module: ir.Module, profile=None, low: Trace | None = None) -> list[Scenario]:
+def default_scenarios(module: ir.Module, profile=None, low: Trace | None = None,
+                      options: Options | None = None) -> list[Scenario]:
     """Scenarios generated from the program: all inputs it reads low, all high, and for each input
     one scenario with it high on its own and one with it toggling around the program's waits.
 
     The toggling times come from the run with every input low (`low`, simulated here when not
-    given): the input changes `TOGGLE_AFTER` after each point where that run let time pass (a wait
+    given; run with `options`, else the defaults): the input changes `TOGGLE_AFTER` after each point where that run let time pass (a wait
     started or ended, a move ended, the run stopped waiting), then every second, `MAX_TOGGLES`
     changes at least, so a wait for the input's rise and one for its fall are both released."""
     read = inputs_read(module)
@@ -213,7 +214,7 @@ def default_scenarios(module: ir.Module, profile=None, low: Trace | None = None)
     if not read:
         return out
     if low is None:
-        low = simulate(module, lows, default_options(), profile)
+        low = simulate(module, lows, _copy(options) if options is not None else default_options(), profile)
     times = toggle_times(low)
     out.append(Scenario(inputs={n: 1 for n in read}, name="inputs high"))
     for n in read:
