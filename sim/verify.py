@@ -267,33 +267,82 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
         moved = _translated(scenario, _axis_map(a, b), ratio)
         if moved is not scenario:  # the switches and positions of the output's axes, in its steps
             b = simulate(output, moved, _copy(opts), output_profile, checked=True)
-        a = _longer(source, scenario, opts, source_profile, a, b, tol)
-        b = _longer(output, moved, opts, output_profile, b, a, tol)
-        found = compare_traces(a, b, ratio, scenario.name, kinds, by_count, tol)
+        runs = [_Run(source, scenario, source_profile, a, opts.max_steps),
+                _Run(output, moved, output_profile, b, opts.max_steps)]
+        horizon = _same_horizon(runs, opts, tol, kinds)
+        a, b = runs[0].trace, runs[1].trace
+        found = compare_traces(a, b, ratio, scenario.name, kinds, by_count, tol, horizon)
         if found is not None and not _another_interleaving(source, scenario, opts, source_profile, b, ratio,
-                                                            kinds, by_count, tol):
+                                                            kinds, by_count, tol, horizon):
             return found
     return None
 
 
-def _longer(module: ir.Module, scenario: Scenario, opts: Options, profile, trace: Trace, other: Trace,
-            tol: Tolerance) -> Trace:
-    """`trace`, or the run again with a larger step budget when the step limit stopped it before
-    the other run stopped (a rewrite may take more operations per round of a loop)."""
-    budget = opts.max_steps
-    for _ in range(STEP_BUDGETS):
-        if trace.stopped != "step-limit" or trace.time >= other.time - tol.at(other.time, _motions(other)):
+@dataclass
+class _Run:
+    module: ir.Module
+    scenario: Scenario
+    profile: object
+    trace: Trace
+    budget: int
+    tries: int = 0
+    stuck: bool = False  # more steps did not let its time advance: a loop that never waits
+
+
+def _same_horizon(runs: list[_Run], opts: Options, tol: Tolerance, kinds: tuple[str, ...]) -> float | None:
+    """Bring two runs to the same horizon: while the one that stopped earlier was stopped by the
+    step limit, run it again with 4 times the budget (`STEP_BUDGETS` times at most), since a rewrite
+    may take more operations per round of a loop. Answers the time up to which both runs are
+    complete when both still end at the step limit, each having let time pass (their loops wait,
+    just not as far), else None: how they stopped is then compared."""
+    for _ in range(2 * STEP_BUDGETS):
+        behind, ahead = sorted(runs, key=lambda r: r.trace.time)
+        if behind.trace.stopped != "step-limit" or behind.tries >= STEP_BUDGETS or behind.stuck or \
+                behind.trace.time >= ahead.trace.time - tol.at(ahead.trace.time, _motions(ahead.trace)):
             break
-        budget *= 4
-        trace = simulate(module, scenario, dataclasses.replace(_copy(opts), max_steps=budget), profile, checked=True)
-    return trace
+        _rerun(behind, opts)
+    for run, other in (runs, runs[::-1]):
+        if run.trace.stopped == "step-limit" and other.trace.stopped == "waiting" and \
+                abs(run.trace.time - other.trace.time) <= tol.at(other.trace.time, _motions(other.trace)):
+            if not run.tries:
+                _rerun(run, opts)
+            if run.stuck:  # spinning where the other waits for nothing: neither can do anything more
+                run.trace = dataclasses.replace(run.trace, stopped="waiting", reason=run.trace.reason +
+                                                "; with more steps its time does not advance: it can do nothing more")
+    if all(r.trace.stopped == "step-limit" for r in runs):
+        if not any(r.stuck for r in runs):
+            return min(r.trace.time for r in runs)
+        # a run whose time no longer advances can do nothing more: the two are alike when the other
+        # does nothing observable after that time either (both are then compared on everything)
+        if all(not _acts_after(other.trace, run.trace.time + tol.at(run.trace.time), kinds)
+               for run, other in (runs, runs[::-1]) if run.stuck):
+            return ALL
+    return None
+
+
+ALL = float("inf")  # a horizon: both runs are complete, compare every event they made
+
+
+def _acts_after(trace: Trace, t: float, kinds: tuple[str, ...]) -> bool:
+    return any(e.t > t for e in _observable(trace, None, kinds))
+
+
+def _rerun(run: _Run, opts: Options) -> None:
+    """Run again with 4 times the step budget; `stuck` when its time does not advance."""
+    before = run.trace.time
+    run.budget *= 4
+    run.tries += 1
+    run.trace = simulate(run.module, run.scenario, dataclasses.replace(_copy(opts), max_steps=run.budget),
+                         run.profile, checked=True)
+    run.stuck = run.trace.stopped == "step-limit" and run.trace.time <= before
 
 
 RACE_POINTS = 24  # the points of a polling round tried (rounds of random programs are shorter)
 
 
 def _another_interleaving(source: ir.Module, scenario: Scenario, opts: Options, profile, output: Trace,
-                          ratio: Fraction, kinds: tuple[str, ...], by_count: bool, tol: Tolerance) -> bool:
+                          ratio: Fraction, kinds: tuple[str, ...], by_count: bool, tol: Tolerance,
+                          horizon: float | None) -> bool:
     """Whether the source does what the output did when its polling loops let time pass at another
     point of their rounds. A loop that reads an input twice per round and leaves only when it
     changes between the reads is a race on a real controller; a rewrite that rotates the loop may
@@ -301,7 +350,7 @@ def _another_interleaving(source: ir.Module, scenario: Scenario, opts: Options, 
     scenario costs no more otherwise."""
     for offset in range(1, RACE_POINTS + 1):
         other = simulate(source, scenario, dataclasses.replace(_copy(opts), poll_offset=offset), profile, checked=True)
-        if compare_traces(other, output, ratio, scenario.name, kinds, by_count, tol) is None:
+        if compare_traces(other, output, ratio, scenario.name, kinds, by_count, tol, horizon) is None:
             return True
     return False
 
@@ -343,7 +392,7 @@ def _copy(options: Options) -> Options:
 
 def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "",
                    kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False,
-                   within: Tolerance = EXACT) -> Divergence | None:
+                   within: Tolerance = EXACT, horizon: float | None = None) -> Divergence | None:
     """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps.
 
     `kinds` are the events compared (OBSERVABLE, or STRICT). The runs must stop for the same reason
@@ -351,12 +400,13 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
     cut, or with `by_count`, when both were cut by the step limit, on the events both made (a loop
     that never waits stops at the step limit at time 0, and a transformation may change the steps
     per round). The first event that differs is reported before a difference in how they stopped,
-    since it names a source line."""
-    stop = _stop_difference(a, b, scenario, within)
+    since it names a source line. `horizon`: both runs were stopped by the step limit after letting
+    time pass, and are complete up to that time (`_same_horizon`; `ALL`: complete)."""
+    stop = None if horizon is not None else _stop_difference(a, b, scenario, within)
     limited = a.stopped in LIMITS and b.stopped in LIMITS
     cut = None
-    if stop is None and limited:  # both reached the horizon: what happens within the tolerance of it may or not
-        end = min(a.time, b.time)
+    if stop is None and limited and horizon != ALL:  # both reached the horizon: what happens within the
+        end = min(a.time, b.time) if horizon is None else horizon  # tolerance of it may or may not
         cut = end - within.at(end, _motions(a))
     ea, eb = _observable(a, None, kinds), _observable(b, None, kinds)
     counted = by_count and a.stopped == b.stopped == "step-limit" and stop is None
