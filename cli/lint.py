@@ -103,9 +103,11 @@ def common_options(func):
 @click.option("--fix", is_flag=True, help="Apply the safe fixes and report what remains.")
 @click.option("--unsafe-fixes", is_flag=True, help="Also apply (or show) fixes that may change behaviour.")
 @click.option("--diff", is_flag=True, help="Show the fixes as a unified diff; write nothing.")
-@click.option("--verify/--no-verify", default=True, show_default=True,
+@click.option("--verify/--no-verify", default=None,
               help="With --fix: simulate each file before and after its fixes and leave it unchanged (S010) if "
-                   "they behave differently. --no-verify writes the fixes unvalidated (and says so).")
+                   "they behave differently. On by default (a file with errors of its own, which has no "
+                   "behaviour to keep, is then fixed unvalidated; --verify refuses it); --no-verify writes the "
+                   "fixes unvalidated (and says so).")
 @click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
 @click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
               help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
@@ -128,13 +130,14 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
     """
     from mcc.compiler.lint import engine
 
-    if fix and not verify:
+    if fix and verify is False:
         click.echo("mcc: note: --no-verify: the fixed files are not validated against the originals in the "
                    "simulator", err=True)
     resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
     targets = expand(paths, resolver)
     work = [(path, resolver.for_path(path)) for path in targets]
-    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify)
+    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify is not False,
+                             verify_required=verify is True)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
     outcomes = config_outcomes(resolver) + sorted(outcomes, key=lambda o: o.path)
     if diff:
