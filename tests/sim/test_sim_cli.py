@@ -231,3 +231,24 @@ def test_the_readme_plot_command_places_two_parts(mcc, tmp_path):
     assert [e["text"] for e in entry["events"] if e["kind"] == "print"] == ["Parts placed: 1\n",
                                                                             "Parts placed: 2\n"]
     assert entry["stopped"] == "waiting" and entry["axes"]["1"]["position"] == 0
+
+
+def test_an_output_that_spins_at_time_zero_matches_nothing():
+    """Issue 23: both runs go to the same horizon; an output stuck in a loop that never lets time
+    pass (more steps do not advance it) is a difference from a source that moves, while two
+    programs that both can do nothing more (one spinning, one waiting) are alike."""
+    from mcc.compiler import ir
+    from mcc.sim import Options
+    from mcc.sim.scenario import Scenario
+    from mcc.sim.verify import compare
+
+    from sim_helpers import c, module, move, speed
+
+    options = Options(until=30, max_steps=5_000, samples=False)
+    moves = module([speed("X", 4000), move("X", 4000), ir.WaitMotion(("X",))])
+    counter = ir.Var("V1")  # a loop that counts for ever: every round changes V1, no time passes
+    spins = module(("a", [ir.Assign(counter, ir.BinOp("+", counter, c(1)))], ir.Jump("a")))
+    found = compare(moves, spins, [Scenario()], options)
+    assert found is not None and found.message == "the output does not move X to 4000"
+    waits = module([ir.WaitInput(ir.Compare("=", ir.Status("input", index=1), c(1)))])
+    assert compare(waits, spins, [Scenario()], options) is None
