@@ -179,17 +179,24 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("--overwrite-input", is_flag=True,
               help="Allow -o or --listing to replace a file this run reads (FILE itself or the --profile file); "
                    "refused by default, so that a slip never replaces the source with the compiled text.")
-@click.option("--verify", is_flag=True,
-              help="Simulate the source and the compiled program and write nothing if they behave differently.")
+@click.option("--verify/--no-verify", "verify", default=None,
+              help="Simulate the source and the compiled program and write nothing if they behave differently. "
+                   "On by default whenever the output is not the program as written (another target, or an "
+                   "optimization that changed something); --verify also checks a plain re-spelling, --no-verify "
+                   "turns validation off (and says so).")
 @click.option("--inputs", "inputs", multiple=True, type=click.Path(exists=True, dir_okay=False),
-              metavar="SCENARIO.toml", help="Scenarios for --verify (repeatable; default: every input read both ways).")
+              metavar="SCENARIO.toml", help="Scenarios for the validation (repeatable; default: generated from the "
+                                            "program, every input it reads low, high and toggling).")
 def compile_cmd(file: str, target: str | None, dialect: str | None, output: str | None, listing: str | None,
                 fmt: str, profile: str | None, opt_level: str, passes: str | None, overwrite_input: bool,
-                verify: bool, inputs: tuple[str, ...]) -> None:
+                verify: bool | None, inputs: tuple[str, ...]) -> None:
     """Compile FILE into a device-ready program.
 
     The program is checked first; nothing is written when it has errors. The output passes
-    `mcc check` with no errors, and compiling it again gives the same text.
+    `mcc check` with no errors, and compiling it again gives the same text. Unless --no-verify,
+    a program that is not the source as written (another target, an optimization that changed
+    something) is simulated against its source, and nothing is written when they behave
+    differently (S010 on the source line, exit 1).
 
     \b
     Examples:
@@ -211,13 +218,16 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
             pass_names(opt_level, passes)
         except ValueError as exc:
             raise click.BadParameter(str(exc), param_hint="--passes") from None
-    result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes)
+    from mcc.cli.sim import load_scenarios
+
+    scenarios = load_scenarios(inputs)
+    if verify is False:
+        click.echo("mcc: note: --no-verify: the compiled program is not validated against its source in the "
+                   "simulator", err=True)
+    result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes,
+                                 verify=verify is not False, scenarios=scenarios, always_verify=verify is True)
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
-    if produced and verify:
-        from mcc.cli.sim import verify_result
-
-        produced = verify_result(result, result.analysis.module, result.listing.text, result.target, prof, inputs)
     write_failed = False
     if produced and (output or listing):
         write_failed = not write_outputs(result, output, listing)

@@ -104,8 +104,11 @@ def common_options(func):
 @click.option("--fix", is_flag=True, help="Apply the safe fixes and report what remains.")
 @click.option("--unsafe-fixes", is_flag=True, help="Also apply (or show) fixes that may change behaviour.")
 @click.option("--diff", is_flag=True, help="Show the fixes as a unified diff; write nothing.")
-@click.option("--verify", is_flag=True, help="With --fix: simulate each file before and after its fixes and "
-                                             "leave it unchanged (S010) if they behave differently.")
+@click.option("--verify/--no-verify", default=None,
+              help="With --fix: simulate each file before and after its fixes and leave it unchanged (S010) if "
+                   "they behave differently. On by default (a file with errors of its own, which has no "
+                   "behaviour to keep, is then fixed unvalidated; --verify refuses it); --no-verify writes the "
+                   "fixes unvalidated (and says so).")
 @click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
 @click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
               help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
@@ -130,8 +133,12 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
     """
     from mcc.compiler.lint import engine
 
+    if fix and verify is False:
+        click.echo("mcc: note: --no-verify: the fixed files are not validated against the originals in the "
+                   "simulator", err=True)
     resolver = make_resolver(config, isolated, select, extend_select, ignore, profile, fail_on)
-    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify)
+    options = engine.Options(fix=fix, diff=diff, unsafe_fixes=unsafe_fixes, dialect=dialect, verify=verify is not False,
+                             verify_required=verify is True)
     piped = read_stdin(paths, stdin_filename, dialect)
     if piped is not None:
         lint_stdin(piped, resolver, options, fmt, statistics, fail_on, exit_zero)
@@ -242,7 +249,8 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
 @click.option("--check", is_flag=True, help="Write nothing; exit 1 and list the files that would change.")
 @click.option("--diff", is_flag=True, help="Write nothing; print the changes as a unified diff (exit 1 if any).")
 @click.option("--verify", is_flag=True, help="Also simulate each file before and after formatting and leave it "
-                                             "unchanged if they behave differently.")
+                                             "unchanged if they behave differently (formatting is always checked "
+                                             "to leave the program's IR unchanged, which needs no simulation).")
 @common_options
 def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, stdin_filename) -> None:
     """Rewrite PATHS (files or directories; default: the current directory) in the canonical style

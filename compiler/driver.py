@@ -248,9 +248,16 @@ BUDGET_CODES = frozenset({"A201", "X203", "M116"})  # the program does not fit t
 
 def compile_file(path: str, dialect: str | None = None, target: str | None = None,
                  profile: Profile | None = None, text: str | None = None, opt_level: str = "O1",
-                 passes: str | None = None) -> FileResult:
+                 passes: str | None = None, verify: bool = True, scenarios: list | None = None,
+                 always_verify: bool = False) -> FileResult:
     """Check one file and, when it has no errors, optimize its IR at `opt_level` (or run the
-    comma-separated `passes`) and generate code for the target dialect."""
+    comma-separated `passes`) and generate code for the target dialect.
+
+    With `verify` (the default) the program written is validated against its source in the
+    simulator whenever it is not a plain re-spelling of it: another target, or a pass that changed
+    something (`needs_validation`); `always_verify` validates in every case. A difference is S010
+    on the source line and the listing is not to be written. `scenarios` replace the default ones
+    (docs/SIMULATOR.md, "Verification")."""
     result = check_file(path, dialect, profile, text, memory=False)
     result.target = target or result.dialect
     analysis = result.analysis
@@ -284,32 +291,43 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)
         result.listing = listing
-        if result.target != result.dialect and not diags.has_errors:
-            verify_translation(result, target_profile, diags)
+        if verify and not diags.has_errors and (always_verify or needs_validation(result, stats)):
+            verify_translation(result, target_profile, diags, scenarios)
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, path, exc, f"generating {result.target} code")
     result.diagnostics = diags.items
     return result
 
 
-def verify_translation(result: FileResult, target_profile: Profile, diags: Diagnostics) -> None:
-    """Cross-dialect output is always simulated against its source (docs/SIMULATOR.md): a
-    conversion that the simulator finds behaving differently is an error (S010) naming the first
-    divergence, so nothing is written; conversion never exits 0 with a program that does something
+def needs_validation(result: FileResult, stats) -> bool:
+    """Whether the program written may behave otherwise than its source: it is in another dialect,
+    or a pass of the optimizer changed something (`PassStat.changed`); a same-dialect compile whose
+    passes changed nothing writes the program as it was written, re-spelled."""
+    return result.target != result.dialect or stats is None or stats.fallback or stats.changed
+
+
+def verify_translation(result: FileResult, target_profile: Profile, diags: Diagnostics,
+                       scenarios: list | None = None) -> None:
+    """The written program is simulated against its source (docs/SIMULATOR.md): one that the
+    simulator finds behaving differently is an error (S010) on the source line of the first
+    divergence, so nothing is written; a compile never exits 0 with a program that does something
     else."""
     import re
 
     from mcc.sim.verify import check_translation, explain
 
     problem = check_translation(result.path, result.dialect, result.analysis.module, result.listing.text,
-                                result.target, target_profile, None)
+                                result.target, target_profile, scenarios)
     if not problem:
         return
     found = re.match(r"line (\d+), ", problem)
     line = int(found.group(1)) if found else 1
-    diags.add("S010", Span(result.path, line, 1, line, 2),
+    text = result.source.line_text(line) if result.source is not None and found else ""
+    advice = "compile to the source dialect, or set what the output needs explicitly in the source" \
+        if result.target != result.dialect else "compile with -O0, or report the optimizer's mistake"
+    diags.add("S010", Span(result.path, line, 1, line, max(2, len(text) + 1)),
               f"the {result.target} program does not behave like the source: {explain(problem)}; nothing was "
-              "written (compile to the source dialect, or set what the output needs explicitly in the source)")
+              f"written ({advice})")
 
 
 def generate(module: ir.Module, target: dialects.Dialect, profile: Profile, level: str, passes: str | None):

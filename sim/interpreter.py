@@ -169,8 +169,10 @@ class Scheduled(tuple):
 
 class Simulator:
     def __init__(self, module: ir.Module, scenario: Scenario | None = None, options: Options | None = None,
-                 profile=None):
-        problems = ir_verify.verify(module)
+                 profile=None, checked: bool = False):
+        # `checked`: the caller verified the contract of this very module (sim.verify runs one
+        # module on many scenarios, and the verifier costs more than a short run)
+        problems = [] if checked else ir_verify.verify(module)
         if problems:
             raise ContractError(problems[0])
         self.module = module
@@ -222,6 +224,10 @@ class Simulator:
         self.motion_ids = 0
         self.motion_op: dict[int, ir.Op] = {}
         self.changes = 0  # bumped by anything a polling loop could be waiting for
+        # the share of `changes` that are variables taking a new value: a round of a loop that sets
+        # a flag and clears it again (a translation's condition computed into temporaries) changes
+        # nothing when the variables are back where they were as it goes round (`_execute`)
+        self.var_changes = 0
         self.natives: set[str] = set()
         self.unmodelled: set[str] = set()  # settings reported once each (S014)
         # the settings set in this run: (name, axis, input/output number) -> value
@@ -232,6 +238,7 @@ class Simulator:
         self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
         self.polling = False
         self.poll_changes = 0
+        self.poll_vars: dict = {}
         self.poll_steps = 0
         self.wakes = 0  # delays that ended: a round of a delay-paced loop changes nothing else
         self.round: RoundMark | None = None  # the last time the running loop went round
@@ -386,11 +393,13 @@ class Simulator:
 
     def _execute(self) -> None:
         """Run the top frame until it waits or the program ends."""
-        quiet, last_changes = 0, self.changes
+        quiet, last_changes = 0, self.changes - self.var_changes
+        round_vars, vars_seen = None, self.var_changes
         self.read_continuous = False
         # back from a poll with nothing changed: the loop is still polling, so recognise it sooner
         # and do not count its steps against the step limit (it is waiting, not running away)
-        polling = self.polling and self.changes == self.poll_changes
+        polling = self.polling and self.changes - self.var_changes == self.poll_changes \
+            and self.vars == self.poll_vars
         threshold = POLL_RECHECK if polling else self.options.spin
         while self.stack:
             frame = self.stack[-1]
@@ -434,8 +443,15 @@ class Simulator:
             if self.handlers:
                 self._check_when()
                 self._fire_pending()
-            if self.changes != last_changes:
-                quiet, last_changes = 0, self.changes
+            # a change other than a variable's resets the count at once; variables count as
+            # changed when, going round, they are not what they were the last time round
+            changed = self.changes - self.var_changes != last_changes
+            if not changed and self.went_back and self.var_changes != vars_seen:
+                snapshot = dict(self.vars)
+                changed = snapshot != round_vars
+                round_vars, vars_seen = snapshot, self.var_changes
+            if changed:
+                quiet, last_changes = 0, self.changes - self.var_changes
                 self.read_continuous = False
                 polling, threshold = False, self.options.spin
             else:
@@ -445,7 +461,8 @@ class Simulator:
                 # then sees the inputs change at the same point of the loop as its source
                 if quiet >= threshold and self.stack and self._poll_point():
                     self.stack[-1].wait = Wait("poll", line=self._line_now())
-                    self.polling, self.poll_changes = True, self.changes
+                    self.polling, self.poll_changes = True, self.changes - self.var_changes
+                    self.poll_vars = dict(self.vars)
                     return
         self.polling = False
 
@@ -596,6 +613,7 @@ class Simulator:
         value = values.store(self._eval(op.value, vtype is ir.VarType.FLOAT64), vtype)
         if self.vars.get(name) != value:
             self.changes += 1
+            self.var_changes += 1
         self.vars[name] = value
         return None
 
@@ -1496,9 +1514,9 @@ def profile_of(module: ir.Module):
 
 
 def simulate(module: ir.Module, scenario: Scenario | None = None, options: Options | None = None,
-             profile=None) -> Trace:
+             profile=None, checked: bool = False) -> Trace:
     """Run `module` (which must keep the IR contract) and return its trace."""
-    return Simulator(module, scenario, options, profile).run()
+    return Simulator(module, scenario, options, profile, checked).run()
 
 
 __all__ = ["ContractError", "Options", "Simulator", "simulate"]

@@ -2,19 +2,24 @@
 
 A translation (compile to the same or another dialect, fmt, lint --fix, an optimizer pass) must
 not change what the machine does. `compare(source, output, scenarios)` simulates both modules on
-each scenario and compares their traces in the IR's units (docs/SIMULATOR.md, "Verification"):
+each scenario, to the same horizon, and compares their traces in the IR's units
+(docs/SIMULATOR.md, "Verification"):
 
 - the **observable events** in order: moves (their end positions), arcs, slews, stops, homing,
   position changes, outputs, prints, limit hits and runtime errors; not calls, returns or jumps,
   which a translation may restructure;
 - **positions** after scaling the source's steps by `output steps_per_rev / source steps_per_rev`,
   within `POSITION_TOLERANCE` output steps (a converted position rounds to a whole step);
-- **times** within `TIME_ABS + TIME_REL * t`: converted speeds and ramps are rounded to the
-  target's resolution, so a move may end a little earlier or later;
-- why the run **stopped**, and the final positions and outputs. A run cut by the time or the step
-  limit is compared up to the earlier of the two cut-off times only.
+- **times** within a `Tolerance` derived from the arithmetic of the two dialects: what the writer
+  must round (a speed to the target's resolution, a delay or a ramp time to its tick), never a flat
+  percentage, so a speed 2 % off is a difference;
+- **why and when each run stopped**: a run that ends, waits or hits a limit differently from the
+  other, or at another time, is a difference (an output that spins at t = 0 matches nothing); then
+  the final positions and outputs.
 
-The first difference is returned as a `Divergence` naming its time, source line and what differs.
+The default scenarios come from the program: every input it reads low, high, and toggling around
+the points where the program waits. The first difference is returned as a `Divergence` naming its
+time, source line and what differs.
 """
 
 from __future__ import annotations
@@ -23,13 +28,11 @@ import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
 
-from mcc.compiler import ir, units
-from mcc.sim.interpreter import Options, simulate
+from mcc.compiler import ir, ir_verify, units
+from mcc.sim.interpreter import ContractError, Options, simulate
 from mcc.sim.scenario import AxisSwitches, InputEvent, Scenario
 from mcc.sim.trace import Event, Trace
 
-TIME_ABS = 0.01  # seconds
-TIME_REL = 0.01  # share of the event's time
 POSITION_TOLERANCE = 1.0  # output steps
 OBSERVABLE = ("move", "arc", "slew", "stop", "home", "home_end", "set_position", "output", "print", "limit",
               "error", "move_end", "pause", "resume", "step")
@@ -38,9 +41,127 @@ OBSERVABLE = ("move", "arc", "slew", "stop", "home", "home_end", "set_position",
 # handlers installed and removed, the drive switched on and off.
 STRICT = OBSERVABLE + ("native", "handler_on", "handler_off", "drive")
 LIMITS = ("time-limit", "step-limit")
+MOTIONS = ("move", "arc", "slew", "home")  # events that start a motion profile (a ramp each)
 VERIFY_UNTIL = 30.0
 VERIFY_STEPS = 200_000
 MAX_DRIVEN_INPUTS = 16
+MAX_TOGGLES = 10  # input changes of a toggling scenario
+TOGGLE_AFTER = 0.1  # s after a point where the program waits that a toggling input changes
+STEP_BUDGETS = 3  # a run stopped by the step limit before the other's stop is run again, x8 each time
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """How finely a dialect writes what decides a run's timing, in its own units.
+
+    The writer rounds a converted speed or acceleration to `rate` (steps/s, or rev/s with
+    `per_rev`), a delay or ramp time to `tick` seconds; `ramp_times` means accelerations are written
+    as a ramp time (Arcus ACC), so each ramp of a move may be off by one tick. A product profile may
+    override them (`[sim] rate_resolution`, `time_resolution`)."""
+
+    rate: float
+    per_rev: bool
+    tick: float
+    ramp_times: bool = False
+
+
+RESOLUTIONS = {
+    # VM/VI/A/D in whole steps/s (steps/s^2) when converted (backends/mcode.py), H in ms (lexium-mcode.txt)
+    "mcode": Resolution(1.0, False, 0.001),
+    # V and A in rev/s to four decimals (parker-x150.md L4542, L199), T in s from 0.001 (L4104)
+    "x150": Resolution(0.0001, True, 0.001),
+    # HSPD/LSPD in pulses/s, ACC a ramp time in ms, DELAY in ms (arcus-pmx-4ex-sa.txt L1198, L1735)
+    "arcus": Resolution(1.0, False, 0.001, ramp_times=True),
+}
+POLL = 0.001  # s: the simulator's scan of a polling loop while an axis moves (interpreter.Options.poll)
+
+
+@dataclass(frozen=True)
+class Tolerance:
+    """How far apart in time two runs may do the same thing: `absolute` (one tick of either side
+    and one scan of a polling loop), plus `per_motion` for each motion started so far (a ramp time
+    rounded to a tick), plus `relative` times the event's time (the largest rounding, as a share, of
+    a speed, an acceleration or a delay the writer converted)."""
+
+    absolute: float = POLL + 0.001
+    per_motion: float = 0.0
+    relative: float = 0.0
+
+    def at(self, t: float, motions: int = 0) -> float:
+        return self.absolute + self.per_motion * motions + self.relative * abs(t) + 1e-9
+
+
+EXACT = Tolerance()
+
+
+def resolution(dialect: str, profile=None) -> Resolution:
+    """The dialect's `Resolution`, with the profile's `[sim]` overrides."""
+    found = RESOLUTIONS.get(dialect, Resolution(1.0, False, 0.001))
+    if profile is None or not hasattr(profile, "get"):
+        return found
+    rate = profile.get("sim.rate_resolution", found.rate)
+    tick = profile.get("sim.time_resolution", found.tick)
+    return dataclasses.replace(found, rate=float(rate), tick=float(tick))
+
+
+def tolerance(source: ir.Module, output: ir.Module, source_profile=None, output_profile=None) -> Tolerance:
+    """The time tolerance of comparing `source` with `output`, from what the writer had to round.
+
+    The same dialect at the same steps per revolution writes every number as it is: one tick and
+    one polling scan. Across dialects or step sizes, each constant speed, acceleration, delay and
+    ramp time of the source is converted to the output's units and rounded to its resolution; the
+    largest rounding, as a share of the value, is how far late or early a run may drift; a target
+    that writes ramp times (Arcus ACC) may make each ramp one tick longer or shorter."""
+    src, out = resolution(source.dialect, source_profile), resolution(output.dialect, output_profile)
+    tick = max(src.tick, out.tick)
+    factor = units.ratio(source.steps_per_rev, output.steps_per_rev)
+    if source.dialect == output.dialect and factor == 1:
+        return Tolerance(POLL + tick)
+    spr = output.steps_per_rev or source.steps_per_rev or 1000
+    rate_step = out.rate * (spr if out.per_rev else 1)
+    relative = 0.0
+    for value, kind in _timing_constants(source):
+        if kind == "rate":
+            relative = max(relative, _rounding(value * float(factor), rate_step))
+        elif kind == "accel" and not out.ramp_times:
+            relative = max(relative, _rounding(value * float(factor), rate_step))
+        elif kind == "time":
+            relative = max(relative, _rounding(value, out.tick))
+    per_motion = tick if (src.ramp_times or out.ramp_times) else 0.0
+    return Tolerance(POLL + tick, per_motion, relative)
+
+
+RATES = (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED)
+ACCELS = (ir.MotionParam.ACCEL, ir.MotionParam.DECEL)
+RAMP_TIMES = (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME)
+
+
+def _timing_constants(module: ir.Module):
+    """(value, kind) of every constant that decides timing: a speed ("rate", steps/s), an
+    acceleration ("accel", steps/s²), a delay or ramp time ("time", s)."""
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.SetMotion) and isinstance(op.value, ir.Const):
+                if op.param in RATES:
+                    yield float(op.value.value), "rate"
+                elif op.param in ACCELS:
+                    yield float(op.value.value), "accel"
+                elif op.param in RAMP_TIMES:
+                    yield float(op.value.value), "time"
+            elif isinstance(op, ir.Delay) and isinstance(op.duration, ir.Const):
+                yield float(op.duration.value), "time"
+            elif isinstance(op, ir.Slew) and isinstance(op.velocity, ir.Const):
+                yield float(op.velocity.value), "rate"
+            elif isinstance(op, ir.Home) and isinstance(getattr(op, "speed", None), ir.Const):
+                yield float(op.speed.value), "rate"
+
+
+def _rounding(value: float, step: float) -> float:
+    """The share by which `value` changes when written on a grid of `step`."""
+    if not value or step <= 0:
+        return 0.0
+    rounded = units.round_to(abs(value), step) or step  # a writer never writes a non-zero rate as 0
+    return abs(rounded - abs(value)) / min(rounded, abs(value))
 
 
 @dataclass(frozen=True)
@@ -95,59 +216,170 @@ def with_idle_levels(scenario: Scenario, source: ir.Module, profile, also: list[
     return dataclasses.replace(scenario, inputs={**idle, **scenario.inputs})
 
 
-def default_scenarios(module: ir.Module) -> list[Scenario]:
-    """Every input the program reads driven both ways: all low, all high, and each one rising
-    then falling on its own."""
+def default_options(scenario: Scenario | None = None) -> Options:
+    return Options(until=(scenario.until if scenario is not None else None) or VERIFY_UNTIL,
+                   max_steps=VERIFY_STEPS, samples=False)
+
+
+def default_scenarios(module: ir.Module, profile=None, low: Trace | None = None,
+                      options: Options | None = None) -> list[Scenario]:
+    """Scenarios generated from the program: all inputs it reads low, all high, and for each input
+    one scenario with it high on its own and one with it toggling around the program's waits.
+
+    The toggling times come from the run with every input low (`low`, simulated here when not
+    given; run with `options`, else the defaults): the input changes `TOGGLE_AFTER` after each point where that run let time pass (a wait
+    started or ended, a move ended, the run stopped waiting), then every second, `MAX_TOGGLES`
+    changes at least, so a wait for the input's rise and one for its fall are both released."""
     read = inputs_read(module)
     # levels stated, not left to each product's idle state: an input no scenario drives is inactive
     # for the polarity in force, which is another level on another product (docs/SIMULATOR.md)
-    out = [Scenario(inputs={n: 0 for n in read}, name="inputs low")]
+    lows = Scenario(inputs={n: 0 for n in read}, name="inputs low")
+    out = [lows]
     if not read:
         return out
+    if low is None:
+        low = simulate(module, lows, _copy(options) if options is not None else default_options(), profile)
+    times = toggle_times(low)
     out.append(Scenario(inputs={n: 1 for n in read}, name="inputs high"))
     for n in read:
-        out.append(Scenario(inputs={m: 0 for m in read}, events=[InputEvent(n, 1, at=0.5), InputEvent(n, 0, at=2.5)],
-                            name=f"input {n} pulses high at 0.5 s"))
+        if len(read) > 1:  # with one input, "inputs high" is this one
+            out.append(Scenario(inputs={m: int(m == n) for m in read}, name=f"input {n} high"))
+        events = [InputEvent(n, 1 - k % 2, at=t) for k, t in enumerate(times)]
+        out.append(Scenario(inputs={m: 0 for m in read}, events=events,
+                            name=f"input {n} toggles at {', '.join(f'{t:g}' for t in times)} s"))
     return out
+
+
+def toggle_times(low: Trace) -> list[float]:
+    """When a toggling input changes: just after each point where the all-low run waited."""
+    points = sorted({round(e.t, 6) for e in low.events if e.t < low.time} | {0.0, round(low.time, 6)})
+    half = MAX_TOGGLES // 2
+    if len(points) > MAX_TOGGLES:  # the first waits, and the last ones (where the run stopped waiting)
+        points = points[:half] + points[-half:]
+    times = [round(p + TOGGLE_AFTER, 6) for p in points]
+    while len(times) < MAX_TOGGLES and times[-1] + 1.0 < VERIFY_UNTIL:
+        times.append(round(times[-1] + 1.0, 6))
+    return [t for t in times if t < VERIFY_UNTIL]
 
 
 def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | None = None,
             options: Options | None = None, source_profile=None, output_profile=None,
-            kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False) -> Divergence | None:
+            kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False,
+            within: Tolerance | None = None) -> Divergence | None:
     """The first divergence between `source` and `output` on the scenarios, or None.
 
-    Both modules must keep the IR contract (`interpreter.ContractError` otherwise)."""
+    Both runs of a scenario go to the same horizon (its `until`, else `VERIFY_UNTIL`, and the same
+    step limit); a run stopped by the step limit before the other stopped is run again with a
+    larger step budget, so a loop that takes more operations per round is not a difference while
+    one that never lets time pass is. Both modules must keep the IR contract
+    (`interpreter.ContractError` otherwise)."""
     source, output = _stated_steps(source, output), _stated_steps(output, source)
-    for scenario in scenarios or default_scenarios(source):
-        scenario = with_idle_levels(scenario, source, source_profile, inputs_read(output))
-        opts = options or Options(until=scenario.until or VERIFY_UNTIL, max_steps=VERIFY_STEPS)
-        opts.samples = False
-        ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
-        a = simulate(source, scenario, _copy(opts), source_profile)
-        b = simulate(output, scenario, _copy(opts), output_profile)
+    for module in (source, output):  # once here, not at each of the runs below
+        problems = ir_verify.verify(module)
+        if problems:
+            raise ContractError(problems[0])
+    tol = within or tolerance(source, output, source_profile, output_profile)
+    ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
+    known: dict[int, Trace] = {}
+    idle = inputs_read(output)  # the inputs the output reads too get the source's idle level
+    if scenarios is None:
+        lows = with_idle_levels(Scenario(inputs={n: 0 for n in inputs_read(source)}, name="inputs low"), source,
+                                source_profile, idle)
+        known[id(lows)] = simulate(source, lows, _copy(options or default_options(lows)), source_profile, checked=True)
+        scenarios = [lows] + default_scenarios(source, source_profile, known[id(lows)])[1:]
+    for scenario in scenarios:
+        if id(scenario) not in known:
+            scenario = with_idle_levels(scenario, source, source_profile, idle)
+        opts = options or default_options(scenario)
+        a = known.get(id(scenario)) or simulate(source, scenario, _copy(opts), source_profile, checked=True)
+        b = simulate(output, scenario, _copy(opts), output_profile, checked=True)
         moved = _translated(scenario, _axis_map(a, b), ratio)
         if moved is not scenario:  # the switches and positions of the output's axes, in its steps
-            b = simulate(output, moved, _copy(opts), output_profile)
-        found = compare_traces(a, b, ratio, scenario.name, kinds, by_count)
+            b = simulate(output, moved, _copy(opts), output_profile, checked=True)
+        runs = [_Run(source, scenario, source_profile, a, opts.max_steps),
+                _Run(output, moved, output_profile, b, opts.max_steps)]
+        horizon = _same_horizon(runs, opts, tol, kinds)
+        a, b = runs[0].trace, runs[1].trace
+        found = compare_traces(a, b, ratio, scenario.name, kinds, by_count, tol, horizon)
         if found is not None and not _another_interleaving(source, scenario, opts, source_profile, b, ratio,
-                                                            kinds, by_count):
+                                                            kinds, by_count, tol, horizon):
             return found
     return None
+
+
+@dataclass
+class _Run:
+    module: ir.Module
+    scenario: Scenario
+    profile: object
+    trace: Trace
+    budget: int
+    tries: int = 0
+    stuck: bool = False  # more steps did not let its time advance: a loop that never waits
+
+
+def _same_horizon(runs: list[_Run], opts: Options, tol: Tolerance, kinds: tuple[str, ...]) -> float | None:
+    """Bring two runs to the same horizon: while the one that stopped earlier was stopped by the
+    step limit, run it again with 4 times the budget (`STEP_BUDGETS` times at most), since a rewrite
+    may take more operations per round of a loop. Answers the time up to which both runs are
+    complete when both still end at the step limit, each having let time pass (their loops wait,
+    just not as far), else None: how they stopped is then compared."""
+    for _ in range(2 * STEP_BUDGETS):
+        behind, ahead = sorted(runs, key=lambda r: r.trace.time)
+        if behind.trace.stopped != "step-limit" or behind.tries >= STEP_BUDGETS or behind.stuck or \
+                behind.trace.time >= ahead.trace.time - tol.at(ahead.trace.time, _motions(ahead.trace)):
+            break
+        _rerun(behind, opts)
+    for run, other in (runs, runs[::-1]):
+        if run.trace.stopped == "step-limit" and other.trace.stopped == "waiting" and \
+                abs(run.trace.time - other.trace.time) <= tol.at(other.trace.time, _motions(other.trace)):
+            if not run.tries:
+                _rerun(run, opts)
+            if run.stuck:  # spinning where the other waits for nothing: neither can do anything more
+                run.trace = dataclasses.replace(run.trace, stopped="waiting", reason=run.trace.reason +
+                                                "; with more steps its time does not advance: it can do nothing more")
+    if all(r.trace.stopped == "step-limit" for r in runs):
+        if not any(r.stuck for r in runs):
+            return min(r.trace.time for r in runs)
+        # a run whose time no longer advances can do nothing more: the two are alike when the other
+        # does nothing observable after that time either (both are then compared on everything)
+        if all(not _acts_after(other.trace, run.trace.time + tol.at(run.trace.time), kinds)
+               for run, other in (runs, runs[::-1]) if run.stuck):
+            return ALL
+    return None
+
+
+ALL = float("inf")  # a horizon: both runs are complete, compare every event they made
+
+
+def _acts_after(trace: Trace, t: float, kinds: tuple[str, ...]) -> bool:
+    return any(e.t > t for e in _observable(trace, None, kinds))
+
+
+def _rerun(run: _Run, opts: Options) -> None:
+    """Run again with 4 times the step budget; `stuck` when its time does not advance."""
+    before = run.trace.time
+    run.budget *= 4
+    run.tries += 1
+    run.trace = simulate(run.module, run.scenario, dataclasses.replace(_copy(opts), max_steps=run.budget),
+                         run.profile, checked=True)
+    run.stuck = run.trace.stopped == "step-limit" and run.trace.time <= before
 
 
 RACE_POINTS = 24  # the points of a polling round tried (rounds of random programs are shorter)
 
 
 def _another_interleaving(source: ir.Module, scenario: Scenario, opts: Options, profile, output: Trace,
-                          ratio: Fraction, kinds: tuple[str, ...], by_count: bool) -> bool:
+                          ratio: Fraction, kinds: tuple[str, ...], by_count: bool, tol: Tolerance,
+                          horizon: float | None) -> bool:
     """Whether the source does what the output did when its polling loops let time pass at another
     point of their rounds. A loop that reads an input twice per round and leaves only when it
     changes between the reads is a race on a real controller; a rewrite that rotates the loop may
     take the other way, which the source could take too. Asked only after a divergence, so a
     scenario costs no more otherwise."""
     for offset in range(1, RACE_POINTS + 1):
-        other = simulate(source, scenario, dataclasses.replace(_copy(opts), poll_offset=offset), profile)
-        if compare_traces(other, output, ratio, scenario.name, kinds, by_count) is None:
+        other = simulate(source, scenario, dataclasses.replace(_copy(opts), poll_offset=offset), profile, checked=True)
+        if compare_traces(other, output, ratio, scenario.name, kinds, by_count, tol, horizon) is None:
             return True
     return False
 
@@ -185,26 +417,39 @@ def _copy(options: Options) -> Options:
     return Options(options.until, options.max_steps, options.nesting, options.spin, options.poll, False)
 
 
+
+
 def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: str = "",
-                   kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False) -> Divergence | None:
+                   kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False,
+                   within: Tolerance = EXACT, horizon: float | None = None) -> Divergence | None:
     """Compare two traces; positions of `a` are multiplied by `ratio` to be in `b`'s steps.
 
-    `kinds` are the events compared (OBSERVABLE, or STRICT). A run cut by a limit is compared up to
-    the earlier cut-off time, or with `by_count` on the events both made (a loop that never waits
-    stops at the step limit at time 0, and a transformation may change the steps per round)."""
+    `kinds` are the events compared (OBSERVABLE, or STRICT). The runs must stop for the same reason
+    at the same time (within the tolerance); two runs cut by a limit then are compared up to the
+    cut, or with `by_count`, when both were cut by the step limit, on the events both made (a loop
+    that never waits stops at the step limit at time 0, and a transformation may change the steps
+    per round). The first event that differs is reported before a difference in how they stopped,
+    since it names a source line. `horizon`: both runs were stopped by the step limit after letting
+    time pass, and are complete up to that time (`_same_horizon`; `ALL`: complete)."""
+    stop = None if horizon is not None else _stop_difference(a, b, scenario, within)
+    limited = a.stopped in LIMITS and b.stopped in LIMITS
     cut = None
-    limited = a.stopped in LIMITS or b.stopped in LIMITS
-    if limited and not by_count:
-        cut = min(a.time, b.time) - TIME_ABS
-    elif not limited and a.stopped != b.stopped:
-        return Divergence(scenario, min(a.time, b.time), _last_line(a),
-                          f"the source stopped with '{a.stopped}' ({a.reason}), the output with '{b.stopped}' "
-                          f"({b.reason})")
-    axis_map = _axis_map(a, b)
-    ea, eb = _observable(a, cut, kinds), _observable(b, cut, kinds)
-    if limited and by_count:
+    if stop is None and limited and horizon != ALL:  # both reached the horizon: what happens within the
+        end = min(a.time, b.time) if horizon is None else horizon  # tolerance of it may or may not
+        cut = end - within.at(end, _motions(a))
+    ea, eb = _observable(a, None, kinds), _observable(b, None, kinds)
+    counted = by_count and a.stopped == b.stopped == "step-limit" and stop is None
+    if counted:
+        if (not ea) != (not eb):
+            return stop or Divergence(scenario, a.time, _last_line(a),
+                                      f"one run does nothing observable before the step limit: the source "
+                                      f"{len(ea)} events, the output {len(eb)}")
         ea, eb = ea[:min(len(ea), len(eb))], eb[:min(len(ea), len(eb))]
+    elif cut is not None:
+        ea, eb = [e for e in ea if e.t <= cut], [e for e in eb if e.t <= cut]
+    axis_map = _axis_map(a, b)
     scale = float(ratio)
+    motions = 0
     for n in range(max(len(ea), len(eb))):
         if n >= len(ea):
             extra = eb[n]
@@ -213,9 +458,12 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
             missing = ea[n]
             return Divergence(scenario, missing.t, missing.line, f"the output does not {_show(missing)}")
         x, y = ea[n], eb[n]
-        problem = _differ(x, y, axis_map, scale)
+        problem = _differ(x, y, axis_map, scale, within.at(max(x.t, y.t), motions), within.relative)
         if problem:
             return Divergence(scenario, x.t, x.line, problem)
+        motions += x.kind in MOTIONS
+    if stop is not None:
+        return stop
     if not limited:
         for axis, pos in a.axes.items():
             other = b.axes.get(axis_map.get(axis, axis))
@@ -228,6 +476,22 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
             return Divergence(scenario, a.time, None, f"outputs on at the end: {sorted(on_a)} in the source, "
                                                       f"{sorted(on_b)} in the output")
     return None
+
+
+def _stop_difference(a: Trace, b: Trace, scenario: str, within: Tolerance) -> Divergence | None:
+    """A difference in how the runs stopped: another reason (ended, waiting, an error, a limit) or
+    another time. A time limit and a step limit reached at the same time are the same horizon."""
+    same_reason = a.stopped == b.stopped or (a.stopped in LIMITS and b.stopped in LIMITS)
+    late = max(a.time, b.time)
+    if same_reason and abs(a.time - b.time) <= within.at(late, _motions(a)):
+        return None
+    return Divergence(scenario, min(a.time, b.time), _last_line(a),
+                      f"the source stopped with '{a.stopped}' at {a.time:.3f} s ({a.reason}), the output with "
+                      f"'{b.stopped}' at {b.time:.3f} s ({b.reason})")
+
+
+def _motions(trace: Trace) -> int:
+    return sum(1 for e in trace.events if e.kind in MOTIONS)
 
 
 def _observable(trace: Trace, cut: float | None, kinds: tuple[str, ...] = OBSERVABLE) -> list[Event]:
@@ -248,8 +512,10 @@ def _axis_map(a: Trace, b: Trace) -> dict[str, str]:
     def order(trace: Trace) -> list[str]:
         seen: list[str] = []
         for event in trace.events:
-            names = list(event.data.get("to", {})) + ([event.data["axis"]] if "axis" in event.data else [])
-            names += list(event.data.get("axes", []))
+            if len(seen) >= len(trace.axes) and trace.axes:
+                break  # every axis named: the order is known
+            data = event.data
+            names = list(data.get("to", ())) + ([data["axis"]] if "axis" in data else []) + list(data.get("axes", ()))
             seen += [n for n in names if n not in seen]
         return seen + [n for n in trace.axes if n not in seen]
 
@@ -259,14 +525,12 @@ def _axis_map(a: Trace, b: Trace) -> dict[str, str]:
     return dict(zip(first, second))
 
 
-def _close_time(x: float, y: float) -> bool:
-    return abs(x - y) <= TIME_ABS + TIME_REL * max(abs(x), abs(y))
-
-
-def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float) -> str:
+def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float, slack: float, share: float = 0.0) -> str:
+    """What differs between two events at the same place of both runs; `slack` is the time
+    tolerance there, `share` the rounding of a converted rate."""
     if x.kind != y.kind:
         return f"the source does {_show(x)}, the output {_show(y)} at {y.t:.3f} s"
-    if not _close_time(x.t, y.t):
+    if abs(x.t - y.t) > slack:
         return f"{_show(x)} happens at {x.t:.3f} s in the source, at {y.t:.3f} s in the output"
     dx, dy = x.data, y.data
     if x.kind == "move":
@@ -289,7 +553,7 @@ def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float) -> str:
                        f"{dy.get(key, float('nan')):g} in the output"
         return ""
     if x.kind == "slew":
-        if abs(dx["velocity"] * scale - dy["velocity"]) > max(1.0, abs(dy["velocity"]) * TIME_REL):
+        if abs(dx["velocity"] * scale - dy["velocity"]) > max(1.0, share * abs(dy["velocity"])) + 1e-6:
             return f"axis {dx['axis']} slews at {dx['velocity'] * scale:g} steps/s in the source, at " \
                    f"{dy['velocity']:g} in the output"
         return ""
@@ -347,9 +611,11 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
             return "the source has errors, so it cannot be simulated"
         source = checked.analysis.module
     out_profile = profile if profile is not None and profile.dialect == target else None
-    written = driver.check_file(path, target, out_profile, after_text)
+    written = driver.check_file(path, target, out_profile, after_text, memory=False)
     if written.analysis is None or written.analysis.module is None or written.has_errors:
         return "the written program has errors, so it cannot be simulated"
+    if same_program(source, written.analysis.module):
+        return ""  # the same operations in the same order: nothing a run could tell apart
     src_profile = profile if profile is not None and profile.dialect == source.dialect else None
     try:
         src_profile = src_profile or driver.profile_for(dialects.get(source.dialect), None)
@@ -358,6 +624,15 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
     except ContractError as exc:
         return f"cannot verify: {exc} (the frontend does not keep the IR contract yet)"
     return str(found) if found is not None else ""
+
+
+def same_program(a: ir.Module, b: ir.Module) -> bool:
+    """Whether two modules are the same program, source lines aside, in the code that can run: a
+    rewrite that only re-spells the text (spacing, case, comments) or drops blocks no path reaches
+    lowers to the same IR there, and needs no simulation."""
+    from mcc.compiler.opt.manager import fingerprint
+
+    return fingerprint(a) == fingerprint(b)
 
 
 def explain(problem: str) -> str:

@@ -24,7 +24,7 @@ OPTIONS = Options(until=60, max_steps=20_000, samples=False)
 
 def same_behaviour(before: ir.Module, after: ir.Module, scenarios=None, options: Options | None = None) -> None:
     """Assert that `after` (optimized, compiled, read back) behaves as `before` does."""
-    chosen = scenarios if scenarios is not None else default_scenarios(before)[:MAX_SCENARIOS]
+    chosen = scenarios if scenarios is not None else default_scenarios(before, options=options or OPTIONS)[:MAX_SCENARIOS]
     found = compare(before, after, chosen, options or OPTIONS, kinds=STRICT, by_count=True)
     if found is not None:
         from mcc.compiler.ir_print import to_text

@@ -35,6 +35,9 @@ class Options:
     unsafe_fixes: bool = False
     dialect: str | None = None
     verify: bool = False  # simulate before and after the fixes; write nothing if they differ
+    # `mcc lint --fix` validates by default: then an original with errors of its own (nothing the
+    # device would run, so no behaviour to keep) is fixed unvalidated; an explicit --verify refuses
+    verify_required: bool = True
 
 
 @dataclass
@@ -162,7 +165,7 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
     if text != original.text:
         if options.diff:
             outcome.diff = fixes.unified_diff(path, original.text, text)
-        elif options.fix and options.verify and _diverges(outcome, original.text):
+        elif options.fix and options.verify and _diverges(outcome, original.text, options):
             pass  # S010 is reported; the file is left as it was
         elif options.fix:
             try:
@@ -194,11 +197,13 @@ def fix_text(path: str, text: str, diags: list[Diagnostic], settings: Settings, 
     return fixes.fix_until_stable(text, diags, relint, make, options.unsafe_fixes)
 
 
-def _diverges(outcome: Outcome, before: str) -> bool:
+def _diverges(outcome: Outcome, before: str, options: Options) -> bool:
     """--verify: add S010 and answer True when the fixed text does not behave like the original."""
     from mcc.sim.verify import check_translation, explain
 
     problem = check_translation(outcome.path, outcome.dialect, before, outcome.text or "")
+    if problem.startswith("the source has errors") and not options.verify_required:
+        return False
     if problem:
         diags = Diagnostics(outcome.diagnostics)
         diags.add("S010", driver.file_span(outcome.path), f"--verify: {explain(problem)}; nothing was written")

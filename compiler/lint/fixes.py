@@ -81,7 +81,7 @@ class Version:
         if self._result is None:
             from mcc.compiler import driver
 
-            self._result = driver.compile_file(self.path, self.dialect, None, self.profile, self.text)
+            self._result = driver.compile_file(self.path, self.dialect, None, self.profile, self.text, verify=False)
         return self._result
 
     @property

@@ -48,6 +48,10 @@ class OptStats:
     lines_before: int | None = None  # target lines at -O0 (set by the driver)
     lines_after: int | None = None
     fallback: bool = False  # the optimized program could not be written: the -O0 one was kept
+    # Whether the passes left a program other than the one they were given (`fingerprint` before and
+    # after: the code that can run, source lines aside): a compile whose passes changed nothing
+    # writes the program as written, and needs no validation (driver.needs_validation).
+    changed: bool = False
 
     @property
     def lines_saved(self) -> int | None:
@@ -112,6 +116,7 @@ def optimize(module: ir.Module, level: str = "O1", profile: Profile | None = Non
     """Run the passes of `level` (or `passes`) over `module` in place; returns the statistics."""
     names = pass_names(level, passes)
     stats = OptStats(level, ops_before=count_ops(module))
+    before_all = fingerprint(module) if names else ""
     context = Context(module, level if level in LEVELS else "O1", profile)
     for name in names:
         unit = importlib.import_module(f"mcc.compiler.opt.{name}")
@@ -124,7 +129,29 @@ def optimize(module: ir.Module, level: str = "O1", profile: Profile | None = Non
         if verify:
             check(module, name)
     stats.ops_after = count_ops(module)
+    # a pass's own count may say it changed something that makes no difference (an unreachable
+    # block dropped): the fingerprint decides
+    stats.changed = bool(names) and fingerprint(module) != before_all
     return stats
+
+
+def fingerprint(module: ir.Module) -> str:
+    """The program `module` is, source lines aside: its variables, routines, and the blocks that can
+    run (`reachable`) with their operations and terminators, as text. Two modules with the same
+    fingerprint run alike: removing a block no path reaches changes nothing."""
+    from mcc.compiler.ir_print import expr_text, op_text, term_text
+
+    module = reachable(module)
+    lines = [f"{module.dialect} {module.steps_per_rev}"]
+    lines += [f"{name} {v.type.value} {v.scope} {expr_text(v.init) if v.init is not None else ''}"
+              for name, v in module.variables.items()]
+    for routine in module.routines:
+        lines.append(f"routine {routine.name} {routine.kind.value} {routine.number} {routine.origin}")
+        for block in routine.blocks:
+            lines.append(f"{block.label}:")
+            lines += [op_text(op) for op in block.ops]
+            lines.append(term_text(block.terminator))
+    return "\n".join(lines)
 
 
 def check(module: ir.Module, name: str) -> None:
@@ -133,3 +160,23 @@ def check(module: ir.Module, name: str) -> None:
     problems = ir_verify.verify(module, meaning=False)
     if problems:
         raise PassFailed(f"after pass {name}: " + "; ".join(str(p) for p in problems[:3]))
+
+
+def reachable(module: ir.Module) -> ir.Module:
+    """`module` without the unnamed blocks no path reaches: from the first block of every routine
+    and every named block (a label a host may start at), along jumps and branches."""
+    import dataclasses
+
+    blocks = {block.label: block for _, block in module.blocks()}
+    seen: set[str] = set()
+    todo = [r.blocks[0].label for r in module.routines if r.blocks] + [b.label for b in blocks.values() if b.named]
+    while todo:
+        label = todo.pop()
+        if label in seen or label not in blocks:
+            continue
+        seen.add(label)
+        todo.extend(ir.successors(blocks[label].terminator))
+    if len(seen) == len(blocks):
+        return module
+    routines = [dataclasses.replace(r, blocks=[b for b in r.blocks if b.label in seen]) for r in module.routines]
+    return dataclasses.replace(module, routines=routines)

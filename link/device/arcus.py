@@ -89,7 +89,7 @@ class ArcusDevice(VirtualDevice):
         for the undocumented compiled lines)."""
         from mcc.compiler import driver
 
-        result = driver.compile_file(name, "arcus", text=text)
+        result = driver.compile_file(name, "arcus", text=text, verify=False)
         if result.listing is None or result.has_errors:
             raise ValueError(f"{name} does not compile: " + "; ".join(d.message for d in result.diagnostics[:3]))
         self.lines = {i: line.text for i, line in enumerate(result.listing.lines)}

@@ -149,30 +149,75 @@ def test_a_divergent_translation_gets_s010_on_the_diverging_line_and_is_not_writ
 
 
 def test_default_scenarios_drive_every_input_read_both_ways():
+    """Every input read: all low, all high, each high alone, each toggling from 0.1 s after each
+    point where the all-low run waited (here it waits at once on input 3), then every second."""
     from mcc.compiler import ir
-    from mcc.sim.verify import default_scenarios
+    from mcc.sim.verify import MAX_TOGGLES, default_scenarios
 
     from sim_helpers import eq, inp, module
 
     m = module(("a", [ir.WaitInput(eq(inp(3), 1))], ir.Branch(eq(inp(5), 0), "b", "b")), ("b", [], ir.End()))
-    names = [s.name for s in default_scenarios(m)]
-    assert names == ["inputs low", "inputs high", "input 3 pulses high at 0.5 s", "input 5 pulses high at 0.5 s"]
+    scenarios = default_scenarios(m)
+    names = [s.name.split(" at ")[0] for s in scenarios]
+    assert names == ["inputs low", "inputs high", "input 3 high", "input 3 toggles", "input 5 high", "input 5 toggles"]
+    toggles = scenarios[3].events
+    assert [(e.input, e.value, e.at) for e in toggles[:3]] == [(3, 1, 0.1), (3, 0, 1.1), (3, 1, 2.1)]
+    assert len(toggles) == MAX_TOGGLES
+
+
+def _trace(t_end, pos, stopped="end", time=None):
+    from mcc.sim.trace import Event, Trace
+
+    tr = Trace("p", "arcus", 4000, axes={"X": pos}, stopped=stopped, time=t_end if time is None else time)
+    tr.events = [Event(0, "move", 1, {"mode": "absolute", "from": {"X": 0}, "to": {"X": pos}}),
+                 Event(t_end, "move_end", 1, {"axis": "X", "position": pos})]
+    return tr
 
 
 def test_time_and_position_tolerances():
-    from mcc.sim.trace import Event, Trace
+    """The time tolerance is what the writer rounds (docs/SIMULATOR.md, "Tolerance"): exact
+    arithmetic allows one tick and one polling scan, nothing proportional, so a move 0.5 % late is
+    a difference; one output step of position is allowed."""
+    from mcc.sim.verify import Tolerance, compare_traces
+
+    assert compare_traces(_trace(10.0, 4000), _trace(10.001, 4001)) is None  # one tick late, 1 step off
+    late = compare_traces(_trace(10.0, 4000), _trace(10.05, 4000))
+    assert late is not None and "10.050 s in the output" in late.message
+    assert compare_traces(_trace(10.0, 4000), _trace(10.05, 4000), within=Tolerance(relative=0.01)) is None
+    assert compare_traces(_trace(10.0, 4000), _trace(10.0, 4002)) is not None
+
+
+def test_a_speed_two_percent_off_is_a_difference():
+    """A converted speed may differ by the target's rounding only: 0.1 rev/s is 5120 steps/s on
+    MCode (exact), so an output at 2 % less arrives 2 % late and is caught (lexium-mcode.txt VM)."""
+    from mcc.compiler import ir
+    from mcc.sim.verify import compare, tolerance
+
+    from sim_helpers import module, move, speed
+
+    def prog(value):
+        return module([speed("1", value), move("1", 51200), ir.WaitMotion(("1",))], dialect="mcode",
+                      steps_per_rev=51200)
+
+    source, slow = prog(5120), prog(5120 * 0.98)
+    assert tolerance(source, slow).relative == 0
+    found = compare(source, slow)
+    assert found is not None and "happens at" in found.message
+
+
+def test_a_run_that_stops_otherwise_is_a_difference():
+    """An output that ends early, or spins where the source runs to the horizon, is a difference
+    even when every event it made matches (the comparison is not cut at the earlier stop)."""
     from mcc.sim.verify import compare_traces
 
-    def trace(t_end, pos):
-        tr = Trace("p", "arcus", 4000, axes={"X": pos})
-        tr.events = [Event(0, "move", 1, {"mode": "absolute", "from": {"X": 0}, "to": {"X": pos}}),
-                     Event(t_end, "move_end", 1, {"axis": "X", "position": pos})]
-        return tr
-
-    assert compare_traces(trace(10.0, 4000), trace(10.05, 4001)) is None  # 0.5 % late, 1 step off
-    late = compare_traces(trace(10.0, 4000), trace(10.5, 4000))
-    assert late is not None and "10.500 s in the output" in late.message
-    assert compare_traces(trace(10.0, 4000), trace(10.0, 4002)) is not None
+    ends_early = compare_traces(_trace(10.0, 4000, stopped="time-limit", time=30.0), _trace(10.0, 4000, time=10.0))
+    assert ends_early is not None and "'time-limit' at 30.000 s" in ends_early.message
+    spins = compare_traces(_trace(10.0, 4000, stopped="time-limit", time=30.0),
+                           _trace(0.0, 0, stopped="step-limit", time=0.0))
+    assert spins is not None
+    waits_later = compare_traces(_trace(1.0, 4000, stopped="waiting", time=2.0),
+                                 _trace(1.0, 4000, stopped="waiting", time=3.0))
+    assert waits_later is not None and "'waiting' at 3.000 s" in waits_later.message
 
 
 def test_the_readme_plot_command_places_two_parts(mcc, tmp_path):
@@ -186,3 +231,24 @@ def test_the_readme_plot_command_places_two_parts(mcc, tmp_path):
     assert [e["text"] for e in entry["events"] if e["kind"] == "print"] == ["Parts placed: 1\n",
                                                                             "Parts placed: 2\n"]
     assert entry["stopped"] == "waiting" and entry["axes"]["1"]["position"] == 0
+
+
+def test_an_output_that_spins_at_time_zero_matches_nothing():
+    """Issue 23: both runs go to the same horizon; an output stuck in a loop that never lets time
+    pass (more steps do not advance it) is a difference from a source that moves, while two
+    programs that both can do nothing more (one spinning, one waiting) are alike."""
+    from mcc.compiler import ir
+    from mcc.sim import Options
+    from mcc.sim.scenario import Scenario
+    from mcc.sim.verify import compare
+
+    from sim_helpers import c, module, move, speed
+
+    options = Options(until=30, max_steps=5_000, samples=False)
+    moves = module([speed("X", 4000), move("X", 4000), ir.WaitMotion(("X",))])
+    counter = ir.Var("V1")  # a loop that counts for ever: every round changes V1, no time passes
+    spins = module(("a", [ir.Assign(counter, ir.BinOp("+", counter, c(1)))], ir.Jump("a")))
+    found = compare(moves, spins, [Scenario()], options)
+    assert found is not None and found.message == "the output does not move X to 4000"
+    waits = module([ir.WaitInput(ir.Compare("=", ir.Status("input", index=1), c(1)))])
+    assert compare(waits, spins, [Scenario()], options) is None
