@@ -554,6 +554,18 @@ class Module:
     # Routines called but defined outside this file (an X150 sequence already stored on the
     # controller): calls to them are resolved, and backends write the call without a body.
     externals: list[str] = field(default_factory=list)
+    # Facts about the source's machine that its operations alone do not say (docs/IR.md, "Module
+    # facts"); the lowering declares them, the simulator and the backends follow them.
+    # Every move's mode is stated by the program itself: none relies on the absolute/incremental
+    # mode the controller powered up in or a host left it in (Arcus ABS before the first move,
+    # L1569). A backend whose target keeps a modal ABS/INC then states the mode before the first move.
+    modes_stated: bool = False
+    # The motion parameters that form an axis's own set of settings, used by that axis only once all
+    # of them have been written for it (Arcus HSPDa, LSPDa and ACCa, L447-L457); until then the
+    # axis runs with the settings for every axis (`*`), which are a separate set that a `*` write
+    # never copies into the axes. Empty (the default): an axis's own setting applies at once, and a
+    # `*` setting is written into every axis (an unaddressed X150 command, L177).
+    axis_sets: tuple[MotionParam, ...] = ()
 
     def routine(self, name: str) -> Routine | None:
         for routine in self.routines:

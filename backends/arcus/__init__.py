@@ -70,7 +70,7 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
             main = [n for n in code if not isinstance(n, EndNode)] + main
         else:
             main += code
-    move_modes.write_switches(main, subs, profile)
+    move_modes.write_switches(main, subs, profile, module.modes_stated)
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
     return ctx, stmts, dispatched
