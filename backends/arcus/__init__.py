@@ -50,7 +50,7 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
 def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     """Passes 1-4: the program's statements in layout order (not yet priced), the context and
     how many routines became dispatch loops."""
-    module = with_fixed_speeds(module, profile)
+    module = with_initial_values(with_fixed_speeds(module, profile))
     ctx = Context(module, profile)
     ctx.number_subroutines()
     main: list = []
@@ -82,6 +82,25 @@ def with_fixed_speeds(module: ir.Module, profile: Profile) -> ir.Module:
     (`legalize.ramp_ms`)."""
     return in_force.with_fixed_initial_speed(
         module, lowest_speed() / float(Scale(module.steps_per_rev, profile.steps_per_rev).factor))
+
+
+def with_initial_values(module: ir.Module) -> ir.Module:
+    """Arcus declares no variables: a source variable's initial value (MCode `VA Q1=25`) becomes an
+    assignment where the program starts, before anything else runs (the first routine the device
+    runs: commands sent before the program, else the main program). An initial 0 is the value an
+    Arcus variable starts with (docs/dialects/arcus.md, "Variables") and is not written. A copy; a
+    module without other initial values is returned as it is."""
+    declared = [v for v in module.variables.values()
+                if v.init is not None and not (isinstance(v.init, ir.Const) and v.init.value == 0)]
+    if not declared:
+        return module
+    copy = ir.copy_module(module)
+    first = next((r for kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.MAIN) for r in copy.routines
+                  if r.kind is kind and r.blocks), None)
+    if first is not None:
+        assigns = [ir.Assign(ir.Var(v.name, v.span), v.init, v.span) for v in declared]
+        first.blocks[0].ops[:0] = assigns
+    return copy
 
 
 def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:

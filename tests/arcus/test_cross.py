@@ -271,6 +271,18 @@ def test_compile_into_arcus_from_the_command_line(tmp_path) -> None:
         assert result.returncode == 0 and "X" in result.stdout
 
 
+def test_an_mcode_initial_value_is_written_and_the_conversion_verifies(tmp_path) -> None:
+    """`VA Q1=25` creates Q1 and sets it to 25 (lexium-mcode.txt L6031-L6036); Arcus declares no
+    variables (arcus-pmx-4ex-sa.txt L2671-L2675: V0-V63 are assigned), so the output
+    assigns it before the program runs, and `--verify` finds both programs move to 25."""
+    source = tmp_path / "va.mxt"
+    source.write_text("VA Q1=25\nPG 100\nMA Q1\nH\nE\nPG\n")
+    result = run_mcc("compile", str(source), "--target", "arcus", "--verify", "-o", str(tmp_path / "va.prg"))
+    assert result.returncode == 0, result.stdout + result.stderr
+    lines = [line for line in (tmp_path / "va.prg").read_text().splitlines() if not line.startswith(";")]
+    assert lines[0] == "V0=25" and lines[1] == "XV0"
+
+
 # --- properties ------------------------------------------------------------------------------------
 
 from fractions import Fraction  # noqa: E402
