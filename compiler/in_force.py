@@ -7,8 +7,21 @@ optimizer drops a setting already in force on every path, and lint finds a move 
 is set. All of them read this one forward data-flow analysis.
 
 The state at a point maps `(param, axis)` to the constant in force; a key that is absent is not
-known statically (never set, set from a variable, or different on two paths). A setting for every
-axis (`axis == "*"`) is stored under `"*"` and read for any axis without a setting of its own.
+known statically (never set, set from a variable, or different on two paths). How an axis's own
+setting and the setting for every axis (`axis == "*"`) combine is the module's fact
+(`Module.axis_sets`, docs/IR.md):
+
+- by default a `*` setting is written into every axis. `(param, "*")` holds the value of every
+  axis that has no key of its own, so an axis whose own value becomes unknown (set from a
+  variable, different on two paths, set by a call) takes the `*` key with it: it would otherwise
+  be read as the `*` value;
+- for the parameters of `Module.axis_sets` (Arcus HSPDa/LSPDa/ACCa, L447-L457) the `*` setting
+  and each axis's own are separate registers, and an axis runs with its own only once all of the
+  set have been written for it. The state then also says, per axis and parameter, whether the
+  register was written on every path (`(WRITTEN, param, axis)`) or on none (`(UNWRITTEN, param,
+  axis)`); `lookup` gives the axis's own value when its set is complete on every path, the `*`
+  value when it is incomplete on every path, and nothing otherwise. Every state carries the
+  module's rule as `(SETS, param)` keys, so `lookup` needs nothing else.
 
 Across routines the analysis is context-insensitive: a subroutine starts with what holds at every
 one of its calls, a call removes whatever the subroutine (or anything it calls) may set, and an
@@ -24,10 +37,12 @@ from typing import Iterator
 
 from mcc.compiler import ir
 
-Key = tuple[ir.MotionParam, str]
+Key = tuple  # (param, axis), or (SETS, param), (WRITTEN, param, axis), (UNWRITTEN, param, axis)
 State = dict[Key, ir.Const]
 
 ALL = ir.ALL_AXES
+SETS, WRITTEN, UNWRITTEN = "axis_sets", "written", "unwritten"
+ONE = ir.Const(1)
 
 
 # Settings a source dialect fixes for every axis, whatever the program does: X150 has no initial
@@ -55,41 +70,88 @@ def with_fixed_initial_speed(module: ir.Module, lowest: float) -> ir.Module:
 
 
 def lookup(state: State, param: ir.MotionParam, axis: str) -> ir.Const | None:
-    """The constant in force for `param` on `axis`, or None when it is not known statically."""
+    """The constant in force for `param` on `axis` (the value a move of that axis runs with), or
+    None when it is not known statically."""
+    if axis != ALL and (SETS, param) in state:
+        members = [k[1] for k in state if len(k) == 2 and k[0] == SETS]
+        if all((WRITTEN, m, axis) in state for m in members):
+            return state.get((param, axis))
+        if any((UNWRITTEN, m, axis) in state for m in members):
+            return state.get((param, ALL))
+        return None  # complete on some paths only
     found = state.get((param, axis))
     if found is None and axis != ALL:
         found = state.get((param, ALL))
     return found
 
 
-def meet(a: State | None, b: State) -> State:
+def redundant(state: State, op: ir.Op) -> bool:
+    """Whether `op` sets a value already in force everywhere it writes (so removing it changes
+    nothing on the device): the register itself for a parameter of an axis set (writing it again
+    leaves the set as complete as it was), every axis for a `*` setting otherwise."""
+    if not isinstance(op, ir.SetMotion) or not isinstance(op.value, ir.Const):
+        return False
+    value = op.value
+    if (SETS, op.param) in state:
+        current = state.get((op.param, op.axis))
+        return current is not None and _same(current, value)
+    if op.axis != ALL:
+        current = lookup(state, op.param, op.axis)
+        return current is not None and _same(current, value)
+    current = state.get((op.param, ALL))
+    return current is not None and _same(current, value) and all(
+        _same(v, value) for k, v in state.items() if len(k) == 2 and k[0] is op.param)
+
+
+def meet(a: State | None, b: State, sets: frozenset = frozenset()) -> State:
     if a is None:
         return dict(b)
-    return {k: v for k, v in a.items() if k in b and _same(b[k], v)}
+    out = {k: v for k, v in a.items() if k in b and _same(b[k], v)}
+    # an axis's own value lost on one path would otherwise be read as the `*` value
+    lost = {k[0] for state in (a, b) for k in state
+            if len(k) == 2 and k[1] != ALL and k not in out and isinstance(k[0], ir.MotionParam) and k[0] not in sets}
+    for param in lost:
+        out.pop((param, ALL), None)
+    return out
 
 
 def _same(a: ir.Const, b: ir.Const) -> bool:
     return a.value == b.value and a.unit == b.unit
 
 
-def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]]) -> None:
-    """Update `state` in place for one operation."""
+def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets: frozenset = frozenset()) -> None:
+    """Update `state` in place for one operation; `sets` is the module's `axis_sets`."""
     if isinstance(op, ir.SetMotion):
-        if op.axis == ALL:
-            for key in [k for k in state if k[0] is op.param]:
+        param, axis = op.param, op.axis
+        if param in sets:  # separate registers: a `*` write leaves the axes' own as they are
+            if axis != ALL:
+                state[(WRITTEN, param, axis)] = ONE
+                state.pop((UNWRITTEN, param, axis), None)
+        elif axis == ALL:
+            for key in [k for k in state if k[0] is param]:
                 del state[key]
+        elif not isinstance(op.value, ir.Const):
+            state.pop((param, ALL), None)  # the axis is unknown: not the `*` value either
         if isinstance(op.value, ir.Const):
-            state[(op.param, op.axis)] = op.value
+            state[(param, axis)] = op.value
         else:
-            state.pop((op.param, op.axis), None)
+            state.pop((param, axis), None)
     elif isinstance(op, ir.Native):
         state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):
-        for key in clobbers.get(op.routine, frozenset()):
-            if key[1] == ALL:
-                for other in [k for k in state if k[0] is key[0]]:
+        for param, axis in clobbers.get(op.routine, frozenset()):
+            if axis == ALL and param not in sets:
+                for other in [k for k in state if k[0] is param]:
                     del state[other]
-            state.pop(key, None)
+            elif axis == ALL:  # a `*` write, or a command that may write anything (Native)
+                for other in [k for k in state if k[0] is param or (k[0] == UNWRITTEN and k[1] is param)]:
+                    del state[other]
+            elif param in sets:
+                state.pop((param, axis), None)
+                state.pop((UNWRITTEN, param, axis), None)  # it may have been written
+            else:
+                state.pop((param, axis), None)
+                state.pop((param, ALL), None)
 
 
 class InForce:
@@ -97,19 +159,32 @@ class InForce:
 
     def __init__(self, module: ir.Module, defaults: State | None = None):
         self.module = module
-        self.defaults = dict(defaults or {})
-        self.fixed = FIXED.get(module.dialect, {})
+        self.sets = frozenset(module.axis_sets)
+        self.fixed = {**FIXED.get(module.dialect, {}), **{(SETS, param): ONE for param in self.sets}}
         self.clobbers = _clobbers(module)
+        self.defaults = {**dict(defaults or {}), **self.fixed, **self._unwritten()}
         self.entry: dict[str, State] = {}
         self._solve()
 
     def at_entry(self, label: str) -> State:
         return {**self.entry.get(label, {}), **self.fixed}
 
+    def _unwritten(self) -> State:
+        """At power-up no axis has written its own set: the registers of the axes the program
+        writes, unless what runs before the program (commands sent first, a power-up routine) may."""
+        if not self.sets:
+            return {}
+        axes = _axes(self.module)
+        early = set().union(*(self.clobbers.get(r.name, frozenset()) for r in self.module.routines
+                              if r.kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)))
+        if any(axis == ALL and param in self.sets for param, axis in early):
+            return {}
+        return {(UNWRITTEN, param, axis): ONE for param in self.sets for axis in axes if (param, axis) not in early}
+
     def after(self, state: State, op: ir.Op) -> State:
         """The state in force after `op`, given `state` before it (a new dictionary)."""
         state = dict(state)
-        transfer(state, op, self.clobbers)
+        transfer(state, op, self.clobbers, self.sets)
         if self.fixed:
             state.update(self.fixed)
         return state
@@ -128,7 +203,7 @@ class InForce:
             if routine.kind in (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP):
                 starts[routine.name] = dict(self.defaults)
             elif routine.kind is ir.RoutineKind.HANDLER:
-                starts[routine.name] = {}
+                starts[routine.name] = dict(self.fixed)
             else:
                 starts[routine.name] = None  # met from its calls
         # Iterate: routine entries depend on call sites, call sites on routine entries.
@@ -164,13 +239,13 @@ class InForce:
             state = dict(entry[label] or {})
             for op in block.ops:
                 if isinstance(op, ir.Call):
-                    calls[op.routine] = meet(calls.get(op.routine), state)
-                transfer(state, op, self.clobbers)
+                    calls[op.routine] = meet(calls.get(op.routine), state, self.sets)
+                transfer(state, op, self.clobbers, self.sets)
             for succ in ir.successors(block.terminator):
                 if succ not in blocks:
                     continue
                 old = entry[succ]
-                new = meet(old, state)
+                new = meet(old, state, self.sets)
                 if old is None or new != old:
                     entry[succ] = new
                     if succ not in queued:
@@ -178,6 +253,21 @@ class InForce:
                         queued.add(succ)
         for label, state in entry.items():
             self.entry[label] = state or {}
+
+
+def _axes(module: ir.Module) -> set[str]:
+    """Every axis an operation of the module names."""
+    axes: set[str] = set()
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.Move):
+                axes.update(axis for axis, _ in op.targets)
+            elif isinstance(op, ir.Arc):
+                axes.update(op.axes)
+            elif getattr(op, "axis", ""):
+                axes.add(op.axis)
+    axes.discard(ALL)
+    return axes
 
 
 def _clobbers(module: ir.Module) -> dict[str, frozenset[Key]]:

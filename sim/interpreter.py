@@ -176,6 +176,7 @@ class Simulator:
         self.since_back = -1  # steps since the last jump back (-1: none yet)
         self.machine = Machine(inputs=dict(self.scenario.inputs), analog=dict(self.scenario.analog))
         self.machine.shared["defaults"] = defaults(module.steps_per_rev)
+        self.machine.shared["sets"] = tuple(module.axis_sets)
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
         self.default_type = DEFAULT_TYPES.get(module.dialect, ir.VarType.FLOAT64)
@@ -1215,6 +1216,8 @@ class Simulator:
             return 1 if abs(axis.at(self.now) + axis.offset - self.scenario.switches(axis.name).home) < 0.5 else 0
         if meaning in ("limit_plus", "limit_minus"):
             return 0 if not axis.fault else 1
+        if meaning == "accel_time" or (meaning in ("max_speed", "initial_speed") and m.shared.get("sets")):
+            return m.register(ir.MotionParam(meaning), status.axis or ir.ALL_AXES)
         if meaning in ("max_speed", "initial_speed", "accel", "decel"):
             lim = axis.limits(m.shared)
             return {"max_speed": lim.maximum, "initial_speed": lim.initial, "accel": lim.accel,

@@ -37,6 +37,10 @@ from mcc.compiler.span import Span
 
 DIALECT = "arcus"
 UNITS = {"pps": ir.Unit.STEPS_PER_S, "pulses": ir.Unit.STEPS}
+# HSPDa, LSPDa and ACCa are used only once all three are set for the axis; until then the global
+# HSPD, LSPD and ACC apply (L447-L457): the module's axis sets (Module.axis_sets, docs/IR.md).
+AXIS_SETS = (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED, ir.MotionParam.ACCEL_TIME,
+             ir.MotionParam.DECEL_TIME)
 MOTION = {"max_speed": ir.MotionParam.MAX_SPEED, "initial_speed": ir.MotionParam.INITIAL_SPEED}
 AXES = ("X", "Y", "Z", "U")
 # Registers read as neutral readings: catalog name -> ir_names.STATUS meaning. EO<bit> is the
@@ -109,7 +113,8 @@ class Lowering:
         self.diags = diags
         self.resolver = Resolver(profile, diags)
         self.cat = self.resolver.cat
-        self.module = ir.Module(DIALECT, profile.name, path=tree.path, steps_per_rev=profile.steps_per_rev)
+        self.module = ir.Module(DIALECT, profile.name, path=tree.path, steps_per_rev=profile.steps_per_rev,
+                                axis_sets=AXIS_SETS)
         self.main = ir.Routine("main", ir.RoutineKind.MAIN)
         self.module.routines.append(self.main)
         self.program = Program()

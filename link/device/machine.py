@@ -160,6 +160,7 @@ class DeviceMachine:
         except ContractError as exc:
             return self._ended(Outcome("error", f"cannot run: {exc}"), program)
         self.machine.shared["defaults"] = defaults(module.steps_per_rev)
+        self.machine.shared["sets"] = tuple(module.axis_sets)
         simulator.machine = self.machine      # the device's machine: what earlier commands left
         self.moving.clear()
         self.slewing.clear()
