@@ -300,3 +300,87 @@ def _clobbers(module: ir.Module) -> dict[str, frozenset[Key]]:
                     result[name] |= extra
                     changed = True
     return {name: frozenset(keys) for name, keys in result.items()}
+
+
+class Unresolved(Exception):
+    """A setting whose effect depends on the path that reaches it, where a conversion between the
+    two rules of `Module.axis_sets` needs to know it statically; `span` is the setting's."""
+
+    def __init__(self, message: str, span):
+        super().__init__(message)
+        self.span = span
+
+
+def without_axis_sets(module: ir.Module) -> ir.Module:
+    """The module rewritten for a target where an axis's own setting applies at once and a `*`
+    setting reaches every axis (MCode, X150): what each axis runs with is written where it changes.
+
+    - an own setting that leaves the axis's set incomplete on every path changes nothing the axis
+      runs with and is dropped (Arcus `HSPDX` alone, L447-L449);
+    - the one that completes the set writes the whole set, its values as the registers hold them;
+    - a `*` setting is written, then each axis whose own set is complete gets its own value back.
+
+    Raises `Unresolved` where the set is complete on some paths only, or a register's value is not
+    known. A copy; a module without axis sets is returned as it is."""
+    sets = tuple(module.axis_sets)
+    if not sets:
+        return module
+    copy = ir.copy_module(module)
+    copy.axis_sets = ()
+    analysis = InForce(module)
+    axes = sorted(_axes(module))
+    written: dict[str, set] = {}
+    for keys in analysis.clobbers.values():
+        for param, axis in keys:
+            if param in sets and axis != ALL:
+                written.setdefault(axis, set()).add(param)
+    able = [axis for axis in axes if written.get(axis, set()) >= set(sets)]  # others never complete
+    replaced: dict[int, list[ir.Op]] = {}
+    for routine in module.routines:
+        for _, _, op, before in analysis.walk(routine):
+            if not isinstance(op, ir.SetMotion) or op.param not in sets:
+                continue
+            after = analysis.after(before, op)
+            if op.axis == ALL:
+                ops: list[ir.Op] = [op]
+                for axis in able:
+                    if _complete(after, sets, axis) is None:
+                        raise Unresolved(f"axis {axis}'s own speeds are complete on some paths to this setting only, "
+                                         "so whether it applies to that axis is known only at run time", op.span)
+                    if _complete(after, sets, axis):
+                        ops.append(ir.SetMotion(op.param, axis, _register(after, op.param, axis, op), op.span))
+                replaced[id(op)] = ops
+                continue
+            state = _complete(after, sets, op.axis) if op.axis in able else False
+            if state is None:
+                raise Unresolved(f"axis {op.axis}'s own speeds are complete on some paths only, so whether this "
+                                 "setting applies is known only at run time", op.span)
+            if not state:
+                replaced[id(op)] = []  # the axis runs with the global settings: nothing changes
+            elif not _complete(before, sets, op.axis):  # this one completes the set: all of it applies now
+                replaced[id(op)] = [op if param is op.param else
+                                    ir.SetMotion(param, op.axis, _register(after, param, op.axis, op), op.span)
+                                    for param in sets]
+    for original, (_, block) in zip(module.blocks(), copy.blocks()):
+        ops = []
+        for old, new in zip(original[1].ops, block.ops):
+            ops.extend(replaced.get(id(old), [new]))
+        block.ops[:] = ops
+    return copy
+
+
+def _complete(state: State, sets: tuple, axis: str) -> bool | None:
+    """Whether `axis`'s own set is complete on every path (True), on none (False), or unknown."""
+    if all((WRITTEN, param, axis) in state for param in sets):
+        return True
+    if any((UNWRITTEN, param, axis) in state for param in sets):
+        return False
+    return None
+
+
+def _register(state: State, param: ir.MotionParam, axis: str, op: ir.Op) -> ir.Const:
+    found = state.get((param, axis))
+    if found is None:
+        raise Unresolved(f"axis {axis}'s own {param.value.replace('_', ' ')} is not known here (set from a "
+                         "variable or different on two paths), and the conversion must write it", op.span)
+    return found

@@ -8,6 +8,7 @@ from __future__ import annotations
 import pytest
 
 from mcc.compiler import driver, in_force, ir
+from conftest import run_mcc
 from mcc.sim import simulate
 
 SETS = (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED, ir.MotionParam.ACCEL_TIME,
@@ -100,3 +101,34 @@ def test_o2_removes_a_global_setting_already_in_force_across_blocks_and_calls() 
             "X0\nWAITX\nEND\nSUB 1\nV2=1\nENDSUB\nSUB 2\nHSPD=3000\nENDSUB\n")
     result = driver.compile_file("p.prg", "arcus", text=text, opt_level="O2")
     assert result.listing.text.splitlines().count("HSPD=1000") == 2  # the first, and the one after SUB 2
+
+
+def test_into_mcode_an_incomplete_set_of_its_own_is_not_written() -> None:
+    """HSPDX=5000 alone is not used (L447-L449): the MCode drive runs at the global HSPD."""
+    text = "LSPD=100\nHSPD=1000\nACC=100\nHSPDX=5000\nX1000\nWAITX\nEND\n"
+    result = driver.compile_file("p.prg", "arcus", target="mcode", text=text)
+    code = [line for line in result.listing.text.splitlines() if not line.startswith("'")]
+    assert "VM=5000" not in code and "VM=1000" in code
+
+
+def test_into_mcode_a_complete_set_applies_and_survives_a_global_setting(tmp_path) -> None:
+    """Once HSPDX, LSPDX and ACCX are all set, X runs with them (L451-L457) and a later HSPD=2000
+    changes only the global register: the MCode drive keeps VM=5000 for the next move. By hand:
+    ACCX=200 ms from 500 to 5000 pps is A = 4500 / 0.2 = 22500 steps/s²; --verify agrees."""
+    source = tmp_path / "p.prg"
+    source.write_text("LSPD=100\nHSPD=1000\nACC=100\nHSPDX=5000\nLSPDX=500\nACCX=200\nX1000\nWAITX\n"
+                      "HSPD=2000\nX0\nWAITX\nEND\n")
+    out = tmp_path / "p.mxt"
+    result = run_mcc("compile", str(source), "--target", "mcode", "--verify", "-o", str(out))
+    assert result.returncode == 0, result.stdout + result.stderr
+    code = [line for line in out.read_text().splitlines() if not line.startswith("'")]
+    assert code.index("VM=5000") < code.index("A=22500") < code.index("MA 1000")
+    assert code[code.index("MA 0") - 1] == "VM=5000"  # X's own speed back after the global HSPD=2000
+
+
+def test_into_mcode_a_set_complete_on_some_paths_only_is_refused_at_its_line() -> None:
+    """Whether HSPDX applies depends on the path (L449): no MCode program can say it; refused."""
+    text = "LSPD=100\nHSPD=1000\nACC=100\nIF DI1=1\nACCX=200\nENDIF\nLSPDX=500\nHSPDX=5000\nX1000\nWAITX\nEND\n"
+    result = driver.compile_file("p.prg", "arcus", target="mcode", text=text)
+    errors = [d for d in result.diagnostics if d.severity.value == "error"]
+    assert errors and errors[0].code == "G003" and errors[0].span.line == 8  # HSPDX=5000: LSPDX before it left the set incomplete on every path
