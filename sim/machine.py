@@ -7,6 +7,7 @@ Homing and setting the position change the offset, never the machine coordinate.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from mcc.compiler.ir import MotionParam
@@ -108,6 +109,10 @@ class Machine:
     # settings written for every axis ("*"), read by an axis without its own; "sets": the module's
     # axis sets (the parameters an axis uses its own values of only once it set them all)
     shared: dict = field(default_factory=lambda: {"*": {}, "*ramp": {}, "defaults": defaults(0), "sets": ()})
+    # the countdown timer (Arcus TR, L789-L793): (when it was loaded, the seconds loaded), in the
+    # run's time; it counts down in ticks of `countdown_tick` seconds (TR counts milliseconds)
+    countdown: tuple[float, float] = (0.0, 0.0)
+    countdown_tick: float = 0.001
 
     def axis(self, name: str) -> Axis:
         found = self.axes.get(name)
@@ -132,6 +137,23 @@ class Machine:
                 self.shared["*ramp"][kind[0]] = kind[1]
             for target in targets:
                 target.ramp_by_time[kind[0]] = kind[1]
+
+    def load_countdown(self, now: float, seconds: float) -> None:
+        """Load the countdown timer (Arcus TR=n, L789-L793): from `now` it counts down to 0."""
+        self.countdown = (now, max(0.0, seconds))
+
+    def countdown_left(self, now: float) -> float:
+        """What the countdown timer reads at `now`: the time loaded less the whole ticks elapsed
+        (it counts in milliseconds, L791), never below 0."""
+        start, loaded = self.countdown
+        tick = self.countdown_tick
+        ticks = math.floor((now - start) / tick + 1e-9)
+        return max(0.0, round(loaded - ticks * tick, 9))
+
+    def countdown_end(self) -> float:
+        """When the countdown timer reaches 0 (after the tick that takes it there)."""
+        start, loaded = self.countdown
+        return start + math.ceil(loaded / self.countdown_tick - 1e-9) * self.countdown_tick
 
     def register(self, param: MotionParam, axis: str) -> float:
         """The value written for `axis` (or for every axis, "*") as the program reads it back: the
