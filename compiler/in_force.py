@@ -19,7 +19,8 @@ setting and the setting for every axis (`axis == "*"`) combine is the module's f
   and each axis's own are separate registers, and an axis runs with its own only once all of the
   set have been written for it. The state then also says, per axis and parameter, whether the
   register was written on every path (`(WRITTEN, param, axis)`) or on none (`(UNWRITTEN, param,
-  axis)`); `lookup` gives the axis's own value when its set is complete on every path, the `*`
+  axis)`; the first is kept for every module: whether the axis set its own value since the last
+  `*` setting); `lookup` gives the axis's own value when its set is complete on every path, the `*`
   value when it is incomplete on every path, and nothing otherwise. Every state carries the
   module's rule as `(SETS, param)` keys, so `lookup` needs nothing else.
 
@@ -123,12 +124,13 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets:
     """Update `state` in place for one operation; `sets` is the module's `axis_sets`."""
     if isinstance(op, ir.SetMotion):
         param, axis = op.param, op.axis
+        if axis != ALL:  # the axis's own register is written (whatever its value)
+            state[(WRITTEN, param, axis)] = ONE
+            state.pop((UNWRITTEN, param, axis), None)
         if param in sets:  # separate registers: a `*` write leaves the axes' own as they are
-            if axis != ALL:
-                state[(WRITTEN, param, axis)] = ONE
-                state.pop((UNWRITTEN, param, axis), None)
-        elif axis == ALL:
-            for key in [k for k in state if k[0] is param]:
+            pass
+        elif axis == ALL:  # written into every axis: no axis has a value of its own any more
+            for key in [k for k in state if k[0] is param or (k[0] == WRITTEN and k[1] is param)]:
                 del state[key]
         elif not isinstance(op.value, ir.Const):
             state.pop((param, ALL), None)  # the axis is unknown: not the `*` value either
@@ -140,8 +142,8 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets:
         state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):
         for param, axis in clobbers.get(op.routine, frozenset()):
-            if axis == ALL and param not in sets:
-                for other in [k for k in state if k[0] is param]:
+            if axis == ALL and param not in sets:  # (or a command that may write anything: Native)
+                for other in [k for k in state if k[0] is param or (k[0] in (WRITTEN, UNWRITTEN) and k[1] is param)]:
                     del state[other]
             elif axis == ALL:  # a `*` write, or a command that may write anything (Native)
                 for other in [k for k in state if k[0] is param or (k[0] == UNWRITTEN and k[1] is param)]:
@@ -152,6 +154,7 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets:
             else:
                 state.pop((param, axis), None)
                 state.pop((param, ALL), None)
+                state.pop((UNWRITTEN, param, axis), None)
 
 
 class InForce:
@@ -164,6 +167,7 @@ class InForce:
         self.clobbers = _clobbers(module)
         self.defaults = {**dict(defaults or {}), **self.fixed, **self._unwritten()}
         self.entry: dict[str, State] = {}
+        self.reached: set[str] = set()  # the blocks some path from a routine's start reaches
         self._solve()
 
     def at_entry(self, label: str) -> State:
@@ -172,14 +176,13 @@ class InForce:
     def _unwritten(self) -> State:
         """At power-up no axis has written its own set: the registers of the axes the program
         writes, unless what runs before the program (commands sent first, a power-up routine) may."""
-        if not self.sets:
-            return {}
+        params = self.sets or tuple(ir.MotionParam)
         axes = _axes(self.module)
         early = set().union(*(self.clobbers.get(r.name, frozenset()) for r in self.module.routines
                               if r.kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)))
-        if any(axis == ALL and param in self.sets for param, axis in early):
+        if any(axis == ALL and param in params for param, axis in early):
             return {}
-        return {(UNWRITTEN, param, axis): ONE for param in self.sets for axis in axes if (param, axis) not in early}
+        return {(UNWRITTEN, param, axis): ONE for param in params for axis in axes if (param, axis) not in early}
 
     def after(self, state: State, op: ir.Op) -> State:
         """The state in force after `op`, given `state` before it (a new dictionary)."""
@@ -253,6 +256,8 @@ class InForce:
                         queued.add(succ)
         for label, state in entry.items():
             self.entry[label] = state or {}
+            if state is not None:
+                self.reached.add(label)
 
 
 def _axes(module: ir.Module) -> set[str]:
@@ -384,3 +389,121 @@ def _register(state: State, param: ir.MotionParam, axis: str, op: ir.Op) -> ir.C
         raise Unresolved(f"axis {axis}'s own {param.value.replace('_', ' ')} is not known here (set from a "
                          "variable or different on two paths), and the conversion must write it", op.span)
     return found
+
+
+RATES = (ir.MotionParam.ACCEL, ir.MotionParam.DECEL)
+TIMES = (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME)
+
+
+def with_axis_sets(module: ir.Module, sets: tuple, problems: list | None = None) -> ir.Module:
+    """The module rewritten for a target whose axes use their own settings only as a complete set
+    (`sets`, the target's `Module.axis_sets`: Arcus HSPDa, LSPDa and ACCa, L447-L457), from a
+    module where an axis's own setting applies at once and a `*` setting reaches every axis.
+
+    Every setting is written as it is. Before each motion of an axis that sets any of its own
+    somewhere, the members of its set that it did not set itself on every path are written with the
+    values the axis runs with there (its ramp: the program's ramp times when it sets any, else its
+    accelerations), so that the target's axis runs with its own complete set exactly as the source's
+    runs with its mix of own and `*` values; the ones a register already holds are then left out.
+
+    Raises `Unresolved` when a value the set needs is not known at the motion (or adds it to
+    `problems` and goes on without that value, when a list is given). A copy, still under
+    the source's rule (the fills change nothing there); a module that has axis sets already, or
+    sets nothing of one axis's own, is returned as it is."""
+    sets = tuple(sets)
+    if not sets or module.axis_sets:
+        return module
+    ramps = TIMES if any(isinstance(op, ir.SetMotion) and op.param in TIMES
+                         for _, block in module.blocks() for op in block.ops) else RATES
+    # the target's ramp register (Arcus ACC) is one: the program's ramp time or its acceleration
+    members = tuple(p for p in sets if p not in TIMES) + (ramps[:1] if any(p in TIMES for p in sets) else ())
+    group = set(sets) | set(RATES)
+    analysis = InForce(module)
+    own_axes = sorted({axis for keys in analysis.clobbers.values() for param, axis in keys
+                       if param in group and axis != ALL})
+    fixed = FIXED.get(module.dialect, {})
+    inserted: dict[int, list[ir.Op]] = {}
+    called = set().union(*analysis_calls(module).values()) if module.routines else set()
+    for routine in module.routines:
+        if routine.kind is ir.RoutineKind.SUBROUTINE and routine.name not in called:
+            continue  # no program path runs it (a host may, knowing nothing of what is in force): as written
+        for block, _, op, state in analysis.walk(routine):
+            if block.label not in analysis.reached:
+                continue  # never runs: it needs nothing
+            fills: list[ir.Op] = []
+            for axis in _moved(op, own_axes):
+                if all((UNWRITTEN, param, axis) in state for param in group):
+                    continue  # no setting of its own on any path: it runs with the `*` ones on both
+                for param in members:
+                    if (WRITTEN, param, axis) in state:
+                        continue  # the axis set it itself on every path since any `*` setting: in its set already
+                    value = lookup(state, param, axis)
+                    if (param, ALL) in fixed:  # the value the target writes for it (with_fixed_initial_speed)
+                        value = next((o.value for _, b in module.blocks() for o in b.ops if isinstance(o, ir.SetMotion)
+                                      and o.param is param and o.axis == ALL and isinstance(o.value, ir.Const)), value)
+                    if value is None:
+                        problem = Unresolved(
+                            f"the target uses axis {axis}'s own speeds only with its own initial speed, maximum "
+                            f"speed and ramp all set, and the {param.value.replace('_', ' ')} axis {axis} runs with "
+                            "here is not known: set it before this line", getattr(op, "span", None))
+                        if problems is None:
+                            raise problem
+                        problems.append(problem)
+                        break  # one report per axis and operation
+                    fills.append(ir.SetMotion(param, axis, value, getattr(op, "span", None)))
+            if fills:
+                inserted[id(op)] = fills
+    copy = ir.copy_module(module)  # the source's rule still holds: the fills change nothing there
+    if not inserted:
+        return copy
+    added: set[int] = set()
+    for original, (_, block) in zip(module.blocks(), copy.blocks()):
+        ops = []
+        for old, new in zip(original[1].ops, block.ops):
+            fills = inserted.get(id(old), [])
+            added.update(id(f) for f in fills)
+            ops.extend(fills)
+            ops.append(new)
+        block.ops[:] = ops
+    registers = ir.copy_module(copy)  # the same operations, read as the target's registers
+    registers.axis_sets = tuple(group)
+    check = InForce(registers)
+    kept = {id(a): b for (_, a), (_, b) in zip(_ops(copy), _ops(registers))}
+    needless_ids = {id(op) for routine in registers.routines for _, _, op, state in check.walk(routine)
+                    if redundant(state, op)}
+    needless = {key for key, twin in kept.items() if key in added and id(twin) in needless_ids}
+    for _, block in copy.blocks():
+        block.ops[:] = [op for op in block.ops if id(op) not in needless]
+    return copy
+
+
+def _ops(module: ir.Module):
+    """Every (block, operation) of the module in order."""
+    for _, block in module.blocks():
+        for op in block.ops:
+            yield block, op
+
+
+def analysis_calls(module: ir.Module) -> dict[str, set[str]]:
+    """The routines each routine calls or continues in."""
+    calls: dict[str, set[str]] = {}
+    for routine in module.routines:
+        found = calls.setdefault(routine.name, set())
+        for block in routine.blocks:
+            found.update(op.routine for op in block.ops if isinstance(op, ir.Call))
+            if isinstance(block.terminator, ir.GotoRoutine):
+                found.add(block.terminator.routine)
+    return calls
+
+
+def _moved(op: ir.Op, axes: list[str]) -> list[str]:
+    """The axes among `axes` that `op` sets moving (or stops on a ramp)."""
+    if isinstance(op, ir.Move):
+        named = [axis for axis, _ in op.targets]
+    elif isinstance(op, ir.Arc):
+        named = list(op.axes)
+    elif isinstance(op, (ir.Slew, ir.Home)) or (isinstance(op, ir.Stop) and op.ramp):
+        named = [op.axis]
+    else:
+        return []
+    return [axis for axis in axes if axis in named or ALL in named]

@@ -33,6 +33,7 @@ from mcc.backends.arcus.writer import Writer
 from mcc.backends.listing import Listing
 from mcc.backends.structure import EndNode, structure
 from mcc.compiler import in_force, ir
+from mcc.compiler.arcus.lower import AXIS_SETS
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -50,8 +51,12 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
 def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     """Passes 1-4: the program's statements in layout order (not yet priced), the context and
     how many routines became dispatch loops."""
-    module = with_initial_values(with_fixed_speeds(module, profile))
+    module = with_fixed_speeds(module, profile)
+    problems: list[in_force.Unresolved] = []  # an axis's own speeds as the PMX-4EX-SA applies them (L447-L457)
+    module = with_initial_values(in_force.with_axis_sets(module, AXIS_SETS, problems))
     ctx = Context(module, profile)
+    for problem in problems:
+        ctx.unsupported_at(problem.span, str(problem))
     ctx.number_subroutines()
     main: list = []
     subs: list[tuple[ir.Routine, list, Span | None]] = []

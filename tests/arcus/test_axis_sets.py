@@ -132,3 +132,20 @@ def test_into_mcode_a_set_complete_on_some_paths_only_is_refused_at_its_line() -
     result = driver.compile_file("p.prg", "arcus", target="mcode", text=text)
     errors = [d for d in result.diagnostics if d.severity.value == "error"]
     assert errors and errors[0].code == "G003" and errors[0].span.line == 8  # HSPDX=5000: LSPDX before it left the set incomplete on every path
+
+
+def test_into_arcus_an_axis_speed_of_its_own_becomes_a_complete_set(tmp_path) -> None:
+    """X150 `1V8` sets device 1's velocity alone (parker-x150.md L179: an address makes a universal
+    command device specific). On the PMX-4EX-SA HSPDX alone would not be used (L447-L449): the
+    output completes X's set (LSPDX, ACCX) before X moves, and after the universal `V6` (every
+    device) writes X's own HSPDX again, since HSPD no longer reaches an axis with a complete set.
+    --verify runs both and finds the same motion."""
+    source = tmp_path / "p.x150"
+    source.write_text("V5\nA10\n1V8\n1D4000\n1G\nV6\n1D0\n1G\n")
+    out = tmp_path / "p.prg"
+    result = run_mcc("compile", str(source), "--target", "arcus", "--verify", "-o", str(out))
+    assert result.returncode == 0, result.stdout + result.stderr
+    code = [line for line in out.read_text().splitlines() if not line.startswith(";")]
+    first, second = code.index("X4000"), code.index("X0")
+    assert {"HSPDX=32000", "LSPDX=1"} <= set(code[:first]) and any(c.startswith("ACCX=") for c in code[:first])
+    assert "HSPD=24000" in code[first:second] and "HSPDX=24000" in code[first:second]
