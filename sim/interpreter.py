@@ -178,6 +178,8 @@ class Simulator:
         self.machine.shared["defaults"] = defaults(module.steps_per_rev)
         self.machine.shared["sets"] = tuple(module.axis_sets)
         self.countdown_marks = countdown_marks(module)
+        if profile is not None:  # the countdown timer's resolution (Arcus TR counts milliseconds, L791)
+            self.machine.countdown_tick = float(profile.get("sim.countdown_tick", self.machine.countdown_tick))
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
         self.default_type = DEFAULT_TYPES.get(module.dialect, ir.VarType.FLOAT64)
