@@ -556,10 +556,12 @@ class Module:
     externals: list[str] = field(default_factory=list)
     # Facts about the source's machine that its operations alone do not say (docs/IR.md, "Module
     # facts"); the lowering declares them, the simulator and the backends follow them.
-    # Every move's mode is stated by the program itself: none relies on the absolute/incremental
-    # mode the controller powered up in or a host left it in (Arcus ABS before the first move,
-    # L1569). A backend whose target keeps a modal ABS/INC then states the mode before the first move.
-    modes_stated: bool = False
+    # Whether every move's mode is stated by the program itself, so that none relies on the
+    # absolute/incremental mode the controller powered up in or a host left it in (Arcus ABS before
+    # the first move, L1569): "start" (the program's first statement is the switch),
+    # "paths" (a switch precedes each path's first move), "" (not stated). A backend whose
+    # target keeps a modal ABS/INC then states the mode as the program did.
+    modes_stated: str = ""
     # The motion parameters that form an axis's own set of settings, used by that axis only once all
     # of them have been written for it (Arcus HSPDa, LSPDa and ACCa, L447-L457); until then the
     # axis runs with the settings for every axis (`*`), which are a separate set that a `*` write

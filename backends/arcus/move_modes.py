@@ -33,7 +33,7 @@ State = frozenset[str]
 MAIN = "<main>"  # the main program's body (with any setup lines before it); no GOSUB names it
 
 
-def boot_state(profile: Profile, stated: bool = False) -> State:
+def boot_state(profile: Profile, stated: str = "") -> State:
     """The modes the written program may start in: the profile's power-up mode, or either when the
     profile wants programs that do not rely on it (`write_initial_move_mode = true`) or the source
     states its mode before its first move (`Module.modes_stated`: an explicit leading ABS is kept,
@@ -65,7 +65,7 @@ def walk(nodes: list):
 class Modes:
     """The fixpoint over the structured routines, then the switches written into them."""
 
-    def __init__(self, routines: dict[str, list], profile: Profile, stated: bool = False):
+    def __init__(self, routines: dict[str, list], profile: Profile, stated: str = ""):
         self.routines = routines  # routine name -> structured body ("<main>" first)
         self.boot = boot_state(profile)
         self.stated = stated
@@ -177,10 +177,13 @@ class Modes:
         if self.stated and self.boot != BOTH:
             # The source states its modes: the switches go where the program may start in either
             # mode, but the prefixes above are the profile's, so that the output, which states its
-            # modes too, compiles to itself.
+            # modes too, compiles to itself; a program that opens with its switch keeps it there.
             self.boot = BOTH
             self.entry = {name: BOTH if name in self.fixed else NONE for name in self.routines}
             self.exit = {name: None for name in self.routines}
+            first = next((need(n) for n in walk(self.routines[MAIN]) if need(n)), None)
+            if self.stated == "start" and first is not None:
+                self.prefix[MAIN] = first
         if self.prefix or self.stated:
             seen = self.solve()
         for name, body in self.routines.items():
@@ -215,7 +218,7 @@ def _inserted(nodes: list, seen: dict[tuple, State], path: tuple) -> list:
 
 
 def write_switches(main: list, subs: list[tuple[ir.Routine, list, object]], profile: Profile,
-                   stated: bool = False) -> None:
+                   stated: str = "") -> None:
     """The whole pass: the main program's body and each subroutine's, in place. `stated`: the
     source states its mode before its first move (`Module.modes_stated`), so the output does too."""
     routines = {MAIN: main}
