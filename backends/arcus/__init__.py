@@ -33,7 +33,6 @@ from mcc.backends.arcus.writer import Writer
 from mcc.backends.listing import Listing
 from mcc.backends.structure import EndNode, structure
 from mcc.compiler import in_force, ir
-from mcc.compiler.arcus.lower import AXIS_SETS
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -53,7 +52,8 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     how many routines became dispatch loops."""
     module = with_fixed_speeds(module, profile)
     problems: list[in_force.Unresolved] = []  # an axis's own speeds as the PMX-4EX-SA applies them (L447-L457)
-    module = with_initial_values(in_force.with_axis_sets(module, AXIS_SETS, problems))
+    sets = tuple(ir.MotionParam(name) for name in profile.get("arcus.axis_sets", []) or [])
+    module = with_initial_values(in_force.with_axis_sets(module, sets, problems))
     ctx = Context(module, profile)
     for problem in problems:
         ctx.unsupported_at(problem.span, str(problem))
