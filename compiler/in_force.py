@@ -7,8 +7,22 @@ optimizer drops a setting already in force on every path, and lint finds a move 
 is set. All of them read this one forward data-flow analysis.
 
 The state at a point maps `(param, axis)` to the constant in force; a key that is absent is not
-known statically (never set, set from a variable, or different on two paths). A setting for every
-axis (`axis == "*"`) is stored under `"*"` and read for any axis without a setting of its own.
+known statically (never set, set from a variable, or different on two paths). How an axis's own
+setting and the setting for every axis (`axis == "*"`) combine is the module's fact
+(`Module.axis_sets`, docs/IR.md):
+
+- by default a `*` setting is written into every axis. `(param, "*")` holds the value of every
+  axis that has no key of its own, so an axis whose own value becomes unknown (set from a
+  variable, different on two paths, set by a call) takes the `*` key with it: it would otherwise
+  be read as the `*` value;
+- for the parameters of `Module.axis_sets` (Arcus HSPDa/LSPDa/ACCa, L447-L457) the `*` setting
+  and each axis's own are separate registers, and an axis runs with its own only once all of the
+  set have been written for it. The state then also says, per axis and parameter, whether the
+  register was written on every path (`(WRITTEN, param, axis)`) or on none (`(UNWRITTEN, param,
+  axis)`; the first is kept for every module: whether the axis set its own value since the last
+  `*` setting); `lookup` gives the axis's own value when its set is complete on every path, the `*`
+  value when it is incomplete on every path, and nothing otherwise. Every state carries the
+  module's rule as `(SETS, param)` keys, so `lookup` needs nothing else.
 
 Across routines the analysis is context-insensitive: a subroutine starts with what holds at every
 one of its calls, a call removes whatever the subroutine (or anything it calls) may set, and an
@@ -24,10 +38,12 @@ from typing import Iterator
 
 from mcc.compiler import ir
 
-Key = tuple[ir.MotionParam, str]
+Key = tuple  # (param, axis), or (SETS, param), (WRITTEN, param, axis), (UNWRITTEN, param, axis)
 State = dict[Key, ir.Const]
 
 ALL = ir.ALL_AXES
+SETS, WRITTEN, UNWRITTEN = "axis_sets", "written", "unwritten"
+ONE = ir.Const(1)
 
 
 # Settings a source dialect fixes for every axis, whatever the program does: X150 has no initial
@@ -273,43 +289,90 @@ def _set_before_motion(block: ir.Block, axes: set[str]) -> set[ir.MotionParam]:
 
 
 def lookup(state: State, param: ir.MotionParam, axis: str) -> ir.Const | None:
-    """The constant in force for `param` on `axis`, or None when it is not known statically."""
+    """The constant in force for `param` on `axis` (the value a move of that axis runs with), or
+    None when it is not known statically."""
+    if axis != ALL and (SETS, param) in state:
+        members = [k[1] for k in state if len(k) == 2 and k[0] == SETS]
+        if all((WRITTEN, m, axis) in state for m in members):
+            return state.get((param, axis))
+        if any((UNWRITTEN, m, axis) in state for m in members):
+            return state.get((param, ALL))
+        return None  # complete on some paths only
     found = state.get((param, axis))
     if found is None and axis != ALL:
         found = state.get((param, ALL))
     return found
 
 
-def meet(a: State | None, b: State) -> State:
+def redundant(state: State, op: ir.Op) -> bool:
+    """Whether `op` sets a value already in force everywhere it writes (so removing it changes
+    nothing on the device): the register itself for a parameter of an axis set (writing it again
+    leaves the set as complete as it was), every axis for a `*` setting otherwise."""
+    if not isinstance(op, ir.SetMotion) or not isinstance(op.value, ir.Const):
+        return False
+    value = op.value
+    if (SETS, op.param) in state:
+        current = state.get((op.param, op.axis))
+        return current is not None and _same(current, value)
+    if op.axis != ALL:
+        current = lookup(state, op.param, op.axis)
+        return current is not None and _same(current, value)
+    current = state.get((op.param, ALL))
+    return current is not None and _same(current, value) and all(
+        _same(v, value) for k, v in state.items() if len(k) == 2 and k[0] is op.param)
+
+
+def meet(a: State | None, b: State, sets: frozenset = frozenset()) -> State:
     if a is None:
         return dict(b)
-    return {k: v for k, v in a.items() if k in b and _same(b[k], v)}
+    out = {k: v for k, v in a.items() if k in b and _same(b[k], v)}
+    # an axis's own value lost on one path would otherwise be read as the `*` value
+    lost = {k[0] for state in (a, b) for k in state
+            if len(k) == 2 and k[1] != ALL and k not in out and isinstance(k[0], ir.MotionParam) and k[0] not in sets}
+    for param in lost:
+        out.pop((param, ALL), None)
+    return out
 
 
 def _same(a: ir.Const, b: ir.Const) -> bool:
     return a.value == b.value and a.unit == b.unit
 
 
-def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]]) -> None:
-    """Update `state` in place for one operation."""
+def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets: frozenset = frozenset()) -> None:
+    """Update `state` in place for one operation; `sets` is the module's `axis_sets`."""
     if isinstance(op, ir.SetMotion):
-        if op.axis == ALL:
-            for key in [k for k in state if k[0] is op.param]:
+        param, axis = op.param, op.axis
+        if axis != ALL:  # the axis's own register is written (whatever its value)
+            state[(WRITTEN, param, axis)] = ONE
+            state.pop((UNWRITTEN, param, axis), None)
+        if param in sets:  # separate registers: a `*` write leaves the axes' own as they are
+            pass
+        elif axis == ALL:  # written into every axis: no axis has a value of its own any more
+            for key in [k for k in state if k[0] is param or (k[0] == WRITTEN and k[1] is param)]:
                 del state[key]
+        elif not isinstance(op.value, ir.Const):
+            state.pop((param, ALL), None)  # the axis is unknown: not the `*` value either
         if isinstance(op.value, ir.Const):
-            state[(op.param, op.axis)] = op.value
+            state[(param, axis)] = op.value
         else:
-            state.pop((op.param, op.axis), None)
-            # an unknown value on one axis must not read as the value set for every axis
-            state.pop((op.param, ALL), None)
+            state.pop((param, axis), None)
     elif isinstance(op, ir.Native):
         state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):
-        for key in clobbers.get(op.routine, frozenset()):
-            if key[1] == ALL:
-                for other in [k for k in state if k[0] is key[0]]:
+        for param, axis in clobbers.get(op.routine, frozenset()):
+            if axis == ALL and param not in sets:  # (or a command that may write anything: Native)
+                for other in [k for k in state if k[0] is param or (k[0] in (WRITTEN, UNWRITTEN) and k[1] is param)]:
                     del state[other]
-            state.pop(key, None)
+            elif axis == ALL:  # a `*` write, or a command that may write anything (Native)
+                for other in [k for k in state if k[0] is param or (k[0] == UNWRITTEN and k[1] is param)]:
+                    del state[other]
+            elif param in sets:
+                state.pop((param, axis), None)
+                state.pop((UNWRITTEN, param, axis), None)  # it may have been written
+            else:
+                state.pop((param, axis), None)
+                state.pop((param, ALL), None)
+                state.pop((UNWRITTEN, param, axis), None)
 
 
 class InForce:
@@ -317,19 +380,32 @@ class InForce:
 
     def __init__(self, module: ir.Module, defaults: State | None = None):
         self.module = module
-        self.defaults = dict(defaults or {})
-        self.fixed = FIXED.get(module.dialect, {})
+        self.sets = frozenset(module.axis_sets)
+        self.fixed = {**FIXED.get(module.dialect, {}), **{(SETS, param): ONE for param in self.sets}}
         self.clobbers = _clobbers(module)
+        self.defaults = {**dict(defaults or {}), **self.fixed, **self._unwritten()}
         self.entry: dict[str, State] = {}
+        self.reached: set[str] = set()  # the blocks some path from a routine's start reaches
         self._solve()
 
     def at_entry(self, label: str) -> State:
         return {**self.entry.get(label, {}), **self.fixed}
 
+    def _unwritten(self) -> State:
+        """At power-up no axis has written its own set: the registers of the axes the program
+        writes, unless what runs before the program (commands sent first, a power-up routine) may."""
+        params = self.sets or tuple(ir.MotionParam)
+        axes = _axes(self.module)
+        early = set().union(*(self.clobbers.get(r.name, frozenset()) for r in self.module.routines
+                              if r.kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)))
+        if any(axis == ALL and param in params for param, axis in early):
+            return {}
+        return {(UNWRITTEN, param, axis): ONE for param in params for axis in axes if (param, axis) not in early}
+
     def after(self, state: State, op: ir.Op) -> State:
         """The state in force after `op`, given `state` before it (a new dictionary)."""
         state = dict(state)
-        transfer(state, op, self.clobbers)
+        transfer(state, op, self.clobbers, self.sets)
         if self.fixed:
             state.update(self.fixed)
         return state
@@ -348,7 +424,7 @@ class InForce:
             if routine.kind in (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP):
                 starts[routine.name] = dict(self.defaults)
             elif routine.kind is ir.RoutineKind.HANDLER:
-                starts[routine.name] = {}
+                starts[routine.name] = dict(self.fixed)
             else:
                 starts[routine.name] = None  # met from its calls
         # Iterate: routine entries depend on call sites, call sites on routine entries.
@@ -384,13 +460,13 @@ class InForce:
             state = dict(entry[label] or {})
             for op in block.ops:
                 if isinstance(op, ir.Call):
-                    calls[op.routine] = meet(calls.get(op.routine), state)
-                transfer(state, op, self.clobbers)
+                    calls[op.routine] = meet(calls.get(op.routine), state, self.sets)
+                transfer(state, op, self.clobbers, self.sets)
             for succ in ir.successors(block.terminator):
                 if succ not in blocks:
                     continue
                 old = entry[succ]
-                new = meet(old, state)
+                new = meet(old, state, self.sets)
                 if old is None or new != old:
                     entry[succ] = new
                     if succ not in queued:
@@ -398,6 +474,23 @@ class InForce:
                         queued.add(succ)
         for label, state in entry.items():
             self.entry[label] = state or {}
+            if state is not None:
+                self.reached.add(label)
+
+
+def _axes(module: ir.Module) -> set[str]:
+    """Every axis an operation of the module names."""
+    axes: set[str] = set()
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.Move):
+                axes.update(axis for axis, _ in op.targets)
+            elif isinstance(op, ir.Arc):
+                axes.update(op.axes)
+            elif getattr(op, "axis", ""):
+                axes.add(op.axis)
+    axes.discard(ALL)
+    return axes
 
 
 def _clobbers(module: ir.Module) -> dict[str, frozenset[Key]]:
@@ -430,3 +523,205 @@ def _clobbers(module: ir.Module) -> dict[str, frozenset[Key]]:
                     result[name] |= extra
                     changed = True
     return {name: frozenset(keys) for name, keys in result.items()}
+
+
+class Unresolved(Exception):
+    """A setting whose effect depends on the path that reaches it, where a conversion between the
+    two rules of `Module.axis_sets` needs to know it statically; `span` is the setting's."""
+
+    def __init__(self, message: str, span):
+        super().__init__(message)
+        self.span = span
+
+
+def without_axis_sets(module: ir.Module) -> ir.Module:
+    """The module rewritten for a target where an axis's own setting applies at once and a `*`
+    setting reaches every axis (MCode, X150): what each axis runs with is written where it changes.
+
+    - an own setting that leaves the axis's set incomplete on every path changes nothing the axis
+      runs with and is dropped (Arcus `HSPDX` alone, L447-L449);
+    - the one that completes the set writes the whole set, its values as the registers hold them;
+    - a `*` setting is written, then each axis whose own set is complete gets its own value back.
+
+    Raises `Unresolved` where the set is complete on some paths only, or a register's value is not
+    known. A copy; a module without axis sets is returned as it is."""
+    sets = tuple(module.axis_sets)
+    if not sets:
+        return module
+    copy = ir.copy_module(module)
+    copy.axis_sets = ()
+    analysis = InForce(module)
+    axes = sorted(_axes(module))
+    written: dict[str, set] = {}
+    for keys in analysis.clobbers.values():
+        for param, axis in keys:
+            if param in sets and axis != ALL:
+                written.setdefault(axis, set()).add(param)
+    able = [axis for axis in axes if written.get(axis, set()) >= set(sets)]  # others never complete
+    replaced: dict[int, list[ir.Op]] = {}
+    for routine in module.routines:
+        for _, _, op, before in analysis.walk(routine):
+            if not isinstance(op, ir.SetMotion) or op.param not in sets:
+                continue
+            after = analysis.after(before, op)
+            if op.axis == ALL:
+                ops: list[ir.Op] = [op]
+                for axis in able:
+                    if _complete(after, sets, axis) is None:
+                        raise Unresolved(f"axis {axis}'s own speeds are complete on some paths to this setting only, "
+                                         "so whether it applies to that axis is known only at run time", op.span)
+                    if _complete(after, sets, axis):
+                        ops.append(ir.SetMotion(op.param, axis, _register(after, op.param, axis, op), op.span))
+                replaced[id(op)] = ops
+                continue
+            state = _complete(after, sets, op.axis) if op.axis in able else False
+            if state is None:
+                raise Unresolved(f"axis {op.axis}'s own speeds are complete on some paths only, so whether this "
+                                 "setting applies is known only at run time", op.span)
+            if not state:
+                replaced[id(op)] = []  # the axis runs with the global settings: nothing changes
+            elif not _complete(before, sets, op.axis):  # this one completes the set: all of it applies now
+                replaced[id(op)] = [op if param is op.param else
+                                    ir.SetMotion(param, op.axis, _register(after, param, op.axis, op), op.span)
+                                    for param in sets]
+    for original, (_, block) in zip(module.blocks(), copy.blocks()):
+        ops = []
+        for old, new in zip(original[1].ops, block.ops):
+            ops.extend(replaced.get(id(old), [new]))
+        block.ops[:] = ops
+    return copy
+
+
+def _complete(state: State, sets: tuple, axis: str) -> bool | None:
+    """Whether `axis`'s own set is complete on every path (True), on none (False), or unknown."""
+    if all((WRITTEN, param, axis) in state for param in sets):
+        return True
+    if any((UNWRITTEN, param, axis) in state for param in sets):
+        return False
+    return None
+
+
+def _register(state: State, param: ir.MotionParam, axis: str, op: ir.Op) -> ir.Const:
+    found = state.get((param, axis))
+    if found is None:
+        raise Unresolved(f"axis {axis}'s own {param.value.replace('_', ' ')} is not known here (set from a "
+                         "variable or different on two paths), and the conversion must write it", op.span)
+    return found
+
+
+RATES = (ir.MotionParam.ACCEL, ir.MotionParam.DECEL)
+TIMES = (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME)
+
+
+def with_axis_sets(module: ir.Module, sets: tuple, problems: list | None = None) -> ir.Module:
+    """The module rewritten for a target whose axes use their own settings only as a complete set
+    (`sets`, the target's `Module.axis_sets`: Arcus HSPDa, LSPDa and ACCa, L447-L457), from a
+    module where an axis's own setting applies at once and a `*` setting reaches every axis.
+
+    Every setting is written as it is. Before each motion of an axis that sets any of its own
+    somewhere, the members of its set that it did not set itself on every path are written with the
+    values the axis runs with there (its ramp: the program's ramp times when it sets any, else its
+    accelerations), so that the target's axis runs with its own complete set exactly as the source's
+    runs with its mix of own and `*` values; the ones a register already holds are then left out.
+
+    Raises `Unresolved` when a value the set needs is not known at the motion (or adds it to
+    `problems` and goes on without that value, when a list is given). A copy, still under
+    the source's rule (the fills change nothing there); a module that has axis sets already, or
+    sets nothing of one axis's own, is returned as it is."""
+    sets = tuple(sets)
+    if not sets or module.axis_sets:
+        return module
+    ramps = TIMES if any(isinstance(op, ir.SetMotion) and op.param in TIMES
+                         for _, block in module.blocks() for op in block.ops) else RATES
+    # the target's ramp register (Arcus ACC) is one: the program's ramp time or its acceleration
+    members = tuple(p for p in sets if p not in TIMES) + (ramps[:1] if any(p in TIMES for p in sets) else ())
+    group = set(sets) | set(RATES)
+    analysis = InForce(module)
+    own_axes = sorted({axis for keys in analysis.clobbers.values() for param, axis in keys
+                       if param in group and axis != ALL})
+    fixed = FIXED.get(module.dialect, {})
+    inserted: dict[int, list[ir.Op]] = {}
+    called = set().union(*analysis_calls(module).values()) if module.routines else set()
+    for routine in module.routines:
+        if routine.kind is ir.RoutineKind.SUBROUTINE and routine.name not in called:
+            continue  # no program path runs it (a host may, knowing nothing of what is in force): as written
+        for block, _, op, state in analysis.walk(routine):
+            if block.label not in analysis.reached:
+                continue  # never runs: it needs nothing
+            fills: list[ir.Op] = []
+            for axis in _moved(op, own_axes):
+                if all((UNWRITTEN, param, axis) in state for param in group):
+                    continue  # no setting of its own on any path: it runs with the `*` ones on both
+                for param in members:
+                    if (WRITTEN, param, axis) in state:
+                        continue  # the axis set it itself on every path since any `*` setting: in its set already
+                    value = lookup(state, param, axis)
+                    if (param, ALL) in fixed:  # the value the target writes for it (with_fixed_initial_speed)
+                        value = next((o.value for _, b in module.blocks() for o in b.ops if isinstance(o, ir.SetMotion)
+                                      and o.param is param and o.axis == ALL and isinstance(o.value, ir.Const)), value)
+                    if value is None:
+                        problem = Unresolved(
+                            f"the target uses axis {axis}'s own speeds only with its own initial speed, maximum "
+                            f"speed and ramp all set, and the {param.value.replace('_', ' ')} axis {axis} runs with "
+                            "here is not known: set it before this line", getattr(op, "span", None))
+                        if problems is None:
+                            raise problem
+                        problems.append(problem)
+                        break  # one report per axis and operation
+                    fills.append(ir.SetMotion(param, axis, value, getattr(op, "span", None)))
+            if fills:
+                inserted[id(op)] = fills
+    copy = ir.copy_module(module)  # the source's rule still holds: the fills change nothing there
+    if not inserted:
+        return copy
+    added: set[int] = set()
+    for original, (_, block) in zip(module.blocks(), copy.blocks()):
+        ops = []
+        for old, new in zip(original[1].ops, block.ops):
+            fills = inserted.get(id(old), [])
+            added.update(id(f) for f in fills)
+            ops.extend(fills)
+            ops.append(new)
+        block.ops[:] = ops
+    registers = ir.copy_module(copy)  # the same operations, read as the target's registers
+    registers.axis_sets = tuple(group)
+    check = InForce(registers)
+    kept = {id(a): b for (_, a), (_, b) in zip(_ops(copy), _ops(registers))}
+    needless_ids = {id(op) for routine in registers.routines for _, _, op, state in check.walk(routine)
+                    if redundant(state, op)}
+    needless = {key for key, twin in kept.items() if key in added and id(twin) in needless_ids}
+    for _, block in copy.blocks():
+        block.ops[:] = [op for op in block.ops if id(op) not in needless]
+    return copy
+
+
+def _ops(module: ir.Module):
+    """Every (block, operation) of the module in order."""
+    for _, block in module.blocks():
+        for op in block.ops:
+            yield block, op
+
+
+def analysis_calls(module: ir.Module) -> dict[str, set[str]]:
+    """The routines each routine calls or continues in."""
+    calls: dict[str, set[str]] = {}
+    for routine in module.routines:
+        found = calls.setdefault(routine.name, set())
+        for block in routine.blocks:
+            found.update(op.routine for op in block.ops if isinstance(op, ir.Call))
+            if isinstance(block.terminator, ir.GotoRoutine):
+                found.add(block.terminator.routine)
+    return calls
+
+
+def _moved(op: ir.Op, axes: list[str]) -> list[str]:
+    """The axes among `axes` that `op` sets moving (or stops on a ramp)."""
+    if isinstance(op, ir.Move):
+        named = [axis for axis, _ in op.targets]
+    elif isinstance(op, ir.Arc):
+        named = list(op.axes)
+    elif isinstance(op, (ir.Slew, ir.Home)) or (isinstance(op, ir.Stop) and op.ramp):
+        named = [op.axis]
+    else:
+        return []
+    return [axis for axis in axes if axis in named or ALL in named]

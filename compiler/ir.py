@@ -601,6 +601,20 @@ class Module:
         if variable is not None:
             return variable.type
         return self.registers.get(name)
+    # Facts about the source's machine that its operations alone do not say (docs/IR.md, "Module
+    # facts"); the lowering declares them, the simulator and the backends follow them.
+    # Whether every move's mode is stated by the program itself, so that none relies on the
+    # absolute/incremental mode the controller powered up in or a host left it in (Arcus ABS before
+    # the first move, L1569): "start" (the program's first statement is the switch),
+    # "paths" (a switch precedes each path's first move), "" (not stated). A backend whose
+    # target keeps a modal ABS/INC then states the mode as the program did.
+    modes_stated: str = ""
+    # The motion parameters that form an axis's own set of settings, used by that axis only once all
+    # of them have been written for it (Arcus HSPDa, LSPDa and ACCa, L447-L457); until then the
+    # axis runs with the settings for every axis (`*`), which are a separate set that a `*` write
+    # never copies into the axes. Empty (the default): an axis's own setting applies at once, and a
+    # `*` setting is written into every axis (an unaddressed X150 command, L177).
+    axis_sets: tuple[MotionParam, ...] = ()
 
     def routine(self, name: str) -> Routine | None:
         for routine in self.routines:

@@ -209,6 +209,10 @@ class Simulator:
         count = inputs.get("count", 0)
         self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
+        self.machine.shared["sets"] = tuple(module.axis_sets)
+        self.countdown_marks = countdown_marks(module)
+        if profile is not None:  # the countdown timer's resolution (Arcus TR counts milliseconds, L791)
+            self.machine.countdown_tick = float(profile.get("sim.countdown_tick", self.machine.countdown_tick))
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
         self.default_type = module.default_type or ir.VarType.FLOAT64
@@ -302,8 +306,11 @@ class Simulator:
             nxt = self._next_event_time()
             if wait is not None and wait.kind == "poll":
                 moving = any(a.moving(self.now) for a in self.machine.axes.values())
+                counting = self.machine.countdown_left(self.now) > 0
                 if moving and self.read_continuous:  # it reads a position, a speed or a timer
                     nxt = min(nxt, self.now + self.options.poll)
+                elif counting and self.read_continuous:  # the countdown: when a comparison can change
+                    nxt = min(nxt, self._countdown_wake())
                 elif nxt == INF and moving:  # an axis slews on while the loop sees nothing new
                     nxt = self.options.until + 1
                 elif nxt == INF:
@@ -317,6 +324,19 @@ class Simulator:
                 raise Stop("time-limit", f"the time limit of {self.options.until:g} s was reached")
             self.now = nxt
             self._process_events()
+
+    def _countdown_wake(self) -> float:
+        """The next time a loop polling the countdown timer can see a different outcome: when the
+        timer crosses a value the program compares it with (or the next tick, when it uses the
+        reading otherwise), so that a wait of seconds costs a few rounds, not one per millisecond."""
+        machine = self.machine
+        start, loaded = machine.countdown
+        tick = machine.countdown_tick
+        if self.countdown_marks is None:
+            return self.now + tick
+        times = [start + loaded - mark + extra for mark in self.countdown_marks for extra in (0.0, tick)]
+        later = [t for t in times if t > self.now + 1e-12]
+        return min(later, default=machine.countdown_end())
 
     def _settle(self) -> None:
         """After the program ends, moves still running finish (the machine does not stop with the
@@ -363,6 +383,8 @@ class Simulator:
         if item.kind in ("motion_end", "cross"):
             axis = self.machine.axes.get(item.payload[0])
             return axis is None or axis.motion is None or axis.motion.ident != item.payload[1]
+        if item.kind == "countdown":  # the timer was loaded again since
+            return item.payload[0] != self.machine.countdown
         if item.kind == "timer":
             handler = self.handlers.get("time")
             return handler is None or not handler.armed or handler.fired_at != item.payload[0]
@@ -521,7 +543,7 @@ class Simulator:
         """Until when the readings a round made keep their values (now: they change with time)."""
         until = INF
         for meaning, name in reads:
-            if meaning == "timer":
+            if meaning == "timer" or (meaning == "countdown" and self.machine.countdown_left(self.now) > 0):
                 return self.now
             axis = self.machine.axes.get(name)
             if meaning == "moving" or axis is None or not axis.moving(self.now):
@@ -728,6 +750,9 @@ class Simulator:
         if op.name == "input_active_high" and op.index is not None and value is not None:
             self.active_high[op.index] = bool(value)
             self.changes += 1  # a polling loop reads its inputs anew
+        if op.name == "countdown" and value is not None:  # it counts down from now (Arcus TR=n, L789-L793)
+            self.machine.load_countdown(self.now, float(value))
+            self._schedule(self.machine.countdown_end(), "countdown", (self.machine.countdown,))
         if op.name == "home_accel":
             for name in self._expand((op.axis,)):
                 self._axis(name).home_accel = float(value) if value is not None else None
@@ -1362,6 +1387,13 @@ class Simulator:
             self.read_continuous = True
             self.round_reads.add((meaning, ""))
             return self.now
+        if meaning == "countdown":
+            left = m.countdown_left(self.now)
+            if left > 0:  # it changes with time until it reaches 0 (a scheduled event)
+                self.read_continuous = True
+                self.round_reads.add((meaning, ""))
+            # whole ticks in seconds, exactly: `countdown * 1000` (Arcus V1=TR) is then whole ms
+            return Decimal(repr(left)) if left != int(left) else int(left)
         if meaning in SETTING_READINGS:
             return self._setting_reading(meaning, status.axis or ir.ALL_AXES)
         axis = self._axis(self._each(status.axis or self._handler_axis())[0])  # '*': the first device's
@@ -1387,6 +1419,8 @@ class Simulator:
             return 1 if abs(axis.at(self.now) + axis.offset - self.scenario.switches(axis.name).home) < 0.5 else 0
         if meaning in ("limit_plus", "limit_minus"):
             return 0 if not axis.fault else 1
+        if meaning == "accel_time" or (meaning in ("max_speed", "initial_speed") and m.shared.get("sets")):
+            return m.register(ir.MotionParam(meaning), status.axis or ir.ALL_AXES)
         if meaning in ("max_speed", "initial_speed", "accel", "decel"):
             lim = axis.limits(m.shared)
             return {"max_speed": lim.maximum, "initial_speed": lim.initial, "accel": lim.accel,
@@ -1450,6 +1484,37 @@ class Simulator:
         self.trace.variables = {name: values.plain(v) for name, v in self.vars.items()}
         self.trace.events.append(Event(self.now, "stopped", None, {"stopped": self.trace.stopped,
                                                                      "reason": self.trace.reason}))
+
+
+def countdown_marks(module: ir.Module) -> frozenset[float] | None:
+    """The readings of the countdown timer (seconds) the program compares it with: `countdown`
+    (times a constant) against a constant. None when it uses the reading any other way."""
+    marks: set[float] = set()
+    for _, block in module.blocks():
+        exprs = [e for op in block.ops for e in ir.op_exprs(op)] + list(ir.term_exprs(block.terminator))
+        for expr in exprs:
+            compared: set[int] = set()
+            for node in ir.walk_expr(expr):
+                if isinstance(node, ir.Compare):
+                    for side, other in ((node.left, node.right), (node.right, node.left)):
+                        scale = _countdown_scale(side)
+                        if scale and isinstance(other, ir.Const):
+                            marks.add(float(other.value) / scale)
+                            compared.update(id(n) for n in ir.walk_expr(side))
+                elif isinstance(node, ir.Status) and node.meaning == "countdown" and id(node) not in compared:
+                    return None
+    return frozenset(marks)
+
+
+def _countdown_scale(expr) -> float | None:
+    """k when `expr` is the countdown reading times the constant k (1 for the reading alone)."""
+    if isinstance(expr, ir.Status) and expr.meaning == "countdown":
+        return 1.0
+    if isinstance(expr, ir.BinOp) and expr.op == "*":
+        for a, b in ((expr.left, expr.right), (expr.right, expr.left)):
+            if isinstance(a, ir.Status) and a.meaning == "countdown" and isinstance(b, ir.Const) and b.value:
+                return float(b.value)
+    return None
 
 
 OP_METHODS = {

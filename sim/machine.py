@@ -7,6 +7,7 @@ Homing and setting the position change the offset, never the machine coordinate.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from mcc.compiler.ir import MotionParam
@@ -55,8 +56,16 @@ class Axis:
     def moving(self, t: float) -> bool:
         return self.motion is not None and t < self.motion.t_end
 
+    def own(self, param: MotionParam, fallback: dict) -> bool:
+        """Whether the axis runs with its own value of `param`: one it set, and for a parameter of
+        the module's axis sets (`Module.axis_sets`, Arcus L447-L457) only once it set all of them."""
+        sets = fallback.get("sets", ())
+        if param in sets:
+            return all(p in self.settings for p in sets)
+        return param in self.settings
+
     def setting(self, param: MotionParam, fallback: dict[str, dict[MotionParam, float]]) -> float:
-        if param in self.settings:
+        if self.own(param, fallback):
             return self.settings[param]
         shared = fallback.get("*", {})
         if param in shared:
@@ -73,10 +82,13 @@ class Axis:
         initial, maximum = get(MotionParam.INITIAL_SPEED), get(MotionParam.MAX_SPEED)
         accel, decel = get(MotionParam.ACCEL), get(MotionParam.DECEL)
         shared = fallback.get("*ramp", {})
-        if self.ramp_by_time.get("accel", shared.get("accel", False)):
+        sets = fallback.get("sets", ())
+        complete = not sets or all(p in self.settings for p in sets)
+        by_time = self.ramp_by_time if complete else {}  # an incomplete set ramps as the global ACC says
+        if by_time.get("accel", shared.get("accel", False)):
             ramp = get(MotionParam.ACCEL_TIME)
             accel = abs(maximum - initial) / ramp if ramp > 0 else 0.0
-        if self.ramp_by_time.get("decel", shared.get("decel", False)):
+        if by_time.get("decel", shared.get("decel", False)):
             ramp = get(MotionParam.DECEL_TIME)
             decel = abs(maximum - initial) / ramp if ramp > 0 else 0.0
         return Limits(initial, maximum, accel, decel, smooth=get(MotionParam.PROFILE) == 1)
@@ -89,8 +101,13 @@ class Machine:
     analog: dict[int, float] = field(default_factory=dict)
     outputs: dict[int, int] = field(default_factory=dict)
     home_inputs: set[int] = field(default_factory=set)  # inputs set up as the home switch (input_function "home")
-    # settings written for every axis ("*"), read by an axis without its own
-    shared: dict[str, dict] = field(default_factory=lambda: {"*": {}, "*ramp": {}, "defaults": defaults(0)})
+    # settings written for every axis ("*"), read by an axis without its own; "sets": the module's
+    # axis sets (the parameters an axis uses its own values of only once it set them all)
+    shared: dict = field(default_factory=lambda: {"*": {}, "*ramp": {}, "defaults": defaults(0), "sets": ()})
+    # the countdown timer (Arcus TR, L789-L793): (when it was loaded, the seconds loaded), in the
+    # run's time; it counts down in ticks of `countdown_tick` seconds (TR counts milliseconds)
+    countdown: tuple[float, float] = (0.0, 0.0)
+    countdown_tick: float = 0.001
 
     def axis(self, name: str) -> Axis:
         found = self.axes.get(name)
@@ -104,6 +121,8 @@ class Machine:
         targets = [self.axis(axis)] if axis != "*" else list(self.axes.values())
         if axis == "*":
             self.shared["*"][param] = value
+            if param in self.shared.get("sets", ()):
+                targets = []  # a separate register: the axes keep their own values
         for target in targets:
             target.settings[param] = value
         kind = {MotionParam.ACCEL: ("accel", False), MotionParam.ACCEL_TIME: ("accel", True),
@@ -113,6 +132,35 @@ class Machine:
                 self.shared["*ramp"][kind[0]] = kind[1]
             for target in targets:
                 target.ramp_by_time[kind[0]] = kind[1]
+
+    def load_countdown(self, now: float, seconds: float) -> None:
+        """Load the countdown timer (Arcus TR=n, L789-L793): from `now` it counts down to 0."""
+        self.countdown = (now, max(0.0, seconds))
+
+    def countdown_left(self, now: float) -> float:
+        """What the countdown timer reads at `now`: the time loaded less the whole ticks elapsed
+        (it counts in milliseconds, L791), never below 0."""
+        start, loaded = self.countdown
+        tick = self.countdown_tick
+        ticks = math.floor((now - start) / tick + 1e-9)
+        return max(0.0, round(loaded - ticks * tick, 9))
+
+    def countdown_end(self) -> float:
+        """When the countdown timer reaches 0 (after the tick that takes it there)."""
+        start, loaded = self.countdown
+        return start + math.ceil(loaded / self.countdown_tick - 1e-9) * self.countdown_tick
+
+    def register(self, param: MotionParam, axis: str) -> float:
+        """The value written for `axis` (or for every axis, "*") as the program reads it back: the
+        register itself where the axes' own settings form a set (Arcus HSPDX reads HSPDX, HSPD the
+        global HSPD, L1552-L1560); otherwise, and before any write, the value in force."""
+        if param in self.shared.get("sets", ()):
+            if axis == "*":
+                return self.shared["*"].get(param, self.shared["defaults"].get(param, 0.0))
+            own = self.axis(axis).settings.get(param)
+            if own is not None:
+                return own
+        return self.axis(axis).setting(param, self.shared)
 
     def input_mask(self) -> int:
         return sum(1 << (n - 1) for n, v in self.inputs.items() if v and n >= 1)

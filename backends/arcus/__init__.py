@@ -52,7 +52,12 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     how many routines became dispatch loops."""
     lowest = lowest_speed() / float(Scale(module.steps_per_rev, profile.steps_per_rev).factor)
     module = with_fixed_speeds(in_force.with_source_power_up(module, profile, lowest), profile)
+    problems: list[in_force.Unresolved] = []  # an axis's own speeds as the PMX-4EX-SA applies them (L447-L457)
+    sets = tuple(ir.MotionParam(name) for name in profile.get("arcus.axis_sets", []) or [])
+    module = with_initial_values(in_force.with_axis_sets(module, sets, problems))
     ctx = Context(module, profile)
+    for problem in problems:
+        ctx.unsupported_at(problem.span, str(problem))
     ctx.number_subroutines()
     main: list = []
     subs: list[tuple[ir.Routine, list, Span | None]] = []
@@ -71,7 +76,7 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
             main = [n for n in code if not isinstance(n, EndNode)] + main
         else:
             main += code
-    move_modes.write_switches(main, subs, profile)
+    move_modes.write_switches(main, subs, profile, module.modes_stated)
     temporaries.check(ctx)
     stmts = Writer(ctx).program(main, subs)
     return ctx, stmts, dispatched
@@ -83,6 +88,25 @@ def with_fixed_speeds(module: ir.Module, profile: Profile) -> ir.Module:
     (`legalize.ramp_ms`)."""
     return in_force.with_fixed_initial_speed(
         module, lowest_speed() / float(Scale(module.steps_per_rev, profile.steps_per_rev).factor))
+
+
+def with_initial_values(module: ir.Module) -> ir.Module:
+    """Arcus declares no variables: a source variable's initial value (MCode `VA Q1=25`) becomes an
+    assignment where the program starts, before anything else runs (the first routine the device
+    runs: commands sent before the program, else the main program). An initial 0 is the value an
+    Arcus variable starts with (docs/dialects/arcus.md, "Variables") and is not written. A copy; a
+    module without other initial values is returned as it is."""
+    declared = [v for v in module.variables.values()
+                if v.init is not None and not (isinstance(v.init, ir.Const) and v.init.value == 0)]
+    if not declared:
+        return module
+    copy = ir.copy_module(module)
+    first = next((r for kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.MAIN) for r in copy.routines
+                  if r.kind is kind and r.blocks), None)
+    if first is not None:
+        assigns = [ir.Assign(ir.Var(v.name, v.span), v.init, v.span) for v in declared]
+        first.blocks[0].ops[:0] = assigns
+    return copy
 
 
 def memory(module: ir.Module, profile: Profile) -> tuple[dict, list]:

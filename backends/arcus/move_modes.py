@@ -33,10 +33,12 @@ State = frozenset[str]
 MAIN = "<main>"  # the main program's body (with any setup lines before it); no GOSUB names it
 
 
-def boot_state(profile: Profile) -> State:
+def boot_state(profile: Profile, stated: str = "") -> State:
     """The modes the written program may start in: the profile's power-up mode, or either when the
-    profile wants programs that do not rely on it (`write_initial_move_mode = true`)."""
-    if profile.get("arcus.write_initial_move_mode", False):
+    profile wants programs that do not rely on it (`write_initial_move_mode = true`) or the source
+    states its mode before its first move (`Module.modes_stated`: an explicit leading ABS is kept,
+    since a host or an earlier run may have left INC in force, L1569)."""
+    if stated or profile.get("arcus.write_initial_move_mode", False):
         return BOTH
     boot = str(profile.get("arcus.boot_move_mode", "abs")).upper()
     return frozenset({boot}) if boot in (ABS, INC) else BOTH
@@ -63,9 +65,10 @@ def walk(nodes: list):
 class Modes:
     """The fixpoint over the structured routines, then the switches written into them."""
 
-    def __init__(self, routines: dict[str, list], profile: Profile):
+    def __init__(self, routines: dict[str, list], profile: Profile, stated: str = ""):
         self.routines = routines  # routine name -> structured body ("<main>" first)
         self.boot = boot_state(profile)
+        self.stated = stated
         calls = {name: {n.op.routine for n in walk(body) if isinstance(n.op, ir.Call)}
                  for name, body in routines.items()}
         called = set().union(*calls.values()) if calls else set()
@@ -171,7 +174,17 @@ class Modes:
                 first = next((need(n) for n in walk(body) if need(n)), None)
                 if first is not None:
                     self.prefix[name] = first
-        if self.prefix:
+        if self.stated and self.boot != BOTH:
+            # The source states its modes: the switches go where the program may start in either
+            # mode, but the prefixes above are the profile's, so that the output, which states its
+            # modes too, compiles to itself; a program that opens with its switch keeps it there.
+            self.boot = BOTH
+            self.entry = {name: BOTH if name in self.fixed else NONE for name in self.routines}
+            self.exit = {name: None for name in self.routines}
+            first = next((need(n) for n in walk(self.routines[MAIN]) if need(n)), None)
+            if self.stated == "start" and first is not None:
+                self.prefix[MAIN] = first
+        if self.prefix or self.stated:
             seen = self.solve()
         for name, body in self.routines.items():
             insert(body, seen.get(name, {}))
@@ -204,9 +217,11 @@ def _inserted(nodes: list, seen: dict[tuple, State], path: tuple) -> list:
     return copy
 
 
-def write_switches(main: list, subs: list[tuple[ir.Routine, list, object]], profile: Profile) -> None:
-    """The whole pass: the main program's body and each subroutine's, in place."""
+def write_switches(main: list, subs: list[tuple[ir.Routine, list, object]], profile: Profile,
+                   stated: str = "") -> None:
+    """The whole pass: the main program's body and each subroutine's, in place. `stated`: the
+    source states its mode before its first move (`Module.modes_stated`), so the output does too."""
     routines = {MAIN: main}
     for routine, body, _ in subs:
         routines[routine.name] = body
-    Modes(routines, profile).write()
+    Modes(routines, profile, stated).write()

@@ -38,6 +38,11 @@ from mcc.compiler.span import Span
 
 DIALECT = "arcus"
 UNITS = {"pps": ir.Unit.STEPS_PER_S, "pulses": ir.Unit.STEPS}
+def axis_sets(profile: Profile) -> tuple[ir.MotionParam, ...]:
+    """The IR parameters an Arcus axis uses its own values of only as a complete set (L447-L457)."""
+    return tuple(ir.MotionParam(name) for name in profile.get("arcus.axis_sets", []) or [])
+
+
 MOTION = {"max_speed": ir.MotionParam.MAX_SPEED, "initial_speed": ir.MotionParam.INITIAL_SPEED}
 AXES = ("X", "Y", "Z", "U")
 # Registers read as neutral readings: catalog name -> ir_names.STATUS meaning. EO<bit> is the
@@ -110,7 +115,10 @@ class Lowering:
         self.diags = diags
         self.resolver = Resolver(profile, diags)
         self.cat = self.resolver.cat
-        self.module = ir.Module(DIALECT, profile.name, path=tree.path, steps_per_rev=profile.steps_per_rev)
+        # HSPDa, LSPDa and ACCa are used only once all three are set for the axis (L447-L457): the
+        # profile's `arcus.axis_sets` (Module.axis_sets, docs/IR.md)
+        self.module = ir.Module(DIALECT, profile.name, path=tree.path, steps_per_rev=profile.steps_per_rev,
+                                axis_sets=axis_sets(profile))
         self.main = ir.Routine("main", ir.RoutineKind.MAIN)
         self.module.routines.append(self.main)
         self.program = Program()

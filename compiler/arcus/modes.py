@@ -159,6 +159,7 @@ def resolve(module: ir.Module, profile: Profile | None, diags: Diagnostics) -> d
     (A128), and take ABS/INC out of the IR. Returns the modes possible at each ARC/CIR."""
     flow = _Flow(module, boot_state(profile))
     flow.solve()
+    module.modes_stated = _stated(module, flow)
     arcs: dict[tuple[int, int], State] = {}
     for routine in module.routines:
         for block in routine.blocks:
@@ -181,6 +182,28 @@ def resolve(module: ir.Module, profile: Profile | None, diags: Diagnostics) -> d
                 kept.append(op)
             block.ops = kept
     return arcs
+
+
+def _stated(module: ir.Module, flow: _Flow) -> str:
+    """Whether the program states the mode of every move itself (an ABS or INC on every path before
+    it), so that none depends on the mode the controller powered up in or a host or an earlier run
+    left (L1569: INC stays in force): solved again from "either mode" at the start. "start" when
+    the main program's first statement is the switch; "paths" otherwise; "" when not stated."""
+    if flow.boot != BOTH:
+        flow = _Flow(module, BOTH)
+        flow.solve()
+    for routine in module.routines:
+        for block in routine.blocks:
+            state = flow.blocks.get(block.label, NONE)
+            for op in block.ops:
+                if isinstance(op, (ir.Move, ir.Arc)) and len(state) > 1:
+                    if not isinstance(op, ir.Move) or op.mode is ir.MoveMode.MODAL:
+                        return ""
+                if switch(op) is not None or isinstance(op, ir.Call):
+                    state = flow.after(op, state, None)
+    main = next((r for r in module.routines if r.kind is ir.RoutineKind.MAIN and r.blocks), None)
+    opening = main.blocks[0].ops[:1] if main is not None else []
+    return "start" if opening and switch(opening[0]) is not None else "paths"
 
 
 def _mode(op: ir.Move, state: State, boot: State, diags: Diagnostics) -> ir.MoveMode:

@@ -3,7 +3,11 @@
 What it does: a speed, acceleration, ramp time or device setting that sets the value already in
 force is removed (`HSPD=5000` twice around a move keeps the first). A setting on `*` (every
 axis) is redundant only when no single axis was set since the same `*` setting. -O1 looks within each block;
--O2 uses the values in force on every path (compiler/in_force.py), across blocks and calls.
+-O2 uses the values in force on every path (compiler/in_force.py, `redundant`), across blocks and
+calls, for one axis and for `*` alike. Where an axis's own settings are a set of their own
+(`Module.axis_sets`, Arcus HSPDa/LSPDa/ACCa, L447-L457), a write is redundant only when its own
+register already holds the value: `HSPDX=1000` after `HSPD=1000` is not, since without it the
+axis's set is incomplete and the axis runs with the global LSPD and ACC.
 
 Why it is safe: setting a value already in force changes nothing on the device. The values in
 force are known only where every path agrees; a call forgets what the callee may set; an event
@@ -16,8 +20,7 @@ Needs: values in force (at -O2).
 
 from __future__ import annotations
 
-from mcc.compiler import ir
-from mcc.compiler.in_force import lookup
+from mcc.compiler import in_force, ir
 from mcc.compiler.opt.common import handler_writes, key
 
 NAME = "settings"
@@ -72,13 +75,11 @@ def slot_of(op) -> tuple:
 
 def across(module: ir.Module, context) -> int:
     analysis = context.in_force()
-    redundant: set[int] = set()
+    found: set[int] = set()
     for routine in module.routines:
         for _, _, op, state in analysis.walk(routine):
-            if isinstance(op, ir.SetMotion) and isinstance(op.value, ir.Const) and op.axis != ir.ALL_AXES:
-                current = lookup(state, op.param, op.axis)
-                if current is not None and current.value == op.value.value and current.unit == op.value.unit:
-                    redundant.add(id(op))
+            if in_force.redundant(state, op):
+                found.add(id(op))
     for _, block in module.blocks():
-        block.ops[:] = [op for op in block.ops if id(op) not in redundant]
-    return len(redundant)
+        block.ops[:] = [op for op in block.ops if id(op) not in found]
+    return len(found)

@@ -23,7 +23,7 @@ from mcc.link.device.programs import module_of
 PROGRAM_LINES = 3230
 INVALID = "?Invalid Command"   # the manual: "?(Error Message)" (L1494), the text is undocumented
 SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO": "0", "SLOAD": "0",
-            "DB": "1", "DN": "4EX00", "TR": "0",
+            "DB": "1", "DN": "4EX00",
             # per-axis speeds HS[axis], LS[axis], ACC[axis] (L449-L458): they read back what was
             # set, starting at the global defaults (the manual gives no default of their own)
             **{f"{name}{axis}": value for name, value in (("HS", "1000"), ("LS", "100"), ("ACC", "300"))
@@ -31,6 +31,7 @@ SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO":
             # signal polarity PO[axis], bits home/alarm/limit (L702-L704); the manual gives no
             # default: 0
             **{f"PO{axis}": "0" for axis in "XYZU"}}
+TIMER_MAX = 1_000_000  # TR reads 0..1,000,000 ms (L1701)
 ACTIONS = ("ABORT", "ABS", "INC", "STOP", "BO", "BF", "STORE")
 AXES = "XYZU"
 # The settings a program can change, read back from the machine: name -> (motion setting, scale
@@ -122,6 +123,15 @@ class ArcusDevice(VirtualDevice):
         match = re.fullmatch(r"GS(\d+)", upper)
         if match:   # call a subroutine of the standalone program; an undefined one is an error (L823, L1551)
             return "OK" if self.run(int(match.group(1))) else INVALID
+        match = re.fullmatch(r"TR(?:=(\d+))?", upper)
+        if match:   # the timer register counts down to 0 in ms from the value written (L789-L793, L1701-L1702)
+            machine = self.sim.machine
+            if match.group(1) is None:
+                return str(int(round(machine.countdown_left(0.0) * 1000)))
+            if int(match.group(1)) > TIMER_MAX:
+                return INVALID
+            machine.load_countdown(0.0, int(match.group(1)) / 1000)
+            return "OK"
         reading = self.reading(upper)
         if reading is not None:
             return reading

@@ -156,6 +156,7 @@ class DeviceMachine:
         except ContractError as exc:
             return self._ended(Outcome("error", f"cannot run: {exc}"), program)
         self.machine.shared["defaults"] = defaults(module.steps_per_rev, simulator.product)
+        self.machine.shared["sets"] = tuple(module.axis_sets)
         simulator.machine = self.machine      # the device's machine: what earlier commands left
         self.moving.clear()
         self.slewing.clear()
@@ -177,6 +178,8 @@ class DeviceMachine:
                     if a.motion is not None and end < a.motion.t_end < float("inf")]
             end = min(max(ends, default=end), max(self.run_limit, end))
         self.clock += end
+        # the countdown timer ran for the same time; the next run starts its clock at 0 again
+        self.machine.countdown = (0.0, self.machine.countdown_left(end))
         for name, axis in self.machine.axes.items():
             if axis.motion is not None:       # freeze: no virtual time passes between commands
                 if axis.moving(end):

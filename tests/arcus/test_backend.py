@@ -174,3 +174,35 @@ def test_mutated_programs_of_other_dialects_never_crash_the_arcus_backend() -> N
         if result.analysis is None or result.analysis.module is None:
             continue
         backend.emit(result.analysis.module, PROFILE)  # even a module with errors must not crash it
+
+
+@pytest.mark.parametrize("level", ["O0", "O1", "O2", "Os"])
+def test_an_explicit_leading_abs_survives_every_optimization_level(level: str) -> None:
+    """A program that starts with ABS does not rely on the power-up mode: a host or an earlier run
+    may have left INC in force (arcus-pmx-4ex-sa.txt L1569, "INC Turns on incremental move mode";
+    the mode stays until ABS, L1503). The output keeps the statement at every -O level."""
+    result = driver.compile_file("p.prg", "arcus", text="ABS\nHSPD=1000\nX1000\nWAITX\nEND\n", opt_level=level)
+    assert not result.has_errors
+    lines = result.listing.text.splitlines()
+    assert lines.count("ABS") == 1 and lines[0] == "ABS"
+    again = driver.compile_file("p.prg", "arcus", text=result.listing.text, opt_level=level)
+    assert again.listing.text == result.listing.text  # the output compiles to itself
+
+
+def test_a_mode_stated_on_every_path_is_kept_there() -> None:
+    """ABS or INC before each path's first move (L1503, L1569) states the mode without opening the
+    program with it: the output writes the switch before those moves, and compiles to itself."""
+    text = "HSPD=1000\nIF DI1=1\nINC\nX10\nELSE\nABS\nX20\nENDIF\nWAITX\nEND\n"
+    result = driver.compile_file("p.prg", "arcus", text=text)
+    lines = result.listing.text.splitlines()
+    assert lines[lines.index("X10") - 1] == "INC" and lines[lines.index("X20") - 1] == "ABS"
+    assert driver.compile_file("p.prg", "arcus", text=result.listing.text).listing.text == result.listing.text
+
+
+def test_a_leading_inc_is_kept_and_a_program_without_a_mode_still_relies_on_the_profile() -> None:
+    """INC first (L1569) is written before the first move; a program that states no mode runs in
+    the mode the profile says the controller powers up in (boot_move_mode, L974) and gets none."""
+    stated = driver.compile_file("p.prg", "arcus", text="INC\nX1000\nWAITX\nEND\n")
+    assert stated.listing.text.splitlines()[:2] == ["INC", "X1000"]
+    unstated = driver.compile_file("p.prg", "arcus", text="HSPD=1000\nX1000\nWAITX\nEND\n")
+    assert "ABS" not in unstated.listing.text.splitlines()

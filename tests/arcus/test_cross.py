@@ -78,9 +78,13 @@ def test_an_acceleration_set_before_the_speeds_is_written_when_they_are_known() 
 def test_a_ramp_that_cannot_be_computed_is_refused_at_the_move() -> None:
     listing = backend.emit(module("mcode", setm(ir.MotionParam.ACCEL, 10000, SPS2),
                                   move(ir.MoveMode.ABSOLUTE, ("1", 10))), PROFILE)
-    # reported where the acceleration is set (nothing follows that would make it a ramp time) and at the move
-    assert len(errors(listing)) == 2
-    assert all("speeds that are not known" in e for e in errors(listing))
+    # reported where the acceleration is set (nothing follows that would make it a ramp time) and at
+    # the move; and at the move once more: an axis's own acceleration is used only with its own
+    # speeds (arcus-pmx-4ex-sa.txt L447-L457), which are not known there
+    found = errors(listing)
+    assert len(found) == 3
+    assert sum("speeds that are not known" in e for e in found) == 2
+    assert sum("speed axis 1 runs with here is not known" in e for e in found) == 1
 
 
 def test_a_deceleration_other_than_the_acceleration_is_refused() -> None:
@@ -108,7 +112,8 @@ def test_relative_moves_get_inc_and_absolute_ones_abs() -> None:
 
 
 def test_the_same_moves_in_the_same_order_after_the_round_trip() -> None:
-    source = module("mcode", setm(ir.MotionParam.MAX_SPEED, 4000, SPS), move(ir.MoveMode.RELATIVE, ("1", 50)),
+    # the speed for every axis: an axis's own HSPDX alone would not be used (arcus-pmx-4ex-sa.txt L449)
+    source = module("mcode", setm(ir.MotionParam.MAX_SPEED, 4000, SPS, "*"), move(ir.MoveMode.RELATIVE, ("1", 50)),
                     ir.SetOutput(2, ir.Const(1)), ir.Delay(ir.Const(0.1, S)), move(ir.MoveMode.ABSOLUTE, ("1", 7)),
                     ir.WaitMotion("1"))
     compiled = read_back(backend.emit(source, PROFILE))
@@ -269,6 +274,18 @@ def test_compile_into_arcus_from_the_command_line(tmp_path) -> None:
         assert f"{source}:" in result.stdout + result.stderr
     else:
         assert result.returncode == 0 and "X" in result.stdout
+
+
+def test_an_mcode_initial_value_is_written_and_the_conversion_verifies(tmp_path) -> None:
+    """`VA Q1=25` creates Q1 and sets it to 25 (lexium-mcode.txt L6031-L6036); Arcus declares no
+    variables (arcus-pmx-4ex-sa.txt L2671-L2675: V0-V63 are assigned), so the output
+    assigns it before the program runs, and `--verify` finds both programs move to 25."""
+    source = tmp_path / "va.mxt"
+    source.write_text("VA Q1=25\nPG 100\nMA Q1\nH\nE\nPG\n")
+    result = run_mcc("compile", str(source), "--target", "arcus", "--verify", "-o", str(tmp_path / "va.prg"))
+    assert result.returncode == 0, result.stdout + result.stderr
+    lines = [line for line in (tmp_path / "va.prg").read_text().splitlines() if not line.startswith(";")]
+    assert lines[0] == "V0=25" and lines[1] == "XV0"
 
 
 # --- properties ------------------------------------------------------------------------------------

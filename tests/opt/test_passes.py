@@ -186,6 +186,31 @@ def test_settings_across_blocks_at_O2():
     assert len(ops(run(m, "settings", "O2"))) == 2
 
 
+def test_settings_at_O2_keeps_an_axis_setting_that_one_path_changed():
+    """An unaddressed X150 `V5` reaches every device (parker-x150.md L179: a universal command is
+    for all positioners); `1V10` on one path leaves device 1 at 10 there, so `1V5` after the join
+    is needed. Before the fix the meet lost device 1's own value and read it as the `*` value."""
+    branch = ir.Branch(ir.Compare("=", V("VAR1"), C(1)), "b", "c")
+    m = module(block("a", [hspd("*", 5)], branch), block("b", [hspd("1", 10)], ir.Jump("c")),
+               block("c", [hspd("1", 5), move("1", steps(1)), ir.WaitMotion("1")], ir.End()), dialect="x150")
+    assert len(ops(run(m, "settings", "O2", X150))) == 5  # nothing removed
+
+
+def test_settings_at_O2_removes_a_star_setting_in_force_on_every_path_and_across_calls():
+    """The `*` setting already in force after a join and a call that sets nothing is redundant
+    (issue 23: -O2 kept it); after a call that changes it, it is not (arcus-pmx-4ex-sa.txt
+    L443-L445: HSPD sets the global high speed)."""
+    quiet = ir.Routine("S1", ir.RoutineKind.SUBROUTINE, [block("s", [assign("V2", C(1))], ir.Return())], number=1)
+    loud = ir.Routine("S2", ir.RoutineKind.SUBROUTINE, [block("t", [hspd("*", 3000)], ir.Return())], number=2)
+    branch = ir.Branch(ir.Compare("=", V("V1"), C(1)), "b", "c")
+    m = module(block("a", [hspd("*", 5000)], branch), block("b", [assign("V3", C(1))], ir.Jump("c")),
+               block("c", [ir.Call("S1"), hspd("*", 5000), move("X", steps(1)), ir.WaitMotion("X"), ir.Call("S2"),
+                           hspd("*", 5000), move("X", steps(2)), ir.WaitMotion("X")], ir.End()),
+               routines=(quiet, loud))
+    kept = [op for op in ops(run(m, "settings", "O2")) if isinstance(op, ir.SetMotion)]
+    assert len(kept) == 2
+
+
 # -- branches ----------------------------------------------------------------------------------
 
 def test_branches_with_one_target_or_constant_condition_become_jumps():

@@ -31,7 +31,9 @@ class Shape:
     outputs: int = 4
     prints: bool = True
     initial_speed: bool = False  # also set initial speeds (Arcus ramps need them with accelerations)
-    prologue: bool = False  # main starts by setting both speeds of every axis (as programs do)
+    # main starts by setting both speeds and the acceleration of every axis, as programs do (an Arcus
+    # axis uses its own speeds only once all of HSPDa, LSPDa and ACCa are set, L447-L457)
+    prologue: bool = False
     one_ramp: bool = False  # an acceleration is set with an equal deceleration (Arcus ACC, X150 A)
     speeds: tuple[int, int] = (100, 20000)  # steps/s
     initial_speeds: tuple[int, int] = (0, 90)  # steps/s
@@ -41,7 +43,8 @@ class Shape:
 
 SHAPES = {
     "any": Shape(),
-    "arcus": Shape(prints=False, initial_speed=True, prologue=True, one_ramp=True),
+    # LSPD takes 1..6,000,000 pps (arcus-pmx-4ex-sa.txt L1574-L1576): no initial speed of 0
+    "arcus": Shape(prints=False, initial_speed=True, prologue=True, one_ramp=True, initial_speeds=(1, 90)),
     # the same speeds at MCode's 51200 steps/rev (12.8 times 4000)
     "mcode": Shape(axes=("X",), operators=("+", "-", "*", "/", "&"), nested_right=False, outputs=3,
                    initial_speed=True, speeds=(1280, 256000), initial_speeds=(0, 1150), accels=(1280, 1280000),
@@ -118,10 +121,12 @@ def modules(draw, dialect: str = "arcus", steps_per_rev: int | None = None, shap
         else:
             term = ir.Branch(draw(conds()), draw(st.sampled_from(later)), draw(st.sampled_from(later)))
         if n == 0 and shape.prologue:
-            body = [ir.SetMotion(param, axis, const(draw(st.integers(*bounds)), U.STEPS_PER_S))
+            body = [ir.SetMotion(param, axis, const(draw(st.integers(*bounds)), unit))
                     for axis in shape.axes
-                    for param, bounds in ((ir.MotionParam.INITIAL_SPEED, shape.initial_speeds),
-                                          (ir.MotionParam.MAX_SPEED, shape.speeds))] + body
+                    for param, bounds, unit in ((ir.MotionParam.INITIAL_SPEED, shape.initial_speeds, U.STEPS_PER_S),
+                                                (ir.MotionParam.MAX_SPEED, shape.speeds, U.STEPS_PER_S),
+                                                (ir.MotionParam.ACCEL, shape.accels, U.STEPS_PER_S2),
+                                                (ir.MotionParam.DECEL, shape.accels, U.STEPS_PER_S2))] + body
         blocks.append(ir.Block(f"b{n}", paired(body) if shape.one_ramp else body, term))
     sub_ops = draw(st.lists(ops(False, shape), max_size=4))
     sub = ir.Routine("S1", ir.RoutineKind.SUBROUTINE, [ir.Block("s1", paired(sub_ops) if shape.one_ramp else sub_ops,
