@@ -70,6 +70,10 @@ def with_fixed_initial_speed(module: ir.Module, lowest: float) -> ir.Module:
     return copy
 
 
+# An acceleration and a ramp time give the same thing two ways: the one set last applies
+# (docs/SIMULATOR.md, "Motion"), so setting one for every axis forgets the other.
+RAMP_PAIRS = {ir.MotionParam.ACCEL: ir.MotionParam.ACCEL_TIME, ir.MotionParam.ACCEL_TIME: ir.MotionParam.ACCEL,
+              ir.MotionParam.DECEL: ir.MotionParam.DECEL_TIME, ir.MotionParam.DECEL_TIME: ir.MotionParam.DECEL}
 POWER_UP_PARAMS = (ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED, ir.MotionParam.ACCEL,
                    ir.MotionParam.DECEL)
 MOTION_OPS = (ir.Move, ir.Arc, ir.Slew, ir.Home)
@@ -284,7 +288,10 @@ def _set_before_motion(block: ir.Block, axes: set[str]) -> set[ir.MotionParam]:
         if isinstance(op, MOTION_OPS) or isinstance(op, (ir.Call, ir.Native)):
             break
         if isinstance(op, ir.SetMotion) and isinstance(op.value, ir.Const):
-            seen.setdefault(op.param, set()).add(op.axis)
+            # a ramp time set before any motion replaces the acceleration too (Arcus ACC)
+            for param in (op.param, RAMP_PAIRS.get(op.param)):
+                if param is not None:
+                    seen.setdefault(param, set()).add(op.axis)
     return {p for p, set_for in seen.items() if ALL in set_for or (axes and axes <= set_for)}
 
 
@@ -356,6 +363,10 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets:
             state[(param, axis)] = op.value
         else:
             state.pop((param, axis), None)
+        other = RAMP_PAIRS.get(param)
+        if other is not None and axis == ALL:  # whichever of accel / accel_time is set last applies
+            for key in [k for k in state if len(k) == 2 and k[0] is other]:
+                del state[key]
     elif isinstance(op, ir.Native):
         state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):
