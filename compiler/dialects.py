@@ -28,6 +28,22 @@ class RoutineNumbers:
 
 
 @dataclass(frozen=True)
+class Resolution:
+    """How finely a dialect's writer states what decides a run's timing, in its own units (the
+    validation's time tolerance comes from it, sim/verify.py).
+
+    The writer rounds a converted speed or acceleration to `rate` (steps/s, or rev/s with
+    `per_rev`), a delay or ramp time to `tick` seconds; `ramp_times` means accelerations are written
+    as a ramp time (Arcus ACC), so each ramp of a move may be off by one tick. A product profile may
+    override them (`[sim] rate_resolution`, `time_resolution`)."""
+
+    rate: float = 1.0
+    per_rev: bool = False
+    tick: float = 0.001
+    ramp_times: bool = False
+
+
+@dataclass(frozen=True)
 class Dialect:
     name: str
     title: str
@@ -55,6 +71,7 @@ class Dialect:
     keeps_code_after_transfer: bool = False
     routine_numbers: RoutineNumbers = RoutineNumbers(named=32)
     cost_key: str = ""
+    resolution: Resolution = Resolution()
 
     def load_frontend(self):
         return importlib.import_module(self.frontend)
@@ -69,13 +86,17 @@ DIALECTS: dict[str, Dialect] = {
     # so outlining stays modest (32 new labels at most)
     "mcode": Dialect("mcode", "Lexium MCode", (".mxt", ".ixt", ".mcode"),
                      "mcc.compiler.mcode.frontend", "mcc.backends.mcode", "lmd-c", ".mxt", "'",
-                     writes_jumps=True, program_regions=True),
+                     writes_jumps=True, program_regions=True,
+                     # VM/VI/A/D in whole steps/s (steps/s^2) when converted, H in ms
+                     resolution=Resolution(1.0, False, 0.001)),
     # X150: VARn hold decimals (parker-x150.md VAR); a host may start any sequence with XR/XG; the
     # sequence text after XG is stored as written; every routine but the stream is a sequence
     "x150": Dialect("x150", "Parker/Digiplan X150/X150E", (".x150",),
                     "mcc.compiler.x150.frontend", "mcc.backends.x150", "x150-pdhx", ".x150", ";", 8000,
                     variable_type="decimal", keeps_code_after_transfer=True,
-                    routine_numbers=RoutineNumbers("limits.sequences", (1, 64), every_routine=True)),
+                    routine_numbers=RoutineNumbers("limits.sequences", (1, 64), every_routine=True),
+                    # V and A in rev/s to four decimals (parker-x150.md L4542, L199), T in s from 0.001 (L4104)
+                    resolution=Resolution(0.0001, True, 0.001)),
     # Arcus: V1-V64 are 32-bit integers; a SUB runs only by GOSUB (or as SUB 31 on an error, which
     # is never given to a new routine); program memory is priced per statement and per axis
     "arcus": Dialect("arcus", "Arcus Performax PMX-4EX-SA", (".prg",),
@@ -83,7 +104,9 @@ DIALECTS: dict[str, Dialect] = {
                      private_routines=True,
                      routine_numbers=RoutineNumbers("arcus.subroutines", (0, 31), "arcus.allocate_subroutines_from",
                                                     first=1, reserved=(31,)),
-                     cost_key="arcus.cost"),
+                     cost_key="arcus.cost",
+                     # HSPD/LSPD in pulses/s, ACC a ramp time in ms, DELAY in ms (L1198, L1735)
+                     resolution=Resolution(1.0, False, 0.001, ramp_times=True)),
 }
 
 

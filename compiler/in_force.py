@@ -214,7 +214,9 @@ def with_power_up(module: ir.Module, source, target, lowest_initial: float = 0.0
 
     if not _uses_motion(module):
         return module
-    ours = power_up(source, module.steps_per_rev)
+    # a module that does not state its step size is taken at the target's (as the backends write it
+    # and the validation compares it, sim/verify.py _stated_steps)
+    ours = power_up(source, module.steps_per_rev or target.steps_per_rev)
     ratio = module.steps_per_rev / target.steps_per_rev if module.steps_per_rev > 0 and target.steps_per_rev > 0 \
         else 1.0
     theirs = {name: value * ratio for name, value in power_up(target, target.steps_per_rev).items()}
@@ -229,6 +231,10 @@ def with_power_up(module: ir.Module, source, target, lowest_initial: float = 0.0
     if first is None or first.entry is None:
         return module
     covered = _set_before_motion(first.entry, _motion_axes(copy))
+    if {ir.MotionParam.ACCEL, ir.MotionParam.DECEL} & (set(differ) - covered):
+        # a ramp written for every axis is converted with the speeds in force for every axis (an Arcus
+        # ACC is a time): speeds the program sets only for its own axes do not cover them
+        covered -= {ir.MotionParam.INITIAL_SPEED, ir.MotionParam.MAX_SPEED} - _set_before_motion(first.entry, set())
     differ = [p for p in differ if p not in covered]
     if not differ:
         return module

@@ -28,7 +28,8 @@ import dataclasses
 from dataclasses import dataclass
 from fractions import Fraction
 
-from mcc.compiler import ir, ir_verify, units
+from mcc.compiler import dialects, ir, ir_verify, units
+from mcc.compiler.dialects import Resolution
 from mcc.sim.interpreter import ContractError, Options, simulate
 from mcc.sim.scenario import AxisSwitches, InputEvent, Scenario
 from mcc.sim.trace import Event, Trace
@@ -50,29 +51,6 @@ TOGGLE_AFTER = 0.1  # s after a point where the program waits that a toggling in
 STEP_BUDGETS = 3  # a run stopped by the step limit before the other's stop is run again, x8 each time
 
 
-@dataclass(frozen=True)
-class Resolution:
-    """How finely a dialect writes what decides a run's timing, in its own units.
-
-    The writer rounds a converted speed or acceleration to `rate` (steps/s, or rev/s with
-    `per_rev`), a delay or ramp time to `tick` seconds; `ramp_times` means accelerations are written
-    as a ramp time (Arcus ACC), so each ramp of a move may be off by one tick. A product profile may
-    override them (`[sim] rate_resolution`, `time_resolution`)."""
-
-    rate: float
-    per_rev: bool
-    tick: float
-    ramp_times: bool = False
-
-
-RESOLUTIONS = {
-    # VM/VI/A/D in whole steps/s (steps/s^2) when converted (backends/mcode.py), H in ms (lexium-mcode.txt)
-    "mcode": Resolution(1.0, False, 0.001),
-    # V and A in rev/s to four decimals (parker-x150.md L4542, L199), T in s from 0.001 (L4104)
-    "x150": Resolution(0.0001, True, 0.001),
-    # HSPD/LSPD in pulses/s, ACC a ramp time in ms, DELAY in ms (arcus-pmx-4ex-sa.txt L1198, L1735)
-    "arcus": Resolution(1.0, False, 0.001, ramp_times=True),
-}
 POLL = 0.001  # s: the simulator's scan of a polling loop while an axis moves (interpreter.Options.poll)
 
 
@@ -96,7 +74,8 @@ EXACT = Tolerance()
 
 def resolution(dialect: str, profile=None) -> Resolution:
     """The dialect's `Resolution`, with the profile's `[sim]` overrides."""
-    found = RESOLUTIONS.get(dialect, Resolution(1.0, False, 0.001))
+    known = dialects.DIALECTS.get(dialect)
+    found = known.resolution if known is not None else Resolution()
     if profile is None or not hasattr(profile, "get"):
         return found
     rate = profile.get("sim.rate_resolution", found.rate)
@@ -194,6 +173,22 @@ def inputs_read(module: ir.Module) -> list[int]:
     return sorted(found)[:MAX_DRIVEN_INPUTS]
 
 
+MASK_INPUTS = 8  # the inputs a reading of all inputs at once (MCode IN, Arcus DI) is given levels for
+
+
+def inputs_seen(module: ir.Module) -> list[int]:
+    """The inputs whose level the program can see: those it reads one by one and, when it reads
+    all inputs at once as a mask, the first MASK_INPUTS too (their levels must be stated, or an
+    undriven input reads its product's idle level, which differs between products)."""
+    found = set(inputs_read(module))
+    for _, block in module.blocks():
+        exprs = [e for op in block.ops for e in ir.op_exprs(op)] + list(ir.term_exprs(block.terminator))
+        if any(isinstance(node, ir.Status) and node.meaning == "inputs" for expr in exprs for node in ir.walk_expr(expr)):
+            found.update(range(1, MASK_INPUTS + 1))
+            break
+    return sorted(found)
+
+
 def with_idle_levels(scenario: Scenario, source: ir.Module, profile, also: list[int]) -> Scenario:
     """The scenario with the level of every input it leaves undriven stated: the source's idle
     level (inactive for the polarity the source sets first, else its product's), so that the output,
@@ -281,7 +276,7 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     tol = within or tolerance(source, output, source_profile, output_profile)
     ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
     known: dict[int, Trace] = {}
-    idle = inputs_read(output)  # the inputs the output reads too get the source's idle level
+    idle = sorted(set(inputs_seen(source)) | set(inputs_seen(output)))  # stated at the source's idle level
     if scenarios is None:
         lows = with_idle_levels(Scenario(inputs={n: 0 for n in inputs_read(source)}, name="inputs low"), source,
                                 source_profile, idle)

@@ -196,7 +196,7 @@ def test_a_cross_compiled_homing_that_would_move_the_zero_is_refused_on_its_line
     refusals = [d for d in result.diagnostics if d.code == "G003" and d.span.line == line]
     assert refusals, [(d.code, d.message) for d in result.diagnostics]
     if dialect != "x150":  # GH's speed of its own is refused first (MCode has no homing speed but VM)
-        assert "zero" in refusals[0].message
+        assert any("zero" in refusal.message for refusal in refusals), [r.message for r in refusals]
 
 
 @pytest.mark.parametrize("source, dialect, ext, axis", [
