@@ -46,6 +46,8 @@ FEATURES = (
     "if_var",        # IF on a variable compared with a constant
     "loops",         # counted loops, nested up to 2 deep
     "calls",         # subroutines (without recursion), called from main and from each other
+    "observe",       # an assignment followed by an output set from a test of its value (what the
+                     # simulator compares: Arcus and X150 print nothing)
 )
 
 # Features left out of the bounded test because they hit a defect listed in issue 23 that another
@@ -63,7 +65,9 @@ KNOWN_DEFECT_FEATURES: dict[str, str] = {
 # The same, for one source dialect only.
 KNOWN_DEFECT_FEATURES_BY_DIALECT: dict[str, dict[str, str]] = {
     "x150": {"calls": "X150 -> MCode: a called sequence is written without RT (issue 23, 'ends called "
-                      "sequences with E instead of RT')"},
+                      "sequences with E instead of RT')",
+             "arith_limits": "X150 variables are decimal, Arcus and MCode ones wrap at 32 bits: the backends "
+                             "write a calculation whose result differs (bench/findings/x150-arcus-int32-overflow)"},
 }
 
 
@@ -145,7 +149,13 @@ def simple(g: Gen) -> list:
         return []
     kind = r.choice(kinds + (["assign"] if "assign" in kinds else []))
     if kind == "assign":
-        return [assign(g)]
+        stmt = assign(g)
+        if g.on("observe") and r.random() < 0.4:  # make the value visible: an output follows a test of it
+            output = r.randint(1, 3)
+            ops = {"mcode": ("<", ">="), "arcus": ("<", ">="), "x150": ("<", ">")}[g.dialect]
+            test = ("cmp", stmt[1], r.choice(ops), r.randint(-20, 60))
+            return [stmt, ("if", test, [("output", output, 1)], [("output", output, 0)])]
+        return [stmt]
     if kind == "settings":
         return [("setting", r.choice(SETTING_KINDS[g.dialect]))]
     scale = MOVE_SCALE[g.dialect]
