@@ -46,6 +46,8 @@ FEATURES = (
     "if_var",        # IF on a variable compared with a constant
     "loops",         # counted loops, nested up to 2 deep
     "calls",         # subroutines (without recursion), called from main and from each other
+    "opt_patterns",  # what the optimizer rewrites: a constant compared where it folds, a copy whose
+                     # source changes, a store read then overwritten, a value or a setting around a call
     "observe",       # an assignment followed by an output set from a test of its value (what the
                      # simulator compares: Arcus and X150 print nothing)
 )
@@ -59,6 +61,8 @@ KNOWN_DEFECT_FEATURES: dict[str, str] = {
     "moves_var": "X150 -O0: an absolute D0 G becomes D0 MN MPI G, later D(VARn) G run relative (issue 23)",
     "settings": "Arcus ACC then a speed change: X150 keeps A without converting it again; MCode A without D: "
                 "X150 and Arcus decelerate at the source's default D (issue 23, 'MCode defaults')",
+    "arith_limits": "X150 variables are decimal, Arcus and MCode ones wrap at 32 bits: a calculation that "
+                    "overflows is written as is and its result differs (bench/findings/x150-arcus-int32-overflow)",
     "initial_speed": "X150 has no initial speed (X205): each move ramps from 0 and takes longer than the "
                      "source's (found by bench/fuzz_codegen.py)",
 }
@@ -66,8 +70,7 @@ KNOWN_DEFECT_FEATURES: dict[str, str] = {
 KNOWN_DEFECT_FEATURES_BY_DIALECT: dict[str, dict[str, str]] = {
     "x150": {"calls": "X150 -> MCode: a called sequence is written without RT (issue 23, 'ends called "
                       "sequences with E instead of RT')",
-             "arith_limits": "X150 variables are decimal, Arcus and MCode ones wrap at 32 bits: the backends "
-                             "write a calculation whose result differs (bench/findings/x150-arcus-int32-overflow)"},
+},
 }
 
 
@@ -147,6 +150,8 @@ def simple(g: Gen) -> list:
              if g.on(k) and not (k in ("prints", "floats") and g.dialect != "mcode")]
     if not kinds:
         return []
+    if g.on("opt_patterns") and r.random() < 0.15:
+        return optimizer_pattern(g)
     kind = r.choice(kinds + (["assign"] if "assign" in kinds else []))
     if kind == "assign":
         stmt = assign(g)
@@ -183,6 +188,38 @@ def simple(g: Gen) -> list:
     if kind == "outputs":
         return [("output", r.randint(1, 3), r.randint(0, 1))]  # MCode drives outputs 1-3 only
     return [("print", r.choice(USER_VARS))]
+
+
+def optimizer_pattern(g: Gen) -> list:
+    """A few statements in one block that the optimizer's passes rewrite, each ending in an output
+    that shows the value, so a wrong rewrite changes what the simulator sees."""
+    r = g.rng
+    a, b = r.sample(USER_VARS, 2)
+    value = r.randint(-5, 20)
+    output = r.randint(1, 3)
+
+    def shown(var: int, threshold: int) -> tuple:
+        op = r.choice(("<", ">") if g.dialect == "x150" else ("<", ">=", "="))
+        return ("if", ("cmp", var, op, threshold), [("output", output, 1)], [("output", output, 0)])
+
+    kind = r.randrange(5 if g.subs else 3)
+    if kind == 0:  # fold: a constant through a calculation, compared with what it folds to (or next to it)
+        return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), "+", ("const", 3)),
+                shown(b, value + 3 + r.choice((-1, 0, 1)))]
+    if kind == 1:  # copies: b copies a, a changes, b is read
+        return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), None, None),
+                ("assign", a, ("const", value + 10), None, None), shown(b, value + 1)]
+    if kind == 2:  # dead stores: a store read by a calculation, then overwritten
+        return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), "*", ("const", 2)),
+                ("assign", a, ("const", 0), None, None), shown(b, 2 * value)]
+    call = ("call", r.randint(1, g.subs))
+    if kind == 3:  # fold across a call: the callee may assign the variable
+        return [("assign", a, ("const", value), None, None), call, ("assign", b, ("var", a), "+", ("const", 1)),
+                shown(b, value + 1)]
+    name = r.choice(SETTING_KINDS[g.dialect])  # settings: the same value set again after a call
+    setting = ("setting_value", name, setting_value(r, g.dialect, name, g.features))
+    move = ("move", "rel", ("const", MOVE_SCALE[g.dialect] // 2))
+    return [setting, call, setting, move]
 
 
 def block(g: Gen, size: int) -> list:
@@ -317,6 +354,9 @@ class ArcusWriter(Writer):
     def w_setting(self, name):
         self.emit(f"{name}={setting_value(self.rng, 'arcus', name, self.features)}")
 
+    def w_setting_value(self, name, value):
+        self.emit(f"{name}={value}")
+
     def w_move(self, mode, target):
         self.emit("ABS" if mode == "abs" else "INC")
         self.emit(f"X{_value(target, self.var)}")
@@ -392,6 +432,9 @@ class MCodeWriter(Writer):
     def w_assign(self, var, a, op, b):
         left = _value(a, self.var)
         self.emit(f"N{var}={left}" if op is None else f"N{var}={left}{op}{_value(b, self.var)}")
+
+    def w_setting_value(self, name, value):
+        self.emit(f"{name}={value}")
 
     def w_setting(self, name):
         value = setting_value(self.rng, 'mcode', name, self.features)
@@ -476,6 +519,9 @@ class X150Writer(Writer):
 
     def w_setting(self, name):
         self.emit(f"1{name}{setting_value(self.rng, 'x150', name, self.features)}")
+
+    def w_setting_value(self, name, value):
+        self.emit(f"1{name}{value}")
 
     def w_move(self, mode, target):
         self.emit("1MPA" if mode == "abs" else "1MPI")
