@@ -206,9 +206,9 @@ def optimizer_pattern(g: Gen) -> list:
     if kind == 0:  # fold: a constant through a calculation, compared with what it folds to (or next to it)
         return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), "+", ("const", 3)),
                 shown(b, value + 3 + r.choice((-1, 0, 1)))]
-    if kind == 1:  # copies: b copies a, a changes, b is read
-        return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), None, None),
-                ("assign", a, ("const", value + 10), None, None), shown(b, value + 1)]
+    if kind == 1:  # copies: b copies a (a value not known here, or fold would take it), a changes, b is read
+        return [("assign", b, ("var", a), None, None), ("assign", a, ("var", a), "+", ("const", 10)),
+                shown(b, value)]
     if kind == 2:  # dead stores: a store read by a calculation, then overwritten
         return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), "*", ("const", 2)),
                 ("assign", a, ("const", 0), None, None), shown(b, 2 * value)]
