@@ -207,8 +207,8 @@ def optimizer_pattern(g: Gen) -> list:
         return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), "+", ("const", 3)),
                 shown(b, value + 3 + r.choice((-1, 0, 1)))]
     if kind == 1:  # copies: b copies a (a value not known here, or fold would take it), a changes, b is read
-        return [("assign", b, ("var", a), None, None), ("assign", a, ("var", a), "+", ("const", 10)),
-                shown(b, value)]
+        return [("assign", b, ("var", a), None, None), ("assign", a, ("var", a), "+", ("const", 1000)),
+                shown(b, value)]  # a test near a's usual value, which a + 1000 is far from
     if kind == 2:  # dead stores: a store read by a calculation, then overwritten
         return [("assign", a, ("const", value), None, None), ("assign", b, ("var", a), "*", ("const", 2)),
                 ("assign", a, ("const", 0), None, None), shown(b, 2 * value)]
