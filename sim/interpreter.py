@@ -632,7 +632,10 @@ class Simulator:
         vtype = self._type(name)
         # an expression assigned to a float64 variable computes in floating point (MCode F1-F8,
         # lexium-mcode.txt L1249, L2834: F1=Q2/Q1 is 1.2)
-        value = values.store(self._eval(op.value, vtype is ir.VarType.FLOAT64), vtype)
+        try:
+            value = values.store(self._eval(op.value, vtype is ir.VarType.FLOAT64), vtype)
+        except values.ArithmeticFault as exc:  # a value the variable cannot hold: the run's error
+            raise RuntimeFault("S002", str(exc)) from None
         if self.vars.get(name) != value:
             self.changes += 1
             self.var_changes += 1

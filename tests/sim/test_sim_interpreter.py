@@ -361,3 +361,13 @@ def test_a_race_between_two_reads_of_a_polling_round_is_not_a_divergence():
     assert compare(source, rotated, pulse) is None
     # a program that does what no interleaving of the source does is still found
     assert compare(source, module([ir.SetOutput(2, c(1))]), pulse) is not None
+
+
+def test_a_value_a_variable_cannot_hold_is_the_runs_error_not_a_crash():
+    """X150 variables hold decimals within the manual's range; 65536 multiplied in nine times does
+    not fit: the run stops with S002 on its line, also when the validation runs it (a fuzz finding,
+    bench/findings/x150-verify-arithmetic-fault.x150, escaped as an internal error)."""
+    ops = [ir.Assign(ir.Var("VAR1"), c(65536 ** 5), at(7))]
+    trace = simulate(module(ops, dialect="x150"))
+    assert trace.stopped == "error" and "line 7" in trace.reason
+    assert [d.code for d in trace.diagnostics] == ["S002"]
