@@ -38,7 +38,7 @@ FEATURES = (
     "homing",        # a homing run on the home switch (the default scenario's switch at 0)
     "floats",        # MCode float registers: divisions kept as reals, moves to them, copies into integers
     "save",          # the program ends by saving it (MCode S after PG, X150 1SV)
-    "initial_speed", # initial speeds (Arcus LSPD, MCode VI) up to a quarter of the top speed; without it 100 steps/s
+    "initial_speed", # initial speeds (Arcus LSPD, MCode VI) up to a quarter of the top speed; without it 1 step/s
     "delays",
     "outputs",
     "prints",        # MCode only (the other dialects print nothing the simulator compares)
@@ -260,7 +260,9 @@ MOVE_SCALE = {"mcode": 51200, "arcus": 4000, "x150": 4000}
 def setting_value(rng: random.Random, dialect: str, name: str, features: frozenset[str] = frozenset(FEATURES)):
     """A value inside the catalog's range that keeps every move short (a few seconds at most)."""
     if name in ("LSPD", "VI") and "initial_speed" not in features:
-        return 100
+        # the lowest start speed (Arcus LSPD 1-..., L1574-L1576): X150 starts every move from 0, so a
+        # higher one is a real difference the validation refuses (S010, the "initial_speed" feature)
+        return 1
     return {
         ("mcode", "VM"): lambda: rng.choice([51200, 102400, 256000, 512000]),
         ("mcode", "VI"): lambda: rng.choice([100, 1000, 5000]),
