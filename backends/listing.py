@@ -48,3 +48,18 @@ class Listing:
             where = ", ".join(f"{s.line}" for s in sorted(set(sources), key=lambda s: s.line))
             out.append(f"{number:5}  {text:<{width}}  ; src {where or '-'}")
         return "\n".join(out) + "\n"
+
+
+def axis_sets_written(module, dialect: str, title: str):
+    """(module, None) with another dialect's axis sets (Arcus HSPDa/LSPDa/ACCa, used only once all
+    are set, L447-L457) as a target applies an axis's own speeds at once, or (None, a listing that
+    refuses the program on the setting's line) when a set is complete on some paths only."""
+    from mcc.compiler import in_force
+
+    try:
+        return in_force.without_axis_sets(module), None
+    except in_force.Unresolved as exc:
+        refused = Listing(dialect)
+        refused.diagnostics.add("G003", exc.span or Span(module.path or "-", 1, 1, 1, 1),
+                                f"this setting cannot be written in {title}: {exc}")
+        return None, refused

@@ -22,7 +22,7 @@ from __future__ import annotations
 import string
 from fractions import Fraction
 
-from mcc.backends.listing import Listing
+from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
@@ -1242,13 +1242,9 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
     lowest = lowest / float(units.ratio(module.steps_per_rev, profile.steps_per_rev))
     module = with_source_power_up(module, profile, lowest)  # the source's power-up speeds where ours differ
     module = with_fixed_initial_speed(module, lowest)
-    try:
-        module = in_force.without_axis_sets(module)  # an axis's own speeds as MCode applies them
-    except in_force.Unresolved as exc:
-        listing = Listing(DIALECT)
-        listing.diagnostics.add("G003", exc.span or Span(module.path or "-", 1, 1, 1, 1),
-                                f"this setting cannot be written in MCode: {exc}")
-        return listing
+    module, refused = axis_sets_written(module, DIALECT, "MCode")  # an axis's own speeds as MCode applies them
+    if refused is not None:
+        return refused
     try:
         return Writer(module, profile).run()
     except Unsupported as exc:  # a limit of the whole program (the name space), not of one line

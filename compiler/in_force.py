@@ -275,16 +275,8 @@ def _first_run(module: ir.Module) -> ir.Routine | None:
 
 
 def _motion_axes(module: ir.Module) -> set[str]:
-    axes: set[str] = set()
-    for _, block in module.blocks():
-        for op in block.ops:
-            if isinstance(op, ir.Move):
-                axes.update(axis for axis, _ in op.targets)
-            elif isinstance(op, ir.Arc):
-                axes.update(op.axes)
-            elif isinstance(op, MOTION_OPS):
-                axes.add(getattr(op, "axis", ALL))
-    return axes
+    """The axes the module moves (`*` included when a motion names every axis)."""
+    return _axes(module, MOTION_OPS, keep_all=True)
 
 
 def _set_before_motion(block: ir.Block, axes: set[str]) -> set[ir.MotionParam]:
@@ -495,18 +487,21 @@ class InForce:
                 self.reached.add(label)
 
 
-def _axes(module: ir.Module) -> set[str]:
-    """Every axis an operation of the module names."""
+def _axes(module: ir.Module, kinds: tuple = (), keep_all: bool = False) -> set[str]:
+    """Every axis an operation of the module names (of `kinds` only, when given)."""
     axes: set[str] = set()
     for _, block in module.blocks():
         for op in block.ops:
+            if kinds and not isinstance(op, kinds):
+                continue
             if isinstance(op, ir.Move):
                 axes.update(axis for axis, _ in op.targets)
             elif isinstance(op, ir.Arc):
                 axes.update(op.axes)
-            elif getattr(op, "axis", ""):
+            elif getattr(op, "axis", None) is not None and (op.axis or keep_all):
                 axes.add(op.axis)
-    axes.discard(ALL)
+    if not keep_all:
+        axes.discard(ALL)
     return axes
 
 

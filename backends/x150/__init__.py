@@ -12,11 +12,10 @@ sequence memory: every stored character and its delimiter is one byte (L241), ag
 
 from __future__ import annotations
 
-from mcc.backends.listing import Listing
+from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler.x150 import naming
 from mcc.backends.x150.writer import write
 from mcc.compiler import in_force, ir
-from mcc.compiler.span import Span
 from mcc.compiler.profiles import Profile
 
 DIALECT = "x150"
@@ -24,12 +23,8 @@ DIALECT = "x150"
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
     module = in_force.with_source_power_up(module, profile)  # the source's power-up speeds where ours differ
-    try:
-        module = in_force.without_axis_sets(module)  # an axis's own speeds as X150 applies them
-    except in_force.Unresolved as exc:
-        refused = Listing(DIALECT)
-        refused.diagnostics.add("G003", exc.span or Span(module.path or "-", 1, 1, 1, 1),
-                                f"this setting cannot be written in X150: {exc}")
+    module, refused = axis_sets_written(module, DIALECT, "X150")  # an axis's own speeds as X150 applies them
+    if refused is not None:
         return refused
     written = write(module, profile)
     listing = Listing(DIALECT)
