@@ -94,8 +94,8 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("x150-output-inverted", X, 'return "X" * (op.index - 1) + str(int(value.value))',
            'return "X" * (op.index - 1) + str(1 - int(value.value))', "output level inverted"),
     # (MQ for every move instead of MN is an equivalent mutant: the writer then adds TRIP for the wait)
-    Mutant("x150-drop-trip", X, 'self.state.get(("move", ir.ALL_AXES))) != "MN":',
-           'self.state.get(("move", ir.ALL_AXES))) == "MC":', "dropped wait (no TRIP after an MQ move)"),
+    Mutant("x150-drop-trip", X, 'if self.known("move", key) != "MN":',
+           'if self.known("move", key) == "MC":', "dropped wait (no TRIP after an MQ move)"),
     Mutant("x150-relation-flipped", X, "terms.append(self.operand(cond.left) + cond.op + self.operand(cond.right))",
            "terms.append(self.operand(cond.left) + {'<': '>', '>': '<'}.get(cond.op, cond.op) + "
            "self.operand(cond.right))", "flipped comparison"),
@@ -125,8 +125,10 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("arcus-gosub-next", A + "writer.py", 'self.add(f"GOSUB {number}"', 'self.add(f"GOSUB {number + 1}"',
            "wrong subroutine called"),
     # --- optimizer
-    Mutant("fold-minus-reversed", "compiler/opt/fold.py", "value = a - b", "value = b - a", "constant folded wrong"),
-    Mutant("fold-inexact-division", "compiler/opt/fold.py", "if b == 0 or a % b != 0:", "if b == 0:",
+    Mutant("fold-minus-reversed", "compiler/opt/fold.py", "value = values.binary(op, a, b)",
+           "value = values.binary(op, b, a) if op == '-' else values.binary(op, a, b)", "constant folded wrong"),
+    Mutant("fold-inexact-division", "compiler/opt/fold.py", 'if op == "/" and (b == 0 or a % b != 0):',
+           'if op == "/" and b == 0:',
            "division folded with floor instead of refused"),
     Mutant("fold-no-overflow-check", "compiler/opt/fold.py", "    if not INT32[0] <= value <= INT32[1]:\n        return None\n",
            "", "overflow folded without wrapping"),
