@@ -49,6 +49,19 @@ def predecessors(module: ir.Module) -> dict[str, list[str]]:
     return preds
 
 
+def reached(blocks: dict[str, ir.Block], roots: list[str]) -> set[str]:
+    """The labels of `blocks` that a path from `roots` reaches along jumps and branches."""
+    seen: set[str] = set()
+    todo = list(roots)
+    while todo:
+        label = todo.pop()
+        if label in seen or label not in blocks:
+            continue
+        seen.add(label)
+        todo.extend(ir.successors(blocks[label].terminator))
+    return seen
+
+
 def referenced_labels(module: ir.Module) -> set[str]:
     """Labels named outside the CFG's edges: label values (`TP=100,K2`) and routine entries."""
     found: set[str] = set()

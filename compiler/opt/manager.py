@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 from mcc.compiler import ir
 from mcc.compiler.in_force import InForce
+from mcc.compiler.opt.common import reached
 from mcc.compiler.profiles import Profile
 
 # Passes in the order they run; a level runs the ones it names, in this order.
@@ -168,14 +169,8 @@ def reachable(module: ir.Module) -> ir.Module:
     import dataclasses
 
     blocks = {block.label: block for _, block in module.blocks()}
-    seen: set[str] = set()
-    todo = [r.blocks[0].label for r in module.routines if r.blocks] + [b.label for b in blocks.values() if b.named]
-    while todo:
-        label = todo.pop()
-        if label in seen or label not in blocks:
-            continue
-        seen.add(label)
-        todo.extend(ir.successors(blocks[label].terminator))
+    seen = reached(blocks, [r.blocks[0].label for r in module.routines if r.blocks]
+                   + [b.label for b in blocks.values() if b.named])
     if len(seen) == len(blocks):
         return module
     routines = [dataclasses.replace(r, blocks=[b for b in r.blocks if b.label in seen]) for r in module.routines]

@@ -19,7 +19,7 @@ Needs: the call graph and the CFG's edges (computed here).
 from __future__ import annotations
 
 from mcc.compiler import dialects, ir
-from mcc.compiler.opt.common import referenced_labels
+from mcc.compiler.opt.common import reached, referenced_labels
 
 NAME = "unreachable"
 NEEDS = ()
@@ -47,17 +47,9 @@ def blocks(module: ir.Module) -> int:
         if not routine.blocks or dialects.get(module.dialect).keeps_code_after_transfer and any(
                 isinstance(b.terminator, ir.GotoRoutine) for b in routine.blocks):
             continue
-        by_label = {b.label: b for b in routine.blocks}
-        seen: set[str] = set()
-        stack = [routine.blocks[0].label]
-        stack += [b.label for b in routine.blocks if b.named or b.label in keep_always
-                  or b.label in targets_from_elsewhere]
-        while stack:
-            label = stack.pop()
-            if label in seen or label not in by_label:
-                continue
-            seen.add(label)
-            stack.extend(ir.successors(by_label[label].terminator))
+        roots = [routine.blocks[0].label] + [b.label for b in routine.blocks if b.named or b.label in keep_always
+                                             or b.label in targets_from_elsewhere]
+        seen = reached({b.label: b for b in routine.blocks}, roots)
         dead = [b for b in routine.blocks if b.label not in seen]
         removed += sum(len(b.ops) for b in dead)
         routine.blocks[:] = [b for b in routine.blocks if b.label in seen]
