@@ -83,7 +83,10 @@ def read_stdin(paths, stdin_filename: str | None, dialect: str | None) -> tuple[
     if dialect is None and dialects.from_path(name) is None:
         raise click.UsageError("cannot tell the dialect of standard input: pass --dialect, or --stdin-filename "
                                f"with the program's name ({', '.join(dialects.all_extensions())})")
-    return name, click.get_text_stream("stdin").read()
+    from mcc.compiler import files
+
+    # the bytes decoded as a file's are (compiler/files.py: UTF-8, else Latin-1), never a traceback
+    return name, files.decode(click.get_binary_stream("stdin").read()).text
 
 
 def use_color(fmt: str) -> bool:

@@ -67,3 +67,17 @@ def test_lint_on_standard_input_reads_the_configuration_next_to_its_name(tmp_pat
     (tmp_path / "mcc.toml").write_text('ignore = ["M321"]\n')
     done = run_mcc("lint", "-", "--stdin-filename", str(tmp_path / "a.mxt"), input=FIXABLE)
     assert "M321" not in done.stdout
+
+
+def test_bytes_that_are_not_utf8_are_read_as_a_files_are():
+    """Standard input is decoded as a file is (UTF-8, else Latin-1): a diagnostic, no traceback."""
+    import os
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    exe = Path(sys.executable).parent / "mcc"
+    done = subprocess.run([str(exe), "check", "-", "--stdin-filename", "a.mxt"], input=b"PG 100\n\xff\xfe E\nPG\n",
+                          capture_output=True, timeout=120, env={**os.environ, "NO_COLOR": "1"})
+    assert done.returncode == 1 and b"Traceback" not in done.stderr
+    assert b"a.mxt:2:1: error" in done.stdout
