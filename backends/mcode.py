@@ -90,6 +90,7 @@ class Writer:
         self.limit = int(profile.get("limits.line_length", 64))
         self.settled = ir.settled_ops(module)  # where no move can run: a pause means the same in both dialects
         self.foreign = module.dialect != DIALECT
+        self.index = module.block_index()  # the writer never changes the module
         self.factor = units.ratio(module.steps_per_rev, profile.steps_per_rev) if self.foreign else Fraction(1)
         self.drive = profile.axes[0] if profile.axes else "1"
         self.reserved = self.cat.commands.keys() | self.cat.functions.keys() | self.cat.legacy.keys()
@@ -266,7 +267,7 @@ class Writer:
         """Where a jump to `label` really goes: past empty blocks that only jump on (an empty IF
         arm, a loop's bare back edge), so the same branch is written however the CFG was built."""
         seen = {label}
-        found = self.module.find_block(label) if self.foreign else None
+        found = self.index.get(label) if self.foreign else None
         while found is not None:
             block = found[1]
             if block.ops or block.named and not self.foreign or not isinstance(block.terminator, ir.Jump):
@@ -275,7 +276,7 @@ class Writer:
             if label in seen:
                 break
             seen.add(label)
-            found = self.module.find_block(label)
+            found = self.index.get(label)
         return label
 
     def needed_blocks(self) -> set[str]:

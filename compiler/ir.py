@@ -628,11 +628,12 @@ class Module:
             for block in routine.blocks:
                 yield routine, block
 
-    def find_block(self, label: str) -> tuple[Routine, Block] | None:
-        for routine, block in self.blocks():
-            if block.label == label:
-                return routine, block
-        return None
+    def block_index(self) -> dict[str, tuple[Routine, Block]]:
+        """Each block label's (routine, block), built in one walk. The module is mutable (the
+        optimizer rewrites it), so the index is a snapshot: build it where the module no longer
+        changes (a backend's writer, the simulator) and look blocks up in it, never by scanning
+        the module per lookup, which made a 500-deep nest quadratic (issue 26)."""
+        return {block.label: (routine, block) for routine, block in self.blocks()}
 
 
 def successors(term: Terminator | None) -> tuple[str, ...]:
