@@ -204,6 +204,13 @@ class Graph:
         self.number_dominator_tree()
         self.back_edges = {(u, v) for u in self.order for v in self.succ[u] if self.dominates(v, u)}
         self.headers = {v for _, v in self.back_edges}
+        # Each loop header's back-edge sources, in one pass: scanning every back edge for each
+        # header made the structurer quadratic in the number of loops (issue 26).
+        self.latches: dict[str, list[str]] = {}
+        for u in self.order:
+            for v in self.succ[u]:
+                if (u, v) in self.back_edges:
+                    self.latches.setdefault(v, []).append(u)
         self.reducible = self.check_reducible()
 
     def reverse_postorder(self) -> list[str]:
@@ -292,7 +299,7 @@ class Graph:
 
     def loop_body(self, header: str) -> set[str]:
         body = {header}
-        work = [u for u, v in self.back_edges if v == header]
+        work = list(self.latches.get(header, ()))
         while work:
             label = work.pop()
             if label in body:
@@ -327,7 +334,7 @@ class Graph:
     def repeat_latch(self, header: str, body: set[str], ends: set[str]) -> str | None:
         """The block that ends a loop tested at its end: the one way back to `header`, a branch whose
         other arm is the loop's only exit (edges to blocks that END excepted); else None."""
-        latches = [u for u, v in self.back_edges if v == header]
+        latches = list(self.latches.get(header, ()))
         if len(latches) != 1:
             return None
         latch = latches[0]
