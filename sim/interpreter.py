@@ -44,6 +44,7 @@ DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving", "moving_to_position"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
+ROUND_STATES = 256  # states a loop may cycle through and still count as changing nothing
 
 
 # Settings whose non-zero value changes how the machine runs in a way the simulator does not model.
@@ -416,7 +417,8 @@ class Simulator:
     def _execute(self) -> None:
         """Run the top frame until it waits or the program ends."""
         quiet, last_changes = 0, self.changes - self.var_changes
-        round_vars, vars_seen = None, self.var_changes
+        round_states: set[tuple] = set()
+        vars_seen = self.var_changes
         self.read_continuous = False
         # back from a poll with nothing changed: the loop is still polling, so recognise it sooner
         # and do not count its steps against the step limit (it is waiting, not running away)
@@ -468,10 +470,19 @@ class Simulator:
             # a change other than a variable's resets the count at once; variables count as
             # changed when, going round, they are not what they were the last time round
             changed = self.changes - self.var_changes != last_changes
-            if not changed and self.went_back and self.var_changes != vars_seen:
-                snapshot = dict(self.vars)
-                changed = snapshot != round_vars
-                round_vars, vars_seen = snapshot, self.var_changes
+            if changed:
+                round_states.clear()
+            elif self.went_back and self.var_changes != vars_seen:
+                # a state (where the loop goes round, every variable) seen before since the last
+                # other change: the loop cycles through states it has been in, as a dispatch loop
+                # (`WHILE V63!=0` with one IF arm per block) does with its state variable
+                vars_seen = self.var_changes
+                state = (frame.block.label, tuple(self.vars.items()))
+                changed = state not in round_states
+                if changed:
+                    if len(round_states) >= ROUND_STATES:
+                        round_states.clear()
+                    round_states.add(state)
             if changed:
                 quiet, last_changes = 0, self.changes - self.var_changes
                 self.read_continuous = False

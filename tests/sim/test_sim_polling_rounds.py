@@ -112,3 +112,24 @@ def test_a_round_that_calls_a_subroutine_is_not_skipped_and_matches():
     scenario = pulses(3.1, 20.0)
     fast, slow = run(mod, scenario, True, until=20.0), run(mod, scenario, False, until=20.0)
     same(fast, slow)
+
+
+def test_a_loop_cycling_through_the_same_states_is_polling():
+    """A dispatch loop (`WHILE V63!=0` with one IF arm per block, the Arcus backend's form for
+    deep nests) alternates its state variable between two values while it waits for an input:
+    every round differs from the last, yet the loop only cycles through states it has been in.
+    It must count as polling, as its structured source `WAIT: IF DI1=0 GOTO WAIT` does, and see
+    the input at the same time, not run into the step limit (tests/arcus/test_structure.py found
+    it with seed 605)."""
+    state = ir.Var("V63")
+    mod = module(
+        ("top", [], ir.Branch(eq(state, 2), "two", "three")),
+        ("two", [ir.Assign(state, c(3))], ir.Jump("next")),
+        ("three", [ir.Assign(state, c(2))], ir.Branch(eq(inp(1), 0), "next", "done")),
+        ("next", [], ir.Jump("top")),
+        ("done", [ir.SetOutput(1, c(1))], ir.End()),
+        variables={"V63": ir.Variable("V63", init=c(2))})
+    sim = run(mod, Scenario(events=[InputEvent(1, 1, at=5.0)]), skip=True, max_steps=20_000)
+    assert sim.trace.stopped == "end", sim.trace.reason
+    outputs = [e for e in sim.trace.events if e.kind == "output"]
+    assert [(e.t, e.data["value"]) for e in outputs] == [(5.0, 1)]
