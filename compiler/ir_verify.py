@@ -106,13 +106,13 @@ class _Checker:
                 for index, op in enumerate(block.ops):
                     self._op(op, f"{where}[{index}]")
                 for expr in ir.term_exprs(block.terminator):
-                    self._expr(expr, f"{where}/terminator")
+                    self._expr(expr, f"{where}/terminator", getattr(block.terminator, "span", None))
 
     def _op(self, op: ir.Op, where: str) -> None:
         if isinstance(op, ir.Native):
             return  # the one place a dialect's spelling may live
         for expr in ir.op_exprs(op):
-            self._expr(expr, where)
+            self._expr(expr, where, getattr(op, "span", None))
         if isinstance(op, ir.Move):
             if op.mode not in (ir.MoveMode.ABSOLUTE, ir.MoveMode.RELATIVE):
                 self.add("meaning", where, f"move mode '{op.mode.value}': moves are absolute or relative",
@@ -166,11 +166,13 @@ class _Checker:
             self.add("meaning", where, f"{what} is {expr.value} {expr.unit.value or '(no unit)'}, "
                                        f"expected {expected}", span or expr.span)
 
-    def _expr(self, expr, where: str) -> None:
+    def _expr(self, expr, where: str, span=None) -> None:
+        """Report each node of `expr` spelt in a dialect's terms, at the node's span or else at the
+        span of the operation holding it (`span`), so the refusal names a line."""
         for node in ir.walk_expr(expr):
             problem = _spelling_problem(node)
             if problem:
-                self.add("meaning", where, problem, getattr(node, "span", None))
+                self.add("meaning", where, problem, getattr(node, "span", None) or span)
 
 
 def _spelling_problem(node) -> str:

@@ -119,7 +119,7 @@ def test_a_backend_and_its_frontend_keep_what_a_program_does(target):
     profile = profiles.load(dialect.default_profile)
     counts = {"written": 0, "refused": 0}
 
-    @settings(max_examples=ROUND_TRIPS, deadline=None, database=None,
+    @settings(max_examples=ROUND_TRIPS, deadline=None, database=None, derandomize=True,
               suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
     @given(module=modules(shape=SHAPES[target]))
     def round_trip(module):
