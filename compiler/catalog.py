@@ -86,7 +86,7 @@ def entry_from_dict(raw: dict) -> Entry:
 
 @lru_cache(maxsize=None)
 def load(dialect: str) -> Catalog:
-    data = toml.loads((CATALOG_DIR / f"{dialect}.toml").read_text(encoding="utf-8"))
+    data = toml.load_data_file(CATALOG_DIR / f"{dialect}.toml")
     entries = tuple(entry_from_dict(raw) for raw in data.get("entry", []))
     return Catalog(dialect=dialect, entries=entries,
                    data={k: v for k, v in data.items() if k != "entry"})

@@ -67,7 +67,7 @@ class Registry:
 
 
 def _load_file(path: Path) -> list[CodeInfo]:
-    data = toml.loads(path.read_text(encoding="utf-8"))
+    data = toml.load_data_file(path)
     infos = []
     for raw in data.get("code", []):
         infos.append(CodeInfo(

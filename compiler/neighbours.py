@@ -41,7 +41,7 @@ class Table:
 
 @lru_cache(maxsize=1)
 def table() -> Table:
-    data = toml.loads((CATALOG_DIR / "neighbours.toml").read_text(encoding="utf-8"))
+    data = toml.load_data_file(CATALOG_DIR / "neighbours.toml")
     languages = tuple(
         Language(raw["name"], tuple(raw.get("readers", ())), int(raw.get("min_markers", 2)), raw.get("advice", ""),
                  tuple(re.compile(m) for m in raw.get("markers", ())),

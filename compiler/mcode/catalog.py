@@ -192,7 +192,7 @@ def load() -> McodeCatalog:
                 functions[name] = command
             else:
                 commands.setdefault(name, command)
-    legacy_raw = toml.loads((generic.CATALOG_DIR / "mcode-legacy.toml").read_text(encoding="utf-8"))
+    legacy_raw = toml.load_data_file(generic.CATALOG_DIR / "mcode-legacy.toml")
     legacy = {raw["name"].upper(): Legacy(raw["name"].upper(), raw["family"], raw["summary"], raw["lexium"],
                                           raw.get("io_point"))
               for raw in legacy_raw.get("legacy", [])}
