@@ -42,7 +42,7 @@ def lalr_parser(grammar: str, builder: Transformer | None = None) -> Lark:
     if builder is None:
         return Lark(grammar, parser="lalr", lexer="contextual")
     return Lark(grammar, parser="lalr", lexer="contextual", start=["start", "line"], transformer=builder,
-                maybe_placeholders=False, cache=False)
+                maybe_placeholders=False, cache=True)
 
 
 def with_final_newline(text: str) -> str:

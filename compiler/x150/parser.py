@@ -83,7 +83,7 @@ def _scanner() -> re.Pattern:
         if terminal.pattern.flags:  # pragma: no cover - the grammar has no flagged terminal
             raise ValueError(f"x150 terminal {terminal.name} has flags")
         name = terminal.name if terminal.name in ("CMD", "COMMENT", "NL") else "IGNORE"
-        if name == "IGNORE" and terminal.name not in parser.ignore_tokens:  # pragma: no cover
+        if name == "IGNORE" and terminal.name not in parser.lexer_conf.ignore:  # pragma: no cover
             raise ValueError(f"unexpected x150 terminal {terminal.name}")
         groups[name].append(terminal.pattern.to_regexp())
     return re.compile("|".join(f"((?:{'|'.join(patterns)}))" for patterns in groups.values()))
