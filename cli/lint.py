@@ -66,12 +66,12 @@ def config_outcomes(resolver):
             for path, diags, source in resolver.diagnostics()]
 
 
-def expand(paths, resolver) -> list[str]:
+def expand(paths, resolver, force_exclude: bool = False, respect_gitignore: bool = True) -> list[str]:
     """The files to work on; special files met in directories are skipped with a note on stderr."""
     from mcc.compiler.lint import engine
 
     skipped: list[str] = []
-    targets = engine.expand(paths or ["."], resolver, skipped)
+    targets = engine.expand(paths or ["."], resolver, skipped, force_exclude, respect_gitignore)
     for note in skipped:
         click.echo(f"note: {note}", err=True)
     return targets
@@ -87,6 +87,11 @@ def common_options(func):
         click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
                      help="Worker processes (default: the number of CPUs; 1 runs in this process)."),
         stdin_option,
+        click.option("--force-exclude", is_flag=True,
+                     help="Apply `exclude` and .gitignore to the files named on the command line too (and to "
+                          "--stdin-filename), as pre-commit needs: it names every staged file."),
+        click.option("--respect-gitignore/--no-respect-gitignore", default=True, show_default=True,
+                     help="Skip the files .gitignore ignores (inside a git work tree)."),
     ]
     for option in reversed(options):
         func = option(func)
@@ -111,11 +116,12 @@ def common_options(func):
                    "fixes unvalidated (and says so).")
 @click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
 @click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
-              help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
-@click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
+              help="Exit 1 when a finding has at least this severity (default: `fail-on`, else warning: "
+                   "errors and warnings fail, notes do not).")
+@click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings (not on a usage error).")
 @common_options
 def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, verify, statistics, fail_on, exit_zero,
-         dialect, config, isolated, profile, jobs, stdin_filename) -> None:
+         dialect, config, isolated, profile, jobs, stdin_filename, force_exclude, respect_gitignore) -> None:
     """Check PATHS (files or directories; default: the current directory) with every check and lint rule.
 
     \b
@@ -129,7 +135,8 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
 
     With `-` and --fix, the fixed program is written to standard output and the findings that
     remain to standard error. Suppress a finding with a comment on its line: MCode `' noqa: M301`, Arcus and X150
-    `; noqa: A301`. Exit codes: 0 no errors, 1 errors (or findings at --fail-on), 2 usage error.
+    `; noqa: A301`. Exit codes: 0 no error or warning (notes pass), 1 an error or warning (or a finding at
+    --fail-on), 2 usage error.
     """
     from mcc.compiler.lint import engine
 
@@ -141,8 +148,12 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
                              verify_required=verify is True)
     piped = read_stdin(paths, stdin_filename, dialect)
     if piped is not None:
+        if force_exclude and stdin_excluded(piped[0], resolver, respect_gitignore):
+            if fix:
+                sys.stdout.write(piped[1])  # an editor's buffer comes back unchanged
+            sys.exit(EXIT_OK)
         lint_stdin(piped, resolver, options, fmt, statistics, fail_on, exit_zero)
-    targets = expand(paths, resolver)
+    targets = expand(paths, resolver, force_exclude, respect_gitignore)
     work = [(path, resolver.for_path(path)) for path in targets]
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
     outcomes = config_outcomes(resolver) + sorted(outcomes, key=lambda o: o.path)
@@ -154,6 +165,14 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
         sys.exit(EXIT_USAGE)  # a fixed file could not be written (G006): as for any file error
     failing = {path: settings.fail_on for path, settings in work}
     sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, failing, fail_on))
+
+
+def stdin_excluded(name: str, resolver, respect_gitignore: bool) -> bool:
+    """--force-exclude with `-`: whether the file --stdin-filename names is excluded (then the
+    program is neither linted nor formatted, as for a file named on the command line)."""
+    from mcc.compiler.lint import engine, ignore
+
+    return engine.excluded(name, resolver) or (respect_gitignore and ignore.gitignored(name))
 
 
 def lint_stdin(piped: tuple[str, str], resolver, options, fmt: str, statistics: bool, fail_on, exit_zero: bool):
@@ -180,10 +199,11 @@ def lint_stdin(piped: tuple[str, str], resolver, options, fmt: str, statistics: 
 
 
 def exit_code(outcomes, failing: dict[str, str], override: str | None) -> int:
+    from mcc.compiler.config import DEFAULT_FAIL_ON
     from mcc.compiler.diagnostics import Severity
 
     for outcome in outcomes:
-        threshold = Severity(override or failing.get(outcome.path, "error")).rank
+        threshold = Severity(override or failing.get(outcome.path, DEFAULT_FAIL_ON)).rank
         if any(d.severity.rank >= threshold for d in outcome.diagnostics):
             return EXIT_ERRORS
     return EXIT_OK
@@ -252,7 +272,8 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
                                              "unchanged if they behave differently (formatting is always checked "
                                              "to leave the program's IR unchanged, which needs no simulation).")
 @common_options
-def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, stdin_filename) -> None:
+def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, stdin_filename, force_exclude,
+        respect_gitignore) -> None:
     """Rewrite PATHS (files or directories; default: the current directory) in the canonical style
     of their dialect.
 
@@ -273,8 +294,12 @@ def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, st
     resolver = make_resolver(config, isolated, (), (), (), profile, None)
     piped = read_stdin(paths, stdin_filename, dialect)
     if piped is not None:
+        if force_exclude and stdin_excluded(piped[0], resolver, respect_gitignore):
+            if not (check or diff):
+                sys.stdout.write(piped[1])  # an excluded program is passed through unchanged
+            sys.exit(EXIT_OK)
         fmt_stdin(piped, resolver, check, diff, verify, dialect)
-    targets = expand(paths, resolver)
+    targets = expand(paths, resolver, force_exclude, respect_gitignore)
     work = [(path, resolver.for_path(path)) for path in targets]
     options = formatting.Options(check=check, diff=diff, dialect=dialect, verify=verify)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "formatting"),
