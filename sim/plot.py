@@ -76,6 +76,7 @@ def draw(data: PlotData, out: str, fmt: str) -> None:
     except ImportError:
         raise PlotUnavailable(INSTALL_HINT) from None
     matplotlib.rcParams["svg.hashsalt"] = "mcc"  # the same run gives the same file
+    matplotlib.rcParams["svg.fonttype"] = "none"  # text stays text in an SVG: searchable, selectable
     colours = signal_colours(data)
     rows = len(data.axes) + (1 if data.changes else 0)
     heights = [2.4] * len(data.axes) + ([1.0 + 0.35 * len(colours)] if data.changes else [])
