@@ -227,8 +227,8 @@ def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list
     found: list[str] = []
     seen: set = set()
 
-    def left_out(path: str) -> bool:
-        return excluded(path, resolver) or (respect_gitignore and ignore.gitignored(path))
+    def left_out(path: str, within: str | None = None) -> bool:
+        return excluded(path, resolver) or (respect_gitignore and ignore.gitignored(path, within=within))
 
     for path in paths:
         if force_exclude and left_out(path):
@@ -236,10 +236,10 @@ def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list
         if os.path.isdir(path):
             for folder, subdirs, names in os.walk(path):
                 subdirs[:] = sorted(d for d in subdirs if not d.startswith(".") and d not in SKIP_DIRS
-                                    and not left_out(os.path.join(folder, d)))
+                                    and not left_out(os.path.join(folder, d), path))
                 for name in sorted(names):
                     full = os.path.join(folder, name)
-                    if name.lower().endswith(extensions) and not left_out(full):
+                    if name.lower().endswith(extensions) and not left_out(full, path):
                         problem = files_mod.unreadable(full)
                         if problem is None:
                             add(found, seen, full)

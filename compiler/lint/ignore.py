@@ -58,8 +58,12 @@ def patterns_in(path: str) -> pathspec.GitIgnoreSpec | None:
         return None
 
 
-def gitignored(path: str, is_dir: bool | None = None) -> bool:
-    """Whether git ignores `path` (a file or directory) by a `.gitignore` of its work tree."""
+def gitignored(path: str, is_dir: bool | None = None, within: str | None = None) -> bool:
+    """Whether git ignores `path` (a file or directory) by a `.gitignore` of its work tree.
+
+    `within` is the directory a search started from: it and its parents are not judged (a
+    directory named on the command line is searched even when git ignores it, as ruff does;
+    `--force-exclude` judges it by itself)."""
     full = os.path.abspath(path)
     if is_dir is None:
         is_dir = os.path.isdir(full)
@@ -69,17 +73,25 @@ def gitignored(path: str, is_dir: bool | None = None) -> bool:
     rel = Path(full).relative_to(root).parts
     if ".git" in rel:
         return True
+    skip = 0
+    if within is not None:
+        try:
+            skip = len(Path(os.path.abspath(within)).relative_to(root).parts)
+        except ValueError:
+            skip = 0
     # every directory between the root and the path, then the path itself: the first ignored one wins
-    for n in range(1, len(rel) + 1):
+    for n in range(skip + 1, len(rel) + 1):
         last = n == len(rel)
-        if decided(root, rel[:n], is_dir or not last):
+        if decided(root, rel[:n], is_dir or not last, skip):
             return True
     return False
 
 
-def decided(root: str, parts: tuple[str, ...], is_dir: bool) -> bool:
+def decided(root: str, parts: tuple[str, ...], is_dir: bool, exempt: int = 0) -> bool:
     """Whether the ignore files from `root` down to the parent of `parts` ignore it: the deepest
-    file with a matching pattern decides, as in git; `.git/info/exclude` comes below them all."""
+    file with a matching pattern decides, as in git; `.git/info/exclude` comes below them all.
+    The first `exempt` directories of `parts` are not judged: a pattern that matches one of them
+    (and so everything below it) does not count."""
     candidates = [(os.path.join(root, ".git", "info", "exclude"), ())]
     for depth in range(len(parts)):
         candidates.append((os.path.join(root, *parts[:depth], ".gitignore"), parts[:depth]))
@@ -88,7 +100,23 @@ def decided(root: str, parts: tuple[str, ...], is_dir: bool) -> bool:
         if compiled is None:
             continue
         rel = "/".join(parts[len(base):]) + ("/" if is_dir else "")
-        result = compiled.check_file(rel)
-        if result.include is not None:
-            return bool(result.include)
+        spared = ["/".join(parts[len(base):k]) + "/" for k in range(len(base) + 1, exempt + 1)]
+        include = verdict(compiled, rel, spared)
+        if include is not None:
+            return include
     return False
+
+
+def verdict(compiled: pathspec.GitIgnoreSpec, rel: str, spared: list[str]) -> bool | None:
+    """True (ignored), False (taken back by `!`) or None (no pattern speaks of `rel`)."""
+    if not spared:
+        result = compiled.check_file(rel)
+        return None if result.include is None else bool(result.include)
+    include = None
+    for pattern in compiled.patterns:
+        if pattern.include is None or pattern.match_file(rel) is None:
+            continue
+        if any(pattern.match_file(d) is not None for d in spared):
+            continue
+        include = bool(pattern.include)
+    return include

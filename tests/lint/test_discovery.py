@@ -93,3 +93,14 @@ def test_force_exclude_with_standard_input(tmp_path: Path) -> None:
     assert formatted.returncode == 0 and formatted.stdout == MESSY
     reported = run_mcc("lint", "-", "--stdin-filename", "vendor/v.mxt", input=BAD, cwd=tmp_path)
     assert reported.returncode == 1 and "vendor/v.mxt:1:1: error[" in reported.stdout
+
+
+def test_a_directory_named_on_the_command_line_is_searched_even_if_git_ignores_it(tmp_path: Path) -> None:
+    """As ruff: a path given explicitly is worked on; what lies below it is still judged."""
+    root = work_tree(tmp_path)
+    write(root / ".gitignore", "build/\n*.tmp.mxt\n")
+    write(root / "build" / "out.mxt", BAD)
+    write(root / "build" / "x.tmp.mxt", BAD)
+    assert linted(run_mcc("lint", "build", cwd=root)) == {"build/out.mxt"}
+    forced = run_mcc("lint", "--force-exclude", "build", cwd=root)
+    assert forced.returncode == 0 and linted(forced) == set()
