@@ -100,10 +100,12 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
                 text = trace_mod.to_json_text([trace])
             _write(trace_out, text)
         if plot_out:
-            from mcc.sim.plot import plot
+            from mcc.sim.plot import PlotUnavailable, plot
 
             try:
                 plot(trace, plot_out, scale_profile)
+            except PlotUnavailable as exc:  # installed but broken: said, not a traceback
+                raise click.UsageError(str(exc)) from None
             except OSError as exc:
                 raise click.FileError(plot_out, hint=str(exc.strerror or exc)) from None
 

@@ -14,6 +14,7 @@ imported only here, and its absence is a clear message rather than a traceback.
 
 from __future__ import annotations
 
+import io
 import os
 
 from mcc.sim.plotdata import PlotData, build
@@ -117,8 +118,12 @@ def draw(data: PlotData, out: str, fmt: str) -> None:
     fig.suptitle(title, fontsize=10)
     fig.tight_layout()
     metadata = {"svg": {"Date": None}, "pdf": {"CreationDate": None}, "png": None}[fmt]
-    fig.savefig(out, format=fmt, dpi=100, metadata=metadata)
+    image = io.BytesIO()
+    fig.savefig(image, format=fmt, dpi=100, metadata=metadata)
     plt.close(fig)
+    from mcc.compiler.files import write_many
+
+    write_many([(out, image.getvalue())])  # atomically, as every file mcc writes (docs/CLI.md, "Files")
 
 
 def mark_changes(cell, data: PlotData, colours: dict[str, str]) -> None:

@@ -17,6 +17,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -168,3 +169,27 @@ def test_trace_csv_is_a_wide_table(plotter: Path) -> None:
 def test_format_csv_keeps_the_long_form(plotter: Path) -> None:
     result = run_mcc("sim", "plot_xy.prg", "--format", "csv", cwd=plotter)
     assert result.stdout.splitlines()[0] == "path,t,record,kind,line,axis,position,speed,detail"
+
+
+def test_the_html_page_needs_no_matplotlib_and_images_say_what_is_missing(plotter: Path) -> None:
+    """A matplotlib that cannot be imported (here a stand-in that raises ImportError) stops only
+    the image formats, with the install hint and exit 2; the page is drawn without it."""
+    fake = plotter / "fake"
+    (fake / "matplotlib").mkdir(parents=True)
+    (fake / "matplotlib" / "__init__.py").write_text("raise ImportError('no matplotlib here')\n")
+    env = {**os.environ, "PYTHONPATH": str(fake), "NO_COLOR": "1"}
+    exe = Path(sys.executable).parent / "mcc"
+    page = subprocess.run([str(exe), "sim", "plot_xy.prg", "--plot", "run.html"], cwd=plotter, env=env,
+                          capture_output=True, text=True, timeout=120)
+    assert page.returncode == 0, page.stderr
+    assert (plotter / "run.html").read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+    image = subprocess.run([str(exe), "sim", "plot_xy.prg", "--plot", "run.png"], cwd=plotter, env=env,
+                           capture_output=True, text=True, timeout=120)
+    assert image.returncode == 2 and "pip install 'mcc[plot]'" in image.stderr
+    assert "Traceback" not in image.stderr and not (plotter / "run.png").exists()
+
+
+def test_a_plot_that_cannot_be_written_is_an_error_not_a_traceback(plotter: Path) -> None:
+    result = run_mcc("sim", "plot_xy.prg", "--plot", "missing/dir/run.html", cwd=plotter)
+    assert result.returncode != 0 and "Traceback" not in result.stderr
+    assert "missing/dir/run.html" in result.stderr
