@@ -12,6 +12,7 @@ from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
 
 DIALECT_NAMES = ["mcode", "x150", "arcus"]  # kept in step with mcc.compiler.dialects (tested)
 FORMATS = ["text", "json"]
+CHECK_FORMATS = ["text", "json", "sarif", "github", "gitlab", "junit"]  # as `mcc lint --format`
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
@@ -104,13 +105,15 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 @click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, allow_dash=True),
                 callback=regular_files)
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
-@click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
-              help="text: one diagnostic per finding with the source line; json: one JSON object on stdout.")
+@click.option("--format", "fmt", type=click.Choice(CHECK_FORMATS), default="text", show_default=True,
+              help="text: one diagnostic per finding with the source line; json: one JSON object on stdout; "
+                   "sarif, github, gitlab, junit: as `mcc lint --format`.")
+@click.option("--rules-url", metavar="URL", help="SARIF: each rule's helpUri, with {code} replaced by the code.")
 @click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file.")
 @click.option("--verify-ir", is_flag=True, help="Also run the IR verifier after lowering (violations are G010).")
 @stdin_option
-def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | None, verify_ir: bool,
-          stdin_filename: str | None) -> None:
+def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str | None, profile: str | None,
+          verify_ir: bool, stdin_filename: str | None) -> None:
     """Check FILES for syntax and semantic errors, without writing anything. `-` reads the program
     from standard input (name it with --stdin-filename).
 
@@ -133,7 +136,10 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | 
         for result in results:
             driver.verify_ir(result)
     check_profile_dialect(prof, {r.dialect for r in results})
-    report(results, fmt)
+    from mcc.cli.lint import machine_report
+
+    if not machine_report(results, fmt, rules_url):
+        report(results, fmt)
     sys.exit(EXIT_ERRORS if any(r.has_errors for r in results) else EXIT_OK)
 
 

@@ -14,7 +14,7 @@ import click
 from mcc.cli.commands import DIALECT_NAMES, cli, read_stdin, regular_files, stdin_option, use_color
 from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
 
-LINT_FORMATS = ["text", "json", "sarif", "github"]
+LINT_FORMATS = ["text", "json", "sarif", "github", "gitlab", "junit"]
 SEVERITY_NAMES = ["error", "warning", "info"]
 PROGRESS_MIN_FILES = 20
 
@@ -66,12 +66,12 @@ def config_outcomes(resolver):
             for path, diags, source in resolver.diagnostics()]
 
 
-def expand(paths, resolver) -> list[str]:
+def expand(paths, resolver, force_exclude: bool = False, respect_gitignore: bool = True) -> list[str]:
     """The files to work on; special files met in directories are skipped with a note on stderr."""
     from mcc.compiler.lint import engine
 
     skipped: list[str] = []
-    targets = engine.expand(paths or ["."], resolver, skipped)
+    targets = engine.expand(paths or ["."], resolver, skipped, force_exclude, respect_gitignore)
     for note in skipped:
         click.echo(f"note: {note}", err=True)
     return targets
@@ -87,6 +87,11 @@ def common_options(func):
         click.option("-j", "--jobs", type=click.IntRange(min=1), default=None,
                      help="Worker processes (default: the number of CPUs; 1 runs in this process)."),
         stdin_option,
+        click.option("--force-exclude", is_flag=True,
+                     help="Apply `exclude` and .gitignore to the files named on the command line too (and to "
+                          "--stdin-filename), as pre-commit needs: it names every staged file."),
+        click.option("--respect-gitignore/--no-respect-gitignore", default=True, show_default=True,
+                     help="Skip the files .gitignore ignores (inside a git work tree)."),
     ]
     for option in reversed(options):
         func = option(func)
@@ -96,8 +101,11 @@ def common_options(func):
 @cli.command()
 @click.argument("paths", nargs=-1, type=click.Path(exists=True, allow_dash=True), callback=regular_files)
 @click.option("--format", "fmt", type=click.Choice(LINT_FORMATS), default="text", show_default=True,
-              help="text: findings with the source line; json: as `mcc check`; sarif: SARIF 2.1.0 for code "
-                   "scanning; github: workflow annotations.")
+              help="text: findings with the source line; json: as `mcc check`, with each fix's edits; sarif: "
+                   "SARIF 2.1.0 for code scanning; github: workflow annotations; gitlab: GitLab Code Quality; "
+                   "junit: JUnit XML test results.")
+@click.option("--rules-url", metavar="URL", help="SARIF: each rule's helpUri, with {code} replaced by the code "
+                                                  "(default: mcc's docs/rules/CODE.md when run from a checkout).")
 @click.option("--select", multiple=True, metavar="CODES", help="Check only these codes or prefixes (e.g. M3,G101); replaces `select`.")
 @click.option("--extend-select", multiple=True, metavar="CODES", help="Also check these codes or prefixes.")
 @click.option("--ignore", multiple=True, metavar="CODES", help="Do not report these codes or prefixes.")
@@ -111,11 +119,12 @@ def common_options(func):
                    "fixes unvalidated (and says so).")
 @click.option("--statistics", is_flag=True, help="Print how often each code occurs instead of each finding.")
 @click.option("--fail-on", type=click.Choice(SEVERITY_NAMES),
-              help="Exit 1 when a finding has at least this severity (default: `fail-on`, else error).")
-@click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings.")
+              help="Exit 1 when a finding has at least this severity (default: `fail-on`, else warning: "
+                   "errors and warnings fail, notes do not).")
+@click.option("--exit-zero", is_flag=True, help="Exit 0 even when there are findings (not on a usage error).")
 @common_options
-def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, verify, statistics, fail_on, exit_zero,
-         dialect, config, isolated, profile, jobs, stdin_filename) -> None:
+def lint(paths, fmt, rules_url, select, extend_select, ignore, fix, unsafe_fixes, diff, verify, statistics, fail_on, exit_zero,
+         dialect, config, isolated, profile, jobs, stdin_filename, force_exclude, respect_gitignore) -> None:
     """Check PATHS (files or directories; default: the current directory) with every check and lint rule.
 
     \b
@@ -124,12 +133,15 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
       mcc lint --select M3 --ignore M305 src/     only the MCode lint rules, without M305
       mcc lint --fix programs/                    apply the safe fixes
       mcc lint --format sarif . > mcc.sarif       for GitHub code scanning
+      mcc lint --format gitlab . > gl-code-quality-report.json
+      mcc lint --format junit . > mcc-junit.xml   test results for a CI server
       mcc lint --statistics .                     how often each code occurs
       mcc lint - --stdin-filename a.mxt < a.mxt   a program from standard input (editors)
 
     With `-` and --fix, the fixed program is written to standard output and the findings that
     remain to standard error. Suppress a finding with a comment on its line: MCode `' noqa: M301`, Arcus and X150
-    `; noqa: A301`. Exit codes: 0 no errors, 1 errors (or findings at --fail-on), 2 usage error.
+    `; noqa: A301`. Exit codes: 0 no error or warning (notes pass), 1 an error or warning (or a finding at
+    --fail-on), 2 usage error.
     """
     from mcc.compiler.lint import engine
 
@@ -141,22 +153,35 @@ def lint(paths, fmt, select, extend_select, ignore, fix, unsafe_fixes, diff, ver
                              verify_required=verify is True)
     piped = read_stdin(paths, stdin_filename, dialect)
     if piped is not None:
-        lint_stdin(piped, resolver, options, fmt, statistics, fail_on, exit_zero)
-    targets = expand(paths, resolver)
+        if force_exclude and stdin_excluded(piped[0], resolver, respect_gitignore):
+            if fix:
+                sys.stdout.write(piped[1])  # an editor's buffer comes back unchanged
+            sys.exit(EXIT_OK)
+        lint_stdin(piped, resolver, options, fmt, statistics, fail_on, exit_zero, rules_url)
+    targets = expand(paths, resolver, force_exclude, respect_gitignore)
     work = [(path, resolver.for_path(path)) for path in targets]
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "linting"))
     outcomes = config_outcomes(resolver) + sorted(outcomes, key=lambda o: o.path)
     if diff:
         report_diff(outcomes)
         sys.exit(EXIT_ERRORS if any(o.diff for o in outcomes) and not exit_zero else EXIT_OK)
-    report(outcomes, fmt, statistics, fix, unsafe_fixes, len(work))
+    report(outcomes, fmt, statistics, fix, unsafe_fixes, len(work), rules_url)
     if any(getattr(o, "write_error", False) for o in outcomes):
         sys.exit(EXIT_USAGE)  # a fixed file could not be written (G006): as for any file error
     failing = {path: settings.fail_on for path, settings in work}
     sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, failing, fail_on))
 
 
-def lint_stdin(piped: tuple[str, str], resolver, options, fmt: str, statistics: bool, fail_on, exit_zero: bool):
+def stdin_excluded(name: str, resolver, respect_gitignore: bool) -> bool:
+    """--force-exclude with `-`: whether the file --stdin-filename names is excluded (then the
+    program is neither linted nor formatted, as for a file named on the command line)."""
+    from mcc.compiler.lint import engine, ignore
+
+    return engine.excluded(name, resolver) or (respect_gitignore and ignore.gitignored(name))
+
+
+def lint_stdin(piped: tuple[str, str], resolver, options, fmt: str, statistics: bool, fail_on, exit_zero: bool,
+               rules_url: str | None = None):
     """`mcc lint -`: the program from standard input. With --fix the fixed text goes to standard
     output (what an editor puts back in the buffer) and the report to standard error."""
     from mcc.compiler.lint import engine, fixes
@@ -175,18 +200,38 @@ def lint_stdin(piped: tuple[str, str], resolver, options, fmt: str, statistics: 
         sys.stdout.write(outcome.text)
         sys.stdout.flush()
         sys.stdout = sys.stderr  # the report follows the program, on standard error
-    report(outcomes, fmt, statistics, options.fix, options.unsafe_fixes, 1)
+    report(outcomes, fmt, statistics, options.fix, options.unsafe_fixes, 1, rules_url)
     sys.exit(EXIT_OK if exit_zero else exit_code(outcomes, {name: settings.fail_on}, fail_on))
 
 
 def exit_code(outcomes, failing: dict[str, str], override: str | None) -> int:
+    from mcc.compiler.config import DEFAULT_FAIL_ON
     from mcc.compiler.diagnostics import Severity
 
     for outcome in outcomes:
-        threshold = Severity(override or failing.get(outcome.path, "error")).rank
+        threshold = Severity(override or failing.get(outcome.path, DEFAULT_FAIL_ON)).rank
         if any(d.severity.rank >= threshold for d in outcome.diagnostics):
             return EXIT_ERRORS
     return EXIT_OK
+
+
+def machine_report(entries, fmt: str, rules_url: str | None = None) -> bool:
+    """The formats `mcc check` and `mcc lint` share (besides text and json): print and answer True."""
+    from mcc.cli import render
+    from mcc.compiler.lint import output
+
+    if fmt == "sarif":
+        click.echo(render.dump_json(output.to_sarif(entries, rules_url)))
+    elif fmt == "github":
+        for line in output.to_github(entries):
+            click.echo(line)
+    elif fmt == "gitlab":
+        click.echo(render.dump_json(output.to_gitlab(entries)))
+    elif fmt == "junit":
+        click.echo(output.to_junit(entries), nl=False)
+    else:
+        return False
+    return True
 
 
 def report_diff(outcomes) -> None:
@@ -201,7 +246,8 @@ def report_diff(outcomes) -> None:
         click.echo("No fixes available.", err=True)
 
 
-def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, files: int) -> None:
+def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, files: int,
+           rules_url: str | None = None) -> None:
     from mcc.cli import render
     from mcc.compiler.lint import output
 
@@ -217,12 +263,7 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
     if fmt == "json":
         click.echo(render.dump_json(output.to_json(outcomes)))
         return
-    if fmt == "sarif":
-        click.echo(render.dump_json(output.to_sarif(outcomes)))
-        return
-    if fmt == "github":
-        for line in output.to_github(outcomes):
-            click.echo(line)
+    if machine_report(outcomes, fmt, rules_url):
         return
     writer = render.TextWriter(sys.stdout, use_color(fmt))
     every = []
@@ -252,7 +293,8 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
                                              "unchanged if they behave differently (formatting is always checked "
                                              "to leave the program's IR unchanged, which needs no simulation).")
 @common_options
-def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, stdin_filename) -> None:
+def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, stdin_filename, force_exclude,
+        respect_gitignore) -> None:
     """Rewrite PATHS (files or directories; default: the current directory) in the canonical style
     of their dialect.
 
@@ -273,8 +315,12 @@ def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, st
     resolver = make_resolver(config, isolated, (), (), (), profile, None)
     piped = read_stdin(paths, stdin_filename, dialect)
     if piped is not None:
+        if force_exclude and stdin_excluded(piped[0], resolver, respect_gitignore):
+            if not (check or diff):
+                sys.stdout.write(piped[1])  # an excluded program is passed through unchanged
+            sys.exit(EXIT_OK)
         fmt_stdin(piped, resolver, check, diff, verify, dialect)
-    targets = expand(paths, resolver)
+    targets = expand(paths, resolver, force_exclude, respect_gitignore)
     work = [(path, resolver.for_path(path)) for path in targets]
     options = formatting.Options(check=check, diff=diff, dialect=dialect, verify=verify)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "formatting"),

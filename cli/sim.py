@@ -39,9 +39,12 @@ def load_scenario(path: str | None):
 @click.option("--format", "fmt", type=click.Choice(SIM_FORMATS), default="text", show_default=True,
               help="text: a summary and a timeline; json: the run as one JSON object; csv: the trace as CSV.")
 @click.option("--trace", "trace_out", type=click.Path(dir_okay=False), metavar="OUT",
-              help="Also write the full trace (events and sampled motion): CSV if OUT ends in .csv, else JSON.")
-@click.option("--plot", "plot_out", type=click.Path(dir_okay=False), metavar="OUT.png|OUT.svg",
-              help="Draw position and speed against time per axis (needs `pip install 'mcc[plot]'`).")
+              help="Also write the full trace: OUT.csv a wide table for a spreadsheet (time, each axis's position "
+                   "and speed, each input and output), else JSON (events and sampled motion).")
+@click.option("--plot", "plot_out", type=click.Path(dir_okay=False), metavar="OUT.html|OUT.svg|OUT.pdf|OUT.png",
+              help="Draw the run: position and speed per moving axis, input and output changes with a legend, the "
+                   "XY path. .html is an interactive page (zoom, hover); .svg .pdf .png images need "
+                   "`pip install 'mcc[plot]'`.")
 def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, dialect: str | None,
             profile: str | None, fmt: str, trace_out: str | None, plot_out: str | None) -> None:
     """Run FILE on a virtual machine and report what it does.
@@ -57,6 +60,7 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
       mcc sim program.prg
       mcc sim program.mxt --inputs start_button.toml --until 30
       mcc sim program.x150 --format json --trace run.csv --plot run.png
+      mcc sim program.prg --plot run.html       an interactive page: zoom, hover
 
     Exit codes: 0 the program ran (to its end, a limit, or a wait), 1 errors (in the program or at
     run time), 2 usage error.
@@ -67,10 +71,14 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
 
     prof = load_profile(profile)
     scen = load_scenario(inputs)
-    if plot_out and not _has_matplotlib():
-        from mcc.sim.plot import INSTALL_HINT
+    if plot_out:
+        from mcc.sim.plot import INSTALL_HINT, PlotError, needs_matplotlib
 
-        raise click.UsageError(INSTALL_HINT)
+        try:
+            if needs_matplotlib(plot_out) and not _has_matplotlib():
+                raise click.UsageError(INSTALL_HINT)
+        except PlotError as exc:
+            raise click.BadParameter(str(exc), param_hint="--plot") from None
     limit = until if until is not None else (scen.until if scen is not None and scen.until is not None else 60.0)
     options = Options(until=limit, max_steps=max_steps)
     done = simulate_file(file, dialect, prof, scen, options)
@@ -80,15 +88,26 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
 
     if trace is not None:
         from mcc.sim import trace as trace_mod
+        from mcc.sim.files import _default_profile
 
+        scale_profile = prof if prof is not None and prof.dialect == result.dialect else _default_profile(result)
         if trace_out:
-            text = trace_mod.to_csv_text([trace]) if trace_out.lower().endswith(".csv") \
-                else trace_mod.to_json_text([trace])
+            if trace_out.lower().endswith(".csv"):
+                from mcc.sim.widecsv import to_wide_csv
+
+                text = to_wide_csv(trace, scale_profile)
+            else:
+                text = trace_mod.to_json_text([trace])
             _write(trace_out, text)
         if plot_out:
-            from mcc.sim.plot import plot
+            from mcc.sim.plot import PlotUnavailable, plot
 
-            plot(trace, plot_out)
+            try:
+                plot(trace, plot_out, scale_profile)
+            except PlotUnavailable as exc:  # installed but broken: said, not a traceback
+                raise click.UsageError(str(exc)) from None
+            except OSError as exc:
+                raise click.FileError(plot_out, hint=str(exc.strerror or exc)) from None
 
     if fmt == "json":
         if trace is not None:

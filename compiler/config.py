@@ -35,6 +35,7 @@ CONFIG_FILES = ("mcc.toml", "pyproject.toml")
 ALWAYS_ON = ("G001", "G102", "G103")  # internal errors and configuration errors
 SEVERITIES = tuple(s.value for s in Severity)
 LIST_KEYS = ("select", "extend-select", "ignore", "exclude")
+DEFAULT_FAIL_ON = "warning"  # `mcc lint` exits 1 on a warning, as ruff on any finding (docs/LINT.md)
 KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity")
 
 
@@ -110,7 +111,7 @@ class Settings:
     selection: Selection = field(default_factory=Selection)
     severity: tuple[tuple[str, str], ...] = ()  # (code prefix, severity)
     per_file_ignores: tuple[tuple[str, tuple[str, ...]], ...] = ()
-    fail_on: str = "error"
+    fail_on: str = "warning"  # DEFAULT_FAIL_ON
     exclude: tuple[str, ...] = ()
 
     def profile_spec(self, dialect: str) -> str | None:
@@ -156,8 +157,17 @@ class Settings:
         return result
 
     def excluded(self, path: str) -> bool:
+        """Whether `exclude` skips `path`: git's pattern language, relative to `root`
+        (compiler/lint/ignore.py); a path outside `root` is never excluded."""
+        if not self.exclude:
+            return False
+        from mcc.compiler.lint import ignore
+
         rel = relative_to(path, self.root)
-        return any(glob_matches(p, rel) for p in self.exclude)
+        if rel.startswith("../") or Path(rel).is_absolute():
+            return False
+        patterns = tuple("/" + p[2:] if p.startswith("./") else p for p in self.exclude)
+        return ignore.matches(patterns, rel, os.path.isdir(path))
 
     def with_overrides(self, overrides: "Overrides") -> "Settings":
         layers = self.selection.layers
@@ -432,10 +442,10 @@ class Reader:
 
     def fail_on(self, value: Any) -> str:
         if value is None:
-            return "error"
+            return DEFAULT_FAIL_ON
         if value not in SEVERITIES:
             self.error("G103", ("fail-on",), f"'fail-on' must be one of {', '.join(SEVERITIES)}, not {value!r}")
-            return "error"
+            return DEFAULT_FAIL_ON
         return value
 
 

@@ -44,6 +44,17 @@ class Fix:
     edits: tuple[Edit, ...]
     safe: bool = True
 
+    def to_json(self) -> dict:
+        """The fix in JSON output: what it does, whether `--fix` applies it ("safe") or only
+        `--fix --unsafe-fixes` ("unsafe"), and its edits (the text of each range, 1-based lines
+        and columns, end exclusive, replaced by `content`; an empty range inserts)."""
+        return {
+            "message": self.description,
+            "applicability": "safe" if self.safe else "unsafe",
+            "edits": [{"content": e.text, "line": e.span.line, "column": e.span.column,
+                       "end_line": e.span.end_line, "end_column": e.span.end_column} for e in self.edits],
+        }
+
 
 @dataclass(slots=True)
 class Diagnostic:
@@ -69,7 +80,7 @@ class Diagnostic:
             "end_line": self.span.end_line,
             "end_column": self.span.end_column,
             **({"notes": list(self.notes)} if self.notes else {}),
-            **({"fix": self.fix.description} if self.fix else {}),
+            **({"fix": self.fix.to_json()} if self.fix else {}),
         }
 
 

@@ -101,11 +101,13 @@ class Trace:
 
 
 SAMPLES_PER_RAMP = 6
+SAMPLES_PER_ARC_SEGMENT = 24  # a segment of an arc: each axis follows a sine, drawn as 24 chords
 
 
 def sample_motion(axis: str, motion, until: float) -> list[tuple[float, float, float]]:
     """Points of one axis along a motion up to `until`: the ends of each segment, and
-    SAMPLES_PER_RAMP steps inside each ramp (a cruise is a straight line)."""
+    SAMPLES_PER_RAMP steps inside each ramp (a cruise along a line is a straight line; along an arc
+    each segment gets SAMPLES_PER_ARC_SEGMENT steps)."""
     path = motion.path
     if not motion.segments:
         return []
@@ -115,6 +117,8 @@ def sample_motion(axis: str, motion, until: float) -> list[tuple[float, float, f
             break
         end = min(seg.t1, until)
         n = SAMPLES_PER_RAMP if seg.v0 != seg.v1 else 1
+        if path.arc is not None:  # along an arc no axis moves in a straight line, even at constant speed
+            n = max(n, SAMPLES_PER_ARC_SEGMENT)
         for k in range(n + 1):
             t = seg.t0 + (end - seg.t0) * k / n
             s = seg.distance(t)

@@ -52,7 +52,7 @@ def test_a_fifo_on_the_command_line_is_an_error_not_a_hang(tmp_path: Path, name:
 
 @pytest.mark.parametrize("args", [["lint"], ["lint", "--fix"], ["fmt"], ["fmt", "--check"]])
 def test_a_fifo_in_a_tree_is_skipped_with_a_note(tmp_path: Path, args: list[str]) -> None:
-    (tmp_path / "ok.mxt").write_text(PROGRAM)
+    (tmp_path / "ok.mxt").write_text(PROGRAM + "S\n' saved\n")  # no warning (M309), which would fail lint
     os.mkfifo(tmp_path / "pipe.mxt")
     result = run_mcc(*args, str(tmp_path))
     assert result.returncode == 0, result
@@ -174,7 +174,8 @@ def test_a_read_only_source_is_reported_and_left(tmp_path: Path, args: list[str]
     no_temporaries(tmp_path)
 
 
-@pytest.mark.parametrize("args", [["lint", "--fix"], ["fmt"]])
+# FIXABLE keeps a warning --fix does not remove (M309, unsafe): --fail-on error lets it pass
+@pytest.mark.parametrize("args", [["lint", "--fix", "--fail-on", "error"], ["fmt"]])
 def test_a_symlinked_source_is_written_through(tmp_path: Path, args: list[str]) -> None:
     real = tmp_path / "real.mxt"
     real.write_text(FIXABLE)

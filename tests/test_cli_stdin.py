@@ -60,7 +60,7 @@ def test_lint_fix_on_standard_input_prints_the_fixed_program_and_reports_on_stde
     assert done.stdout.startswith(FIXABLE.replace("=<", "<="))
     assert "Fixed 2 problems in 1 file." in done.stderr and "No problems found" in done.stderr
     plain = run_mcc("lint", "-", "--stdin-filename", "a.mxt", input=FIXABLE)
-    assert plain.returncode == 0 and "M321" in plain.stdout and "a.mxt:2:" in plain.stdout
+    assert plain.returncode == 1 and "M321" in plain.stdout and "a.mxt:2:" in plain.stdout  # warnings fail lint
 
 
 def test_lint_on_standard_input_reads_the_configuration_next_to_its_name(tmp_path):

@@ -21,7 +21,7 @@ from typing import Callable, Iterable
 from mcc.compiler import dialects, driver
 from mcc.compiler.config import Resolver, Settings, load_profile
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Kind
-from mcc.compiler.lint import files, fixes, flow, suppress
+from mcc.compiler.lint import files, fixes, flow, ignore, suppress
 from mcc.compiler.lint.rules import Context, rules_for
 from mcc.compiler.span import SourceFile
 
@@ -213,24 +213,33 @@ def _diverges(outcome: Outcome, before: str, options: Options) -> bool:
 
 # many files ----------------------------------------------------------------------------------------
 
-def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list[str] | None = None) -> list[str]:
+def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list[str] | None = None,
+           force_exclude: bool = False, respect_gitignore: bool = True) -> list[str]:
     """Files to lint: the files given, and the files with a known extension under the directories
-    given (hidden directories and the configuration's `exclude` patterns are skipped). Only regular
-    files are taken from a directory: a FIFO, device or socket (or a broken link) with a dialect's
-    extension is left out, with a note appended to `skipped`."""
+    given. Hidden directories, the configuration's `exclude` patterns and what `.gitignore` ignores
+    (compiler/lint/ignore.py) are skipped in directories; with `force_exclude` also among the paths
+    given (pre-commit names each staged file). Only regular files are taken from a directory: a
+    FIFO, device or socket (or a broken link) with a dialect's extension is left out, with a note
+    appended to `skipped`."""
     from mcc.compiler import files as files_mod
 
     extensions = dialects.all_extensions()
     found: list[str] = []
     seen: set = set()
+
+    def left_out(path: str, within: str | None = None) -> bool:
+        return excluded(path, resolver) or (respect_gitignore and ignore.gitignored(path, within=within))
+
     for path in paths:
+        if force_exclude and left_out(path):
+            continue
         if os.path.isdir(path):
             for folder, subdirs, names in os.walk(path):
                 subdirs[:] = sorted(d for d in subdirs if not d.startswith(".") and d not in SKIP_DIRS
-                                    and not excluded(os.path.join(folder, d), resolver))
+                                    and not left_out(os.path.join(folder, d), path))
                 for name in sorted(names):
                     full = os.path.join(folder, name)
-                    if name.lower().endswith(extensions) and not excluded(full, resolver):
+                    if name.lower().endswith(extensions) and not left_out(full, path):
                         problem = files_mod.unreadable(full)
                         if problem is None:
                             add(found, seen, full)

@@ -216,7 +216,12 @@ def test_unknown_code_on_the_command_line_is_a_usage_error(tmp_path: Path) -> No
 
 
 def test_fail_on_warning(tmp_path: Path) -> None:
+    """Warnings fail `mcc lint` by default (as any finding fails ruff, so the pre-commit hook blocks
+    them); `fail-on = "error"` or `--fail-on error` lets them pass, `--exit-zero` passes all."""
     write(tmp_path / "p.mxt", BAD)
+    assert run_mcc("lint", "p.mxt", cwd=tmp_path).returncode == 1
+    assert run_mcc("lint", "--fail-on", "error", "p.mxt", cwd=tmp_path).returncode == 0
+    write(tmp_path / "mcc.toml", 'fail-on = "error"\n')
     assert run_mcc("lint", "p.mxt", cwd=tmp_path).returncode == 0
     assert run_mcc("lint", "--fail-on", "warning", "p.mxt", cwd=tmp_path).returncode == 1
     write(tmp_path / "mcc.toml", 'fail-on = "warning"\n')

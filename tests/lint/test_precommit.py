@@ -26,6 +26,7 @@ PRE_COMMIT = Path(sys.executable).parent / "pre-commit"
 BAD = "PG 1\nLB G1\n  MA 100\n  BR G9\n  E\nPG\nS\n' keep this line\n"  # M106: undefined label (error)
 MESSY = "pg 1\nlb G1\nma 100\n   h\n e\npg\ns\n' keep this line\n"
 GOOD = "PG 1\nLB G1\n  MA 100\n  H\n  E\nPG\nS\n' keep this line\n"
+WARNS = "PG 1\nLB G1\n  MA 100\n  H\n  E\nPG\n"  # only a warning: M309, never saved (lexium-mcode.txt L5269)
 
 
 def head_commit() -> str | None:
@@ -50,7 +51,8 @@ def test_hook_file_patterns_match_the_dialect_extensions() -> None:
     hooks = yaml.safe_load((ROOT / ".pre-commit-hooks.yaml").read_text())
     assert {h["id"] for h in hooks} == {"mcc-lint", "mcc-format"}
     for hook in hooks:
-        assert hook["language"] == "python" and hook["entry"] in ("mcc lint", "mcc fmt")
+        # --force-exclude: pre-commit names each staged file, and `exclude`/.gitignore must still count
+        assert hook["language"] == "python" and hook["entry"] in ("mcc lint --force-exclude", "mcc fmt --force-exclude")
         pattern = re.compile(hook["files"])
         for ext in dialects.all_extensions():
             assert pattern.search(f"dir/program{ext}") and pattern.search(f"PROGRAM{ext.upper()}")
@@ -74,6 +76,10 @@ def project(tmp_path: Path):
     (repo / "bad.mxt").write_text(BAD)
     (repo / "messy.mxt").write_text(MESSY)
     (repo / "good.mxt").write_text(GOOD)
+    (repo / "warns.mxt").write_text(WARNS)
+    (repo / "mcc.toml").write_text('exclude = ["vendor"]\n')
+    (repo / "vendor").mkdir()
+    (repo / "vendor" / "theirs.mxt").write_text(BAD)
     return repo, env
 
 
@@ -93,6 +99,10 @@ def test_bad_commit_is_blocked_and_good_commit_passes(project) -> None:
     assert "bad.mxt:4:6: error[M106] label G9 is not defined" in tried.stdout
     tried = pre_commit("try-repo", str(ROOT), "mcc-lint", "--ref", rev, "--files", "good.mxt")
     assert tried.returncode == 0, tried.stdout + tried.stderr
+    tried = pre_commit("try-repo", str(ROOT), "mcc-lint", "--ref", rev, "--files", "warns.mxt")
+    assert tried.returncode == 1 and "warning[M309]" in tried.stdout, tried.stdout + tried.stderr  # as ruff's hook
+    tried = pre_commit("try-repo", str(ROOT), "mcc-lint", "--ref", rev, "--files", "vendor/theirs.mxt", "good.mxt")
+    assert tried.returncode == 0, tried.stdout + tried.stderr  # excluded by mcc.toml, though named
     git("reset", "-q", cwd=repo, env=env)
 
     config = {"repos": [{"repo": str(ROOT), "rev": rev, "hooks": [{"id": "mcc-lint"}, {"id": "mcc-format"}]}]}
