@@ -19,6 +19,8 @@ case, `NAME=value` for settings, `MA 100` for instructions, no comments but the 
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import string
 from fractions import Fraction
 
@@ -37,7 +39,7 @@ PARAM_NAMES = {ir.MotionParam.ACCEL: "A", ir.MotionParam.DECEL: "D", ir.MotionPa
                ir.MotionParam.MAX_SPEED: "VM", ir.MotionParam.RESOLUTION: "MS"}
 COMPARE = {"=": "=", "!=": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 NEGATE = {"=": "!=", "!=": "=", "<": ">=", "<=": ">", ">": "<=", ">=": "<"}  # in the IR's neutral names
-FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
+FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "log": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
              "sqrt": "SQ", "tan": "TG", "atan": "T_"}
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
          "power_loss": "TM"}
@@ -66,6 +68,33 @@ HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+
 PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
 OUTPUTS = 3  # O1-O3; OT sets them as a 3-bit value (L4669)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
+
+
+@lru_cache(maxsize=1)
+def registers() -> dict[str, str]:
+    """Neutral setting or reading -> the drive register that holds it: the catalog's `setting` and
+    `reading` keys (compiler/catalogs/mcode.toml), the inverse of the frontend's lowering."""
+    table: dict[str, str] = {}
+    for command in cat.load().commands.values():
+        name = command.entry.get("setting") or command.entry.get("reading")
+        if name and name not in READINGS and name not in SETTINGS:
+            table.setdefault(name, command.name)
+    return table
+
+
+def read_back(node: ir.BinOp) -> str | None:
+    """`MT`, `D2`, `LT` read back: the frontend reads a setting held in seconds as
+    `Status(setting) / 0.001` (ms); the register is written as it was."""
+    if node.op != "/" or not isinstance(node.left, ir.Status) or not isinstance(node.right, ir.Const) \
+            or node.right.value != MS_TO_S:
+        return None
+    meaning, index = node.left.meaning, node.left.index
+    if meaning in registers():
+        return registers()[meaning]
+    found = SETTINGS.get(meaning)
+    if found is None or found[1] != 1000:
+        return None
+    return f"{found[0]}{index}" if found[0] == "D" and index in range(1, 5) else (found[0] if found[0] != "D" else None)
 
 
 class Unsupported(Exception):
@@ -788,6 +817,15 @@ class Writer:
         return f"{self.prefix(op.axis)}{name} {kind}"
 
     def setting(self, op: ir.Setting) -> str:
+        register = registers().get(op.name)
+        if op.name not in SETTINGS and register is not None:  # a drive register (the catalog's `setting`)
+            info = ir_names.SETTINGS[op.name]
+            if info.value_type == "text":
+                if not isinstance(op.value, ir.Text):
+                    raise Unsupported(f"the setting {op.name} from a computed value")
+                return f"{self.prefix(op.axis)}{register}={op.value.value}"
+            value = units.from_ir(op.value, MS_TO_S) if info.unit is ir.Unit.S else op.value
+            return f"{self.prefix(op.axis)}{register}={self.expr(value)}"
         if op.name not in SETTINGS:
             info = ir_names.SETTINGS.get(op.name)
             raise Unsupported(f"the setting {op.name}" + (f" ({info.meaning})" if info else ""))
@@ -983,6 +1021,8 @@ class Writer:
             if node.op == "!":
                 raise Unsupported("a logical NOT inside an expression")
             return ("-" if node.op == "-" else "!") + operand
+        if isinstance(node, ir.BinOp) and read_back(node) is not None:
+            return read_back(node)
         if isinstance(node, ir.BinOp):
             if isinstance(node.right, ir.BinOp):
                 raise Unsupported("an expression that needs parentheses (MCode evaluates left to right)")
@@ -1000,6 +1040,10 @@ class Writer:
         raise Unsupported(f"the value {type(node).__name__}")
 
     def status(self, node: ir.Status) -> str:
+        if node.meaning in registers():  # a drive register read back (PR CW)
+            return registers()[node.meaning]
+        if node.meaning in SETTINGS and SETTINGS[node.meaning][1] == 1 and node.meaning not in READINGS:
+            return SETTINGS[node.meaning][0]  # a setting read back in its own units (PR TE)
         if node.meaning in INDEXED_READINGS:
             prefix, numbers = INDEXED_READINGS[node.meaning]
             index = node.index if node.meaning != "analog" else (node.index or 1) + 4

@@ -18,7 +18,7 @@ it when it leaves a handler).
 
 from __future__ import annotations
 
-from mcc.compiler import cancel, ir, units
+from mcc.compiler import cancel, ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
@@ -61,8 +61,17 @@ FULL_STEPS_PER_REV = 200  # a 1.8° motor (L645); profiles may say otherwise (`f
 MS_TO_S = 0.001
 COMPARE_OPS = {"=": "=", "<>": "!=", "<": "<", "<=": "<=", "=<": "<=", ">": ">", ">=": ">="}
 BINARY_OPS = {"+": "+", "-": "-", "*": "*", "/": "/", "&": "&", "|": "|", "^": "^"}
-FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "ln", "L_": "log10", "SI": "sin",
+# LO: the section calls it "Logarithm Base 2" (L6620, L6629) and its example's comment "log (base
+# 10)", but the value it prints for 51200 is 10.843495 = ln 51200 (L6636): mcc follows the printed
+# value, the natural logarithm (docs/dialects/mcode.md, "Functions").
+FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "log", "L_": "log10", "SI": "sin",
              "S_": "asin", "SQ": "sqrt", "TG": "tan", "T_": "atan"}
+TRIG = frozenset({"sin", "cos", "tan", "asin", "acos", "atan"})
+# PI "holds the value of PI" as the section's title writes it, 3.141592654 (L6660-L6676): 51200*PI
+# prints 160849.543885, where math.pi would give 160849.543864.
+PI = 3.141592654
+# How PR MD prints the last move's kind (L4145-L4153).
+LAST_MOVE_TEXTS = {"absolute": "MA", "relative": "MR", "slew": "SL"}
 
 
 def first_arg_name(res: Resolved) -> str:
@@ -400,6 +409,8 @@ class Lowering:
         if kind in MOTION_PARAMS and args:
             param = MOTION_PARAMS[kind]
             return ir.SetMotion(param, axis, self.expr(args[0], ir.PARAM_UNITS[param]), span)
+        if command.entry.get("setting") and args:
+            return self.register_setting(command, args, axis, span)
         if kind in SETTINGS and args:
             setting, factor, unit = SETTINGS[kind]
             return ir.Setting(setting, axis, units.to_ir(self.expr(args[0]), factor, unit), span, command.index)
@@ -469,6 +480,46 @@ class Lowering:
             return ir.SetHandler(TRIP_EVENTS[name], label, others, span, **HANDLER_FACTS)
         return ir.Native(DIALECT, name, tuple(self.native_arg(command, a) for a in args),
                          form="=" if stmt.form == "assign" else (" " if args else ""), axis=axis, span=span)
+
+    def register_setting(self, command: cat.Command, args, axis: str, span):
+        """`CW=100`, `SA=0.9`, `PF=8,4,1,1`: a drive register the catalog names a neutral setting
+        (its `setting` key); the simulator keeps the value and reads it back (docs/SIMULATOR.md,
+        "Drive registers"). A text setting (PF's four numbers) needs literal numbers."""
+        name = command.entry.get("setting")
+        info = ir_names.SETTINGS[name]
+        self.declare_device_value(command)
+        if info.value_type == "text":
+            values = [self.expr(a) for a in args]
+            if not all(isinstance(v, ir.Const) for v in values):
+                return self.native(command, args, span, axis)
+            text = ",".join(format(v.value) for v in values)
+            return ir.Setting(name, axis, ir.Text(text, span), span)
+        factor = MS_TO_S if info.unit is ir.Unit.S else 1
+        return ir.Setting(name, axis, units.to_ir(self.expr(args[0]), factor, info.unit), span)
+
+    def declare_device_value(self, command: cat.Command) -> None:
+        """The value the register reads before the program sets it: the catalog's factory default
+        (each entry's manual lines), in the IR's units; the identity from the profile's [device]."""
+        name = command.entry.get("setting") or command.entry.get("reading") or SETTINGS.get(command.ir, ("",))[0]
+        if not name or name in self.module.device_values:
+            return
+        if name == "part_number":
+            value = self.profile.get("device.part_number")
+        elif name == "firmware_version":
+            value = self.profile.get("device.version")
+        else:
+            value = command.entry.default
+            info = ir_names.SETTINGS.get(name)
+            if info is not None and info.unit is ir.Unit.S and isinstance(value, (int, float)):
+                value = value * MS_TO_S
+            if name == "last_move":
+                self.module.print_texts[name] = dict(LAST_MOVE_TEXTS)
+        if value is not None:
+            self.module.device_values[name] = value
+
+    def native(self, command: cat.Command, args, span, axis: str):
+        return ir.Native(DIALECT, command.name, tuple(self.native_arg(command, a) for a in args), form="=",
+                         axis=axis, span=span)
 
     def line_setup(self, name: str, axis: str, args, span):
         """`IS=1,1,0` / `OS=1,17,1` with literal numbers: an input's or output's function and its
@@ -558,11 +609,14 @@ class Lowering:
                 self.declare_register(command)
                 return ir.Var(upper, node.span)
             if upper == "PI":
-                return ir.Func("pi", (), node.span)
+                return ir.Const(PI, unit, node.span)
             if upper in self.resolver.names.labels:
                 return ir.LabelRef(upper, node.span)
             meaning = command.ir if command is not None else ""
             index = command.index if command is not None else None
+            read_back = self.read_back(command, node) if command is not None else None
+            if read_back is not None:
+                return read_back
             if meaning in READINGS:
                 reading = READINGS[meaning]
                 indexed = reading in ("input", "output", "analog")
@@ -579,7 +633,10 @@ class Lowering:
         if isinstance(node, st.Binary):
             return ir.BinOp(BINARY_OPS.get(node.op, node.op), self.expr(node.left), self.expr(node.right), node.span)
         if isinstance(node, st.FuncCall):
-            return ir.Func(FUNCTIONS.get(node.name, node.name.lower()), (self.expr(node.operand),), node.span)
+            name = FUNCTIONS.get(node.name, node.name.lower())
+            if name in TRIG and "RA" in self.cat.commands:  # angles in the unit RA gives (default radians, L5110)
+                self.declare_device_value(self.cat.commands["RA"])
+            return ir.Func(name, (self.expr(node.operand),), node.span)
         if isinstance(node, st.String):
             return ir.Text(node.text, node.span)
         if isinstance(node, st.Juxtaposed):
@@ -587,6 +644,24 @@ class Lowering:
         if isinstance(node, st.Comparison):
             return self.cond(node)
         raise TypeError(f"unexpected node {type(node).__name__}")
+
+    def read_back(self, command: cat.Command, node: st.Name):
+        """A read of a drive register that is a neutral setting or reading (the catalog's `setting`,
+        `reading` or a setting `ir` kind): the value in force, in the register's own units."""
+        setting = command.entry.get("setting")
+        reading = command.entry.get("reading")
+        if not setting and not reading and command.ir in SETTINGS and command.ir not in READINGS:
+            setting, factor, _unit = SETTINGS[command.ir]
+        elif setting:
+            factor = MS_TO_S if ir_names.SETTINGS[setting].unit is ir.Unit.S else 1
+        elif reading:
+            factor = 1
+        else:
+            return None
+        self.declare_device_value(command)
+        indexed = command.index is not None and setting == "input_debounce"
+        status = ir.Status(setting or reading, self.drive_axis(), command.index if indexed else None, node.span)
+        return units.from_ir(status, factor) if factor != 1 else status
 
     def drive_axis(self) -> str:
         return self.profile.axes[0] if self.profile.axes else "1"

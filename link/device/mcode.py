@@ -24,6 +24,7 @@ from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
+from mcc.sim import values
 
 ACK, NAK = b"\x06", b"\x15"
 USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
@@ -385,9 +386,18 @@ class MCodeDevice(VirtualDevice):
             elif item.upper() == "EF":
                 out += str(self.memory.variables.get("EF", 0))
             else:
-                value = self.read(item)
-                out += str(value)
+                out += self.text_of(item, self.read(item))
         return [out]
+
+    def text_of(self, name: str, value) -> str:
+        """A value as PR prints it: a floating-point register (F1-F8, SA: the catalog's default is
+        a float) in the print format PF in force (default 10,6,0,0, L4744-L4777), as `mcc sim`
+        prints it (sim/values.float_text); any other value as it is."""
+        info = names().get(name.upper())
+        if info is not None and isinstance(info.default, float) and isinstance(value, (int, float)):
+            fmt = values.float_format(self.var("PF", info.default)) or values.float_format(names()["PF"].default)
+            return values.float_text(float(value), fmt)
+        return str(value)
 
     def cmd_VA(self, rest: str) -> list[str]:
         self.declare(rest, "G")
