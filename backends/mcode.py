@@ -85,10 +85,13 @@ def registers() -> dict[str, str]:
 def read_back(node: ir.BinOp) -> str | None:
     """`MT`, `D2`, `LT` read back: the frontend reads a setting held in seconds as
     `Status(setting) / 0.001` (ms); the register is written as it was."""
-    if node.op != "/" or not isinstance(node.left, ir.Status) or not isinstance(node.right, ir.Const) \
-            or node.right.value != MS_TO_S:
+    if node.op != "/" or not isinstance(node.left, ir.Status) or not isinstance(node.right, ir.Const):
         return None
     meaning, index = node.left.meaning, node.left.index
+    if meaning == "resolution" and node.right.value == FULL_STEPS_PER_REV:  # MS: steps per rev / 200
+        return "MS"
+    if node.right.value != MS_TO_S:
+        return None
     if meaning in registers():
         return registers()[meaning]
     found = SETTINGS.get(meaning)

@@ -650,6 +650,9 @@ class Lowering:
         `reading` or a setting `ir` kind): the value in force, in the register's own units."""
         setting = command.entry.get("setting")
         reading = command.entry.get("reading")
+        if command.ir == "resolution":  # MS: microsteps per full step, the steps per revolution in force / 200
+            return ir.BinOp("/", ir.Status("resolution", self.drive_axis(), None, node.span),
+                            ir.Const(self.full_steps), node.span)
         if not setting and not reading and command.ir in SETTINGS and command.ir not in READINGS:
             setting, factor, _unit = SETTINGS[command.ir]
         elif setting:
