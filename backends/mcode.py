@@ -100,6 +100,20 @@ def read_back(node: ir.BinOp) -> str | None:
     return f"{found[0]}{index}" if found[0] == "D" and index in range(1, 5) else (found[0] if found[0] != "D" else None)
 
 
+# The line tables `PR OS` and `PR LS` answer (the frontend writes one print per line reading that
+# line's settings): the reading of a line's first parameter -> (the table, its first line).
+TABLE_READINGS = {"output_function": ("OS", 1), "soft_limit_position": ("LS", 0)}
+
+
+def table_listing(op: ir.Print) -> tuple[str, bool] | None:
+    """(table, first line?) when `op` prints one line of an MCode setup table, else None."""
+    for item in op.items:
+        if isinstance(item, ir.Status) and item.meaning in TABLE_READINGS:
+            table, first = TABLE_READINGS[item.meaning]
+            return table, item.index == first
+    return None
+
+
 class Unsupported(Exception):
     """An IR construct this backend cannot write; reported as G003 at the operation's span."""
 
@@ -589,7 +603,7 @@ class Writer:
         """Write the operation at `index`; returns how many operations it used (IS/OS take two)."""
         op = ops[index]
         pair = ops[index + 1] if index + 1 < len(ops) else None
-        if isinstance(op, ir.Setting) and op.name in ("input_function", "output_function"):
+        if isinstance(op, ir.Setting) and op.name in ("input_function", "output_function", "soft_limit_position"):
             try:
                 self.line(self.line_setup(op, pair), op.span)
             except Unsupported as exc:
@@ -690,6 +704,9 @@ class Writer:
             if op.signed:
                 raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
                                   "MCode prints positive numbers unsigned),")
+            table = table_listing(op)
+            if table is not None:  # one line of PR OS / PR LS: the statement is written at its first line
+                return f"PR {table[0]}" if table[1] else None
             items = ",".join(self.item(item) for item in op.items)
             prefix = self.prefix(op.axis) if op.axis else ""
             return f"{prefix}PR {items}{'' if op.newline else ';'}"
@@ -843,15 +860,18 @@ class Writer:
         return f"{self.prefix(op.axis)}{name}={self.expr(value)}"
 
     def line_setup(self, op: ir.Setting, pair) -> str:
+        if op.name == "soft_limit_position":  # LS=<0/1>,<position>,<0/1> (L4023-L4044)
+            if not (isinstance(pair, ir.Setting) and pair.name == "soft_limit_enable" and pair.index == op.index):
+                raise Unsupported("a software limit's position without its enable (MCode's LS sets both)")
+            return f"{self.prefix(op.axis)}LS={op.index},{self.position(op.value)},{self.expr(pair.value)}"
         table, name = (INPUT_TYPES, "IS") if op.name == "input_function" else (OUTPUT_TYPES, "OS")
         function = op.value.value if isinstance(op.value, ir.Text) else None
         if function not in table:
             raise Unsupported(f"an {op.name} of {function}")
         paired = isinstance(pair, ir.Setting) and pair.index == op.index \
             and pair.name == op.name.replace("function", "active_high")
-        if not paired:  # IS/OS set the active level too: writing one the source did not set changes it
-            raise Unsupported(f"an {op.name} without its active level (MCode's IS/OS set both; the source sets "
-                              "only the function)")
+        if not paired:  # `OS=3,29`: the type only, the line keeps its active level (L4646)
+            return f"{self.prefix(op.axis)}{name}={op.index},{table[function]}"
         active = pair.value
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
 

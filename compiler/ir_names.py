@@ -285,6 +285,10 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("torque_speed", Unit.STEPS_PER_S, "closed-loop torque mode: the speed", ("mcode",)),
     SettingInfo("velocity_filter", Unit.NONE, "closed loop: filtering of the measured velocity (0 none)",
                 ("mcode",)),
+    SettingInfo("soft_limit_position", Unit.STEPS, "the position of software limit `index` (0 the minus limit, "
+                "1 the plus limit)", ("mcode",)),
+    SettingInfo("soft_limit_enable", Unit.NONE, "1: software limit `index` (0 minus, 1 plus) stops the axis, 0: off",
+                ("mcode",)),
     SettingInfo("warning_temperature", Unit.NONE, "temperature, in °C, above which the device raises a warning",
                 ("mcode",)),
 )}

@@ -753,8 +753,8 @@ class Simulator:
         setting's value is kept for the readings that report it (SETTING_READINGS)."""
         value = self._eval_quiet(op.value) if not isinstance(op.value, ir.Text) else None
         info = ir_names.SETTINGS.get(op.name)
-        if info is not None and info.value_type == "text" and isinstance(op.value, ir.Text):
-            value = op.value.value  # kept as text: a format read back as it was written
+        if isinstance(op.value, ir.Text):
+            value = op.value.value  # kept as text: a format, an input's function, read back as written
         elif info is not None and info.value_type == "float" and value is not None:
             value = float(value)
         if value is not None:

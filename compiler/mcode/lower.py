@@ -23,6 +23,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.resolve import Resolved, Resolver
+from mcc.compiler.mcode.tables import TABLES
 from mcc.compiler import homing
 from mcc.compiler.profiles import Profile
 
@@ -70,6 +71,9 @@ TRIG = frozenset({"sin", "cos", "tan", "asin", "acos", "atan"})
 # PI "holds the value of PI" as the section's title writes it, 3.141592654 (L6660-L6676): 51200*PI
 # prints 160849.543885, where math.pi would give 160849.543864.
 PI = 3.141592654
+# The line tables PR reports (tables.TABLES): the neutral settings of a line's two parameters, and
+# how the first prints (an IS/OS type number from the function's name; the number itself for LS).
+TABLE_SETTINGS = {"OS": ("output_function", "output_active_high"), "LS": ("soft_limit_position", "soft_limit_enable")}
 # How PR MD prints the last move's kind (L4145-L4153).
 LAST_MOVE_TEXTS = {"absolute": "MA", "relative": "MR", "slew": "SL"}
 
@@ -414,7 +418,7 @@ class Lowering:
         if kind in SETTINGS and args:
             setting, factor, unit = SETTINGS[kind]
             return ir.Setting(setting, axis, units.to_ir(self.expr(args[0]), factor, unit), span, command.index)
-        if name in ("IS", "OS") and len(args) == 3:
+        if name in ("IS", "OS", "LS") and len(args) in (2, 3):
             line_setup = self.line_setup(name, axis, args, span)
             if line_setup is not None:
                 return line_setup
@@ -449,6 +453,10 @@ class Lowering:
             return ir.SetOutput(None, self.expr(args[0]), span)
         if kind == "drive_enable" and args:
             return ir.DriveEnable(axis, self.expr(args[0]), span)
+        if kind == "print" and len(args) == 1 and isinstance(args[0], st.Name) and stmt.suffix != ";":
+            listing = self.listing(args[0].key, axis, span)
+            if listing is not None:
+                return listing
         if kind == "print":
             items = []
             for arg in args:  # a text and the item glued to it (comma missing) are two items
@@ -521,19 +529,56 @@ class Lowering:
         return ir.Native(DIALECT, command.name, tuple(self.native_arg(command, a) for a in args), form="=",
                          axis=axis, span=span)
 
+    def listing(self, name: str, axis: str, span) -> list[ir.Print] | None:
+        """`PR OS`, `PR LS`, `PR UV`: one print per line of the table, as the drive answers it
+        (L4647-L4650, L4044, L5972): each line reads the line's settings in force (their factory
+        values declared on the module); UV lists the user variables declared before it, `name = G|L
+        value` (G global, declared outside a program; L local)."""
+        if name == "UV":
+            return [ir.Print((ir.Text(f"{v.name} = {'G' if v.scope == 'global' else 'L'} ", span), ir.Var(v.name, span)),
+                             span=span) for v in self.module.variables.values()]
+        if name not in TABLE_SETTINGS:
+            return None
+        lines, form = TABLES[name]
+        first, second = TABLE_SETTINGS[name]
+        factory = next(iter(lines.values()))
+        if name == "OS":
+            self.module.print_texts[first] = {function: str(number) for number, function in OUTPUT_TYPES.items()}
+            self.module.device_values.setdefault(first, OUTPUT_TYPES[factory[0]])
+        else:
+            self.module.device_values.setdefault(first, factory[0])
+        self.module.device_values.setdefault(second, factory[1])
+        prints = []
+        for n in lines:
+            head, _, rest = form.replace("{n}", str(n)).partition("{0}")
+            middle, _, tail = rest.partition("{1}")
+            items = (ir.Text(head, span), ir.Status(first, axis, n, span), ir.Text(middle, span),
+                     ir.Status(second, axis, n, span)) + ((ir.Text(tail, span),) if tail else ())
+            prints.append(ir.Print(items, span=span))
+        return prints
+
     def line_setup(self, name: str, axis: str, args, span):
         """`IS=1,1,0` / `OS=1,17,1` with literal numbers: an input's or output's function and its
         active level, as two neutral settings (returned as one list the caller flattens)."""
         values = [self.expr(a) for a in args]
         if not all(isinstance(v, ir.Const) for v in values):
             return None
-        line, kind_of, active = (v.value for v in values)
+        if name == "LS":  # LS=<0/1>,<position>,<0/1>: a software limit (L4023-L4044)
+            if len(values) != 3 or values[0].value not in (0, 1) or values[2].value not in (0, 1):
+                return None
+            limit = values[0].value
+            return [ir.Setting("soft_limit_position", axis, self.expr(args[1], ir.Unit.STEPS), span, limit),
+                    ir.Setting("soft_limit_enable", axis, values[2], span, limit)]
+        line, kind_of = values[0].value, values[1].value
+        active = values[2].value if len(values) == 3 else None  # OS=3,29 keeps the active level (L4646)
         table = INPUT_TYPES if name == "IS" else OUTPUT_TYPES
-        if kind_of not in table or not isinstance(line, int) or line not in range(1, 5) or active not in (0, 1):
+        if kind_of not in table or not isinstance(line, int) or line not in range(1, 5) or active not in (0, 1, None):
             return None
         what = "input" if name == "IS" else "output"
-        return [ir.Setting(f"{what}_function", axis, ir.Text(table[kind_of], args[1].span), span, line),
-                ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, line)]
+        function = ir.Setting(f"{what}_function", axis, ir.Text(table[kind_of], args[1].span), span, line)
+        if active is None:
+            return [function]
+        return [function, ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, line)]
 
     def resolution(self, axis: str, node: st.Node, span):
         """`MS=256`: microsteps per full step. The IR counts steps per revolution, and a literal

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from mcc.compiler import catalog, ir
+from mcc.compiler.mcode.tables import TABLES
 from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
@@ -80,17 +81,8 @@ def split_items(text: str) -> list[str]:
     return items
 
 
-# The setups kept per line, set with `IS=<n>,<type>,<active>` and reported as a table by PR IS,
-# PR OS, PR LS: name -> ({line: the factory value of its other parameters}, how PR writes a
-# line). IS: inputs 1-4 type 0 LOW active (L3504-L3506), the analog input 5 voltage 0-5 V
-# (L3557-L3561), the index input 6 LOW active (L3595-L3600); OS: outputs 1-3 type 16 LOW active
-# (L4618-L4621, the reply of L4647-L4650); LS: the minus (0) and plus (1) limits at 0, disabled
-# (L4023-L4026, the reply format of L4044).
-TABLES: dict[str, tuple[dict[int, tuple[int, ...]], str]] = {
-    "IS": ({1: (0, 0), 2: (0, 0), 3: (0, 0), 4: (0, 0), 5: (9, 0), 6: (0, 0)}, "IS = {n}, {0}, {1}"),
-    "OS": ({1: (16, 0), 2: (16, 0), 3: (16, 0)}, "OS = {n}, {0}, {1}"),
-    "LS": ({0: (0, 0), 1: (0, 0)}, "LS={n}, {0}, {1}"),
-}
+# The setups kept per line (IS, OS, LS) and how PR writes them: compiler/mcode/tables.py, which
+# the lowering reads too.
 CLOCK_TYPES = (13, 14, 15)   # IS types of the input 3/4 pair: setting one sets the other (L3522)
 INDEX_INPUT = 6              # IS=6,<active>: its only parameter is the active state (L3595-L3605)
 

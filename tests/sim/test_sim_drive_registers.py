@@ -100,3 +100,28 @@ def test_the_virtual_device_prints_floats_in_the_pf_format():
 def test_the_virtual_device_keeps_settings_between_commands():
     """An immediate RA=0 holds for the commands after it, as on the drive (RA is Program/Immediate, L5101)."""
     assert device_replies("RA=0", "VA Q1=30", "F1=SI Q1", "PR F1") == ["0.500000"]
+
+
+def test_pr_os_lists_every_output_setup(tmp_path):
+    """PR OS answers every output's type and active level; OS=3,29 keeps output 3's level (L4644-L4650)."""
+    assert prints(tmp_path, "OS=1,17,1\nOS=3,29\nPR OS") == ["OS = 1, 17, 1", "OS = 2, 16, 0", "OS = 3, 29, 0"]
+
+
+def test_pr_ls_lists_both_software_limits(tmp_path):
+    """PR LS answers the minus and the plus limit (L4041-L4044)."""
+    assert prints(tmp_path, "LS=0,-102400,1\nLS=1,102400,1\nPR LS") == ["LS=0, -102400, 1", "LS=1, 102400, 1"]
+
+
+def test_pr_uv_lists_the_user_variables(tmp_path):
+    """PR UV lists each user variable with G (global) and its value (L5972)."""
+    assert prints(tmp_path, "VA Q1=25\nPR UV") == ["Q1 = G 25"]
+
+
+@pytest.mark.parametrize("program", ["OS=1,17,1\nOS=3,29\nPR OS", "LS=0,-102400,1\nLS=1,102400,1\nPR LS"])
+def test_tables_compile_back(tmp_path, program):
+    """The setup tables are written back as the source wrote them (L4644-L4646, L4041-L4044)."""
+    path = tmp_path / "prog.mxt"
+    path.write_text(program + "\n")
+    result = driver.compile_file(str(path), "mcode", target="mcode")
+    assert not result.has_errors, result.diagnostics
+    assert [line.text for line in result.listing.lines] == program.splitlines()
