@@ -870,8 +870,11 @@ class Writer:
             raise Unsupported(f"an {op.name} of {function}")
         paired = isinstance(pair, ir.Setting) and pair.index == op.index \
             and pair.name == op.name.replace("function", "active_high")
-        if not paired:  # `OS=3,29`: the type only, the line keeps its active level (L4646)
+        if not paired and name == "OS":  # `OS=3,29`: the type only, the line keeps its active level (L4646)
             return f"{self.prefix(op.axis)}{name}={op.index},{table[function]}"
+        if not paired:  # IS sets the active level too (the manual shows no IS without it, L3500-L3533)
+            raise Unsupported(f"an {op.name} without its active level (MCode's IS sets both; the source sets "
+                              "only the function)")
         active = pair.value
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
 

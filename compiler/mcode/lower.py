@@ -418,7 +418,7 @@ class Lowering:
         if kind in SETTINGS and args:
             setting, factor, unit = SETTINGS[kind]
             return ir.Setting(setting, axis, units.to_ir(self.expr(args[0]), factor, unit), span, command.index)
-        if name in ("IS", "OS", "LS") and len(args) in (2, 3):
+        if name in ("IS", "OS", "LS") and len(args) == 3 or name == "OS" and len(args) == 2:
             line_setup = self.line_setup(name, axis, args, span)
             if line_setup is not None:
                 return line_setup
