@@ -1060,6 +1060,9 @@ class Writer:
             if node.name == "pi":
                 return "PI"
             name = FUNCTIONS.get(node.name)
+            if node.name in ("log", "log2", "log10"):  # LO is the logarithm the profile says (docs/dialects/mcode.md)
+                lo = self.profile.get("mcode.lo_function", "log")
+                name = "LO" if node.name == lo else ("L_" if node.name == "log10" else None)
             if name is None or len(node.args) != 1:
                 raise Unsupported(f"the function {node.name}")
             return f"{name} {self.expr(node.args[0])}"

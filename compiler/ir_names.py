@@ -57,6 +57,7 @@ FUNCTIONS: dict[str, str] = {
     "atan": "arc tangent (degrees, or radians under `trig_radians`)",
     "log": "natural logarithm",
     "log10": "decimal logarithm",
+    "log2": "binary logarithm (base 2)",
     "exp": "e to the power of the argument",
     "pi": "the constant pi (no argument)",
     "int": "the integer part (truncation toward zero)",

@@ -159,6 +159,8 @@ def function(name: str, args: list[Number], radians: bool = False) -> Number:
             return math.log(v)
         if name == "log10":
             return math.log10(v)
+        if name == "log2":
+            return math.log2(v)
         if name == "exp":
             return math.exp(v)
     except (ValueError, OverflowError):

@@ -23,7 +23,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.resolve import Resolved, Resolver
-from mcc.compiler.mcode.tables import TABLES
+from mcc.compiler.mcode.tables import STAND_IN_VERSION, TABLES
 from mcc.compiler import homing
 from mcc.compiler.profiles import Profile
 
@@ -64,7 +64,9 @@ COMPARE_OPS = {"=": "=", "<>": "!=", "<": "<", "<=": "<=", "=<": "<=", ">": ">",
 BINARY_OPS = {"+": "+", "-": "-", "*": "*", "/": "/", "&": "&", "|": "|", "^": "^"}
 # LO: the section calls it "Logarithm Base 2" (L6620, L6629) and its example's comment "log (base
 # 10)", but the value it prints for 51200 is 10.843495 = ln 51200 (L6636): mcc follows the printed
-# value, the natural logarithm (docs/dialects/mcode.md, "Functions").
+# value, the natural logarithm, unless the profile's `[mcode] lo_function` says "log2" or "log10"
+# (docs/dialects/mcode.md).
+LO_FUNCTIONS = ("log", "log2", "log10")
 FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "log", "L_": "log10", "SI": "sin",
              "S_": "asin", "SQ": "sqrt", "TG": "tan", "T_": "atan"}
 TRIG = frozenset({"sin", "cos", "tan", "asin", "acos", "atan"})
@@ -511,10 +513,10 @@ class Lowering:
         name = command.entry.get("setting") or command.entry.get("reading") or SETTINGS.get(command.ir, ("",))[0]
         if not name or name in self.module.device_values:
             return
-        if name == "part_number":
-            value = self.profile.get("device.part_number")
+        if name == "part_number":  # none known: the device prints 0 (docs/PROFILES.md)
+            value = self.profile.get("device.part_number") or 0
         elif name == "firmware_version":
-            value = self.profile.get("device.version")
+            value = self.profile.get("device.version") or STAND_IN_VERSION
         else:
             value = command.entry.default
             info = ir_names.SETTINGS.get(name)
@@ -679,6 +681,9 @@ class Lowering:
             return ir.BinOp(BINARY_OPS.get(node.op, node.op), self.expr(node.left), self.expr(node.right), node.span)
         if isinstance(node, st.FuncCall):
             name = FUNCTIONS.get(node.name, node.name.lower())
+            if node.name == "LO":
+                chosen = self.profile.get("mcode.lo_function", "log")
+                name = chosen if chosen in LO_FUNCTIONS else "log"
             if name in TRIG and "RA" in self.cat.commands:  # angles in the unit RA gives (default radians, L5110)
                 self.declare_device_value(self.cat.commands["RA"])
             return ir.Func(name, (self.expr(node.operand),), node.span)

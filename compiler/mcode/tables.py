@@ -1,4 +1,5 @@
-"""The setups an MCode drive keeps per line, which PR reports as a table.
+"""Drive data the MCode lowering and the virtual device both read: the setups a drive keeps per
+line, which PR reports as a table, and the version it reports without a profile's.
 
 IS (inputs), OS (outputs) and LS (software limits) are set one line at a time
 (`OS=<line>,<type>,<active>`) and `PR OS` answers every line's setup. Both the lowering (which
@@ -13,6 +14,10 @@ reply format of L4044).
 """
 
 from __future__ import annotations
+
+# What `PR VR` answers when the product profile gives no `[device] version`: mcc's own stand-in
+# (docs/PROFILES.md), the same for `mcc sim` and the virtual device.
+STAND_IN_VERSION = "LMDCM 6.002"
 
 TABLES: dict[str, tuple[dict[int, tuple[int, ...]], str]] = {
     "IS": ({1: (0, 0), 2: (0, 0), 3: (0, 0), 4: (0, 0), 5: (9, 0), 6: (0, 0)}, "IS = {n}, {0}, {1}"),

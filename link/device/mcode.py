@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from functools import lru_cache
 
 from mcc.compiler import catalog, ir
-from mcc.compiler.mcode.tables import TABLES
+from mcc.compiler.mcode.tables import STAND_IN_VERSION, TABLES
 from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
@@ -117,7 +117,7 @@ class MCodeDevice(VirtualDevice):
         # The drive's identity, as PR VR and PR PN report it (L6185-L6192, L4868-L4875): the
         # product profile's [device] version and part_number; mcc's own stand-in without them.
         identity = self.sim.profile
-        self.version = version or (identity.get("device.version") if identity is not None else None) or "LMDCM 6.002"
+        self.version = version or (identity.get("device.version") if identity is not None else None) or STAND_IN_VERSION
         self.part_number = (identity.get("device.part_number") if identity is not None else None) or ""
         self.memory = Memory(variables={n: i.default for n, i in names().items()
                                         if i.kind in ("variable", "flag") and i.default is not None})

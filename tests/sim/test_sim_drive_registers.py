@@ -9,15 +9,16 @@ from pathlib import Path
 import pytest
 
 from mcc.compiler import driver, ir, ir_verify
+from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.mcode import MCodeDevice
 from mcc.link.device.programs import module_of
 from mcc.sim.files import simulate_file
 
 
-def prints(tmp_path: Path, program: str) -> list[str]:
+def prints(tmp_path: Path, program: str, profile=None) -> list[str]:
     path = tmp_path / "prog.mxt"
     path.write_text(program.strip() + "\n")
-    trace = simulate_file(str(path), "mcode").trace
+    trace = simulate_file(str(path), "mcode", profile=profile).trace
     assert trace is not None
     return [line for _t, text in trace.prints for line in text.splitlines()]
 
@@ -57,6 +58,13 @@ def test_trigonometry_runs_in_radians_until_ra_selects_degrees(tmp_path):
 def test_lo_is_the_natural_logarithm_its_example_prints(tmp_path):
     """LO of 51200 prints 10.843495 = ln 51200 (L6636), though the section's title says base 2 (L6620)."""
     assert prints(tmp_path, "VA Q1=51200\nF1=LO Q1\nPR F1") == ["10.843495"]
+
+
+def test_a_profile_may_take_lo_as_the_base_its_title_says(tmp_path):
+    """`[mcode] lo_function = "log2"`: LO is the logarithm base 2 the section's title says (L6620)."""
+    custom = tmp_path / "lo2.toml"
+    custom.write_text('extends = "lmd-c"\nname = "lo2"\n[mcode]\nlo_function = "log2"\n')
+    assert prints(tmp_path, "VA Q1=1024\nF1=LO Q1\nPR F1", load_profile(str(custom))) == ["10.000000"]
 
 
 def test_pi_is_the_manual_s_constant(tmp_path):
