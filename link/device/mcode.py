@@ -18,7 +18,7 @@ import re
 from dataclasses import dataclass, field
 from functools import lru_cache
 
-from mcc.compiler import catalog, ir
+from mcc.compiler import catalog, ir, ir_names
 from mcc.compiler.mcode.tables import STAND_IN_VERSION, TABLES
 from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.base import VirtualDevice
@@ -48,6 +48,7 @@ class Name:
     access: str
     default: object
     range: tuple | None
+    setting: str = ""   # the neutral setting the register holds (the catalog's `setting` key)
 
 
 @lru_cache(maxsize=None)
@@ -57,7 +58,7 @@ def names() -> dict[str, Name]:
     for entry in catalog.load("mcode").entries:
         if entry.kind in ("operator", "function"):
             continue
-        info = Name(entry.kind, entry.get("access", "") or "", entry.default, entry.range)
+        info = Name(entry.kind, entry.get("access", "") or "", entry.default, entry.range, entry.get("setting", ""))
         index = entry.get("index")
         spellings = [f"{entry.name}{i}" for i in range(index[0], index[1] + 1)] if index else [entry.name]
         for spelling in spellings:
@@ -480,6 +481,12 @@ class MCodeDevice(VirtualDevice):
 
     def before_run(self, values: dict | None = None) -> None:
         self.sim.variables.update(self.numbers() if values is None else values)
+        for name, info in names().items():  # the drive registers as the device holds them (after a power cycle too)
+            value = self.memory.variables.get(name)
+            if info.setting and value is not None:
+                unit = ir_names.SETTINGS[info.setting].unit
+                self.sim.settings[(info.setting, AXIS, None)] = value / 1000 if unit is ir.Unit.S and \
+                    isinstance(value, (int, float)) else value
 
     def after_run(self) -> None:
         """What the run changed, back into the variables the host reads."""
@@ -488,6 +495,11 @@ class MCodeDevice(VirtualDevice):
                 self.memory.user[name][1] = plain(value)
             elif re.fullmatch(r"[RF]\d+", name) and name in names():
                 self.memory.variables[name] = plain(value)
+        for name, info in names().items():  # drive registers a program set (CW=100 in a program EX ran)
+            value = self.sim.settings.get((info.setting, AXIS, None)) if info.setting else None
+            if value is not None:
+                unit = ir_names.SETTINGS[info.setting].unit
+                self.memory.variables[name] = plain(round(value * 1000, 6) if unit is ir.Unit.S else value)
         settings = self.sim.machine.axis(AXIS).settings
         for name, param in SETTINGS.items():
             if param in settings:

@@ -133,3 +133,9 @@ def test_tables_compile_back(tmp_path, program):
     result = driver.compile_file(str(path), "mcode", target="mcode")
     assert not result.has_errors, result.diagnostics
     assert [line.text for line in result.listing.lines] == program.splitlines()
+
+
+def test_the_virtual_device_and_its_programs_share_the_registers():
+    """A register the host sets is what a stored program reads, and one a program sets is what the
+    host reads (one drive, L2171-L2200, L4054-L4083): the device's table and the simulator's agree."""
+    assert device_replies("PG 100", "PR CW", "LT=60", "E", "PG", "CW=100", "EX 100", "PR LT") == ["100", "60"]
