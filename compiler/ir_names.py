@@ -115,6 +115,8 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("output_levels"),  # the active level of every output (1 active high), output 1 in bit 0
     # drive values the machine model has no cause to change: they read the module's `device_values`
     # (the product's value) unless the simulator models them (docs/SIMULATOR.md, "Drive registers")
+    Reading("measured_velocity", Unit.STEPS_PER_S),  # the velocity the encoder measures (closed loop); no slip
+    #                                                   is modelled: the velocity
     Reading("position_error", Unit.STEPS),  # closed-loop lead (-) or lag (+) of the rotor: 0, no slip modelled
     Reading("output_fault"),  # over-current fault of the outputs, a bit mask: 0, none modelled
     Reading("captured_position", Unit.STEPS),  # the position captured at the last trip or capture

@@ -41,7 +41,7 @@ ONCE_EVENTS = frozenset({"time", "position"})
 HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("stall", "fault", "error"),
                  "power": ("power_loss",)}
 DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
-CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving", "moving_to_position"})  # readings that change between events
+CONTINUOUS = frozenset({"position", "encoder", "velocity", "measured_velocity", "moving", "moving_to_position"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 
@@ -1448,7 +1448,7 @@ class Simulator:
             self.round_reads.add((meaning, axis.name))
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
-        if meaning == "velocity":
+        if meaning in ("velocity", "measured_velocity"):  # no slip: the encoder measures the velocity
             return axis.speed(self.now)
         if meaning == "moving":
             return 1 if axis.moving(self.now) else 0
