@@ -389,7 +389,9 @@ class MCodeDevice(VirtualDevice):
         info = names().get(name.upper())
         if info is not None and isinstance(info.default, float) and isinstance(value, (int, float)):
             fmt = values.float_format(self.var("PF", info.default)) or values.float_format(names()["PF"].default)
-            return values.float_text(float(value), fmt)
+            profile = self.sim.profile
+            pad = bool(profile.get("machine.arithmetic.float_print_pad", False)) if profile is not None else False
+            return values.float_text(float(value), fmt, pad)
         return str(value)
 
     def cmd_VA(self, rest: str) -> list[str]:
