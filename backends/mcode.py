@@ -43,7 +43,7 @@ FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "log": "LO", "log10": "L_",
              "sqrt": "SQ", "tan": "TG", "atan": "T_"}
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
          "power_loss": "TM"}
-PI = 3.141592654  # what the drive's PI holds (lexium-mcode.txt L6660); the frontend lowers PI to it
+PI = 3.141592654  # what the drive's PI holds (lexium-mcode.txt L6658); the frontend lowers PI to it
 UNIT_FACTORS = {ir.Unit.S: 1000}  # delays are written in ms
 MS_TO_S = 0.001
 FULL_STEPS_PER_REV = 200
@@ -1025,7 +1025,7 @@ class Writer:
     def expr(self, node) -> str:
         if isinstance(node, ir.Const):
             if node.value == PI and node.unit is ir.Unit.NONE:
-                return "PI"  # the drive's PI, 3.141592654 (L6660)
+                return "PI"  # the drive's PI, 3.141592654 (L6658)
             if node.unit is ir.Unit.STEPS and self.factor != 1:
                 return self.position(node)
             if node.unit in (ir.Unit.STEPS_PER_S, ir.Unit.STEPS_PER_S2) and self.factor != 1:

@@ -48,7 +48,7 @@ FUNCTIONS: dict[str, str] = {
     "abs": "absolute value",
     "sqrt": "square root",
     # the angle unit: degrees, or radians while the setting `trig_radians` is 1 (its power-up value
-    # is the module's `device_values`; MCode RA, default radians, lexium-mcode.txt L5110)
+    # is the module's `device_values`; MCode RA, default radians, lexium-mcode.txt L5107)
     "sin": "sine of an angle (degrees, or radians under `trig_radians`)",
     "cos": "cosine of an angle (degrees, or radians under `trig_radians`)",
     "tan": "tangent of an angle (degrees, or radians under `trig_radians`)",

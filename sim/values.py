@@ -136,7 +136,7 @@ def unary(op: str, a: Number) -> Number:
 
 def function(name: str, args: list[Number], radians: bool = False) -> Number:
     """`name(args)`; `radians`: the trigonometric functions take and give radians, not degrees
-    (the setting `trig_radians`: MCode RA, default radians, lexium-mcode.txt L5110)."""
+    (the setting `trig_radians`: MCode RA, default radians, lexium-mcode.txt L5107)."""
     if name == "pi":
         return math.pi
     if not args:

@@ -62,7 +62,7 @@ FULL_STEPS_PER_REV = 200  # a 1.8° motor (L645); profiles may say otherwise (`f
 MS_TO_S = 0.001
 COMPARE_OPS = {"=": "=", "<>": "!=", "<": "<", "<=": "<=", "=<": "<=", ">": ">", ">=": ">="}
 BINARY_OPS = {"+": "+", "-": "-", "*": "*", "/": "/", "&": "&", "|": "|", "^": "^"}
-# LO: the section calls it "Logarithm Base 2" (L6620, L6629) and its example's comment "log (base
+# LO: the section calls it "Logarithm Base 2" (L6618, L6627) and its example's comment "log (base
 # 10)", but the value it prints for 51200 is 10.843495 = ln 51200 (L6636): mcc follows the printed
 # value, the natural logarithm, unless the profile's `[mcode] lo_function` says "log2" or "log10"
 # (docs/dialects/mcode.md).
@@ -70,7 +70,7 @@ LO_FUNCTIONS = ("log", "log2", "log10")
 FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "log", "L_": "log10", "SI": "sin",
              "S_": "asin", "SQ": "sqrt", "TG": "tan", "T_": "atan"}
 TRIG = frozenset({"sin", "cos", "tan", "asin", "acos", "atan"})
-# PI "holds the value of PI" as the section's title writes it, 3.141592654 (L6660-L6676): 51200*PI
+# PI "holds the value of PI" as the section's title writes it, 3.141592654 (L6658-L6676): 51200*PI
 # prints 160849.543885, where math.pi would give 160849.543864.
 PI = 3.141592654
 # The line tables PR reports (tables.TABLES): the neutral settings of a line's two parameters, and
@@ -684,7 +684,7 @@ class Lowering:
             if node.name == "LO":
                 chosen = self.profile.get("mcode.lo_function", "log")
                 name = chosen if chosen in LO_FUNCTIONS else "log"
-            if name in TRIG and "RA" in self.cat.commands:  # angles in the unit RA gives (default radians, L5110)
+            if name in TRIG and "RA" in self.cat.commands:  # angles in the unit RA gives (default radians, L5107)
                 self.declare_device_value(self.cat.commands["RA"])
             return ir.Func(name, (self.expr(node.operand),), node.span)
         if isinstance(node, st.String):

@@ -50,25 +50,25 @@ def test_the_print_format_applies_to_float_registers(tmp_path):
 
 
 def test_trigonometry_runs_in_radians_until_ra_selects_degrees(tmp_path):
-    """RA's default is radians (L5110): SI of 51200 is -0.994358 (L6685); RA=0 selects degrees (L5108, L5115)."""
+    """RA's default is radians (L5107): SI of 51200 is -0.994358 (L6685); RA=0 selects degrees (L5106, L5114-L5115)."""
     program = "VA Q1=51200\nF1=SI Q1\nPR F1\nRA=0\nQ1=30\nF1=SI Q1\nPR F1\nPR RA"
     assert prints(tmp_path, program) == ["-0.994358", "0.500000", "0"]
 
 
 def test_lo_is_the_natural_logarithm_its_example_prints(tmp_path):
-    """LO of 51200 prints 10.843495 = ln 51200 (L6636), though the section's title says base 2 (L6620)."""
+    """LO of 51200 prints 10.843495 = ln 51200 (L6636), though the section's title says base 2 (L6618)."""
     assert prints(tmp_path, "VA Q1=51200\nF1=LO Q1\nPR F1") == ["10.843495"]
 
 
 def test_a_profile_may_take_lo_as_the_base_its_title_says(tmp_path):
-    """`[mcode] lo_function = "log2"`: LO is the logarithm base 2 the section's title says (L6620)."""
+    """`[mcode] lo_function = "log2"`: LO is the logarithm base 2 the section's title says (L6618)."""
     custom = tmp_path / "lo2.toml"
     custom.write_text('extends = "lmd-c"\nname = "lo2"\n[mcode]\nlo_function = "log2"\n')
     assert prints(tmp_path, "VA Q1=1024\nF1=LO Q1\nPR F1", load_profile(str(custom))) == ["10.000000"]
 
 
 def test_pi_is_the_manual_s_constant(tmp_path):
-    """PI holds 3.141592654 (L6660): 51200*PI prints 160849.543885 (L6676)."""
+    """PI holds 3.141592654 (L6658): 51200*PI prints 160849.543885 (L6676)."""
     assert prints(tmp_path, "VA Q1=51200\nF1=Q1*PI\nPR F1") == ["160849.543885"]
 
 
@@ -106,7 +106,7 @@ def test_the_virtual_device_prints_floats_in_the_pf_format():
 
 
 def test_the_virtual_device_keeps_settings_between_commands():
-    """An immediate RA=0 holds for the commands after it, as on the drive (RA is Program/Immediate, L5101)."""
+    """An immediate RA=0 holds for the commands after it, as on the drive (RA is Program/Immediate, L5100)."""
     assert device_replies("RA=0", "VA Q1=30", "F1=SI Q1", "PR F1") == ["0.500000"]
 
 
