@@ -19,6 +19,8 @@ case, `NAME=value` for settings, `MA 100` for instructions, no comments but the 
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import string
 from fractions import Fraction
 
@@ -37,10 +39,11 @@ PARAM_NAMES = {ir.MotionParam.ACCEL: "A", ir.MotionParam.DECEL: "D", ir.MotionPa
                ir.MotionParam.MAX_SPEED: "VM", ir.MotionParam.RESOLUTION: "MS"}
 COMPARE = {"=": "=", "!=": "<>", "<": "<", "<=": "<=", ">": ">", ">=": ">="}
 NEGATE = {"=": "!=", "!=": "=", "<": ">=", "<=": ">", ">": "<=", ">=": "<"}  # in the IR's neutral names
-FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "ln": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
+FUNCTIONS = {"abs": "AB", "cos": "CS", "acos": "C_", "log": "LO", "log10": "L_", "sin": "SI", "asin": "S_",
              "sqrt": "SQ", "tan": "TG", "atan": "T_"}
 TRIPS = {"input": "TI", "position": "TP", "capture": "TC", "time": "TT", "relative": "TR", "hmt": "TA",
          "power_loss": "TM"}
+PI = 3.141592654  # what the drive's PI holds (lexium-mcode.txt L6658); the frontend lowers PI to it
 UNIT_FACTORS = {ir.Unit.S: 1000}  # delays are written in ms
 MS_TO_S = 0.001
 FULL_STEPS_PER_REV = 200
@@ -66,6 +69,50 @@ HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+
 PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
 OUTPUTS = 3  # O1-O3; OT sets them as a 3-bit value (L4669)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
+
+
+@lru_cache(maxsize=1)
+def registers() -> dict[str, str]:
+    """Neutral setting or reading -> the drive register that holds it: the catalog's `setting` and
+    `reading` keys (compiler/catalogs/mcode.toml), the inverse of the frontend's lowering."""
+    table: dict[str, str] = {}
+    for command in cat.load().commands.values():
+        name = command.entry.get("setting") or command.entry.get("reading")
+        if name and name not in READINGS and name not in SETTINGS:
+            table.setdefault(name, command.name)
+    return table
+
+
+def read_back(node: ir.BinOp) -> str | None:
+    """`MT`, `D2`, `LT` read back: the frontend reads a setting held in seconds as
+    `Status(setting) / 0.001` (ms); the register is written as it was."""
+    if node.op != "/" or not isinstance(node.left, ir.Status) or not isinstance(node.right, ir.Const):
+        return None
+    meaning, index = node.left.meaning, node.left.index
+    if meaning == "resolution" and node.right.value == FULL_STEPS_PER_REV:  # MS: steps per rev / 200
+        return "MS"
+    if node.right.value != MS_TO_S:
+        return None
+    if meaning in registers():
+        return registers()[meaning]
+    found = SETTINGS.get(meaning)
+    if found is None or found[1] != 1000:
+        return None
+    return f"{found[0]}{index}" if found[0] == "D" and index in range(1, 5) else (found[0] if found[0] != "D" else None)
+
+
+# The line tables `PR OS` and `PR LS` answer (the frontend writes one print per line reading that
+# line's settings): the reading of a line's first parameter -> (the table, its first line).
+TABLE_READINGS = {"output_function": ("OS", 1), "soft_limit_position": ("LS", 0)}
+
+
+def table_listing(op: ir.Print) -> tuple[str, bool] | None:
+    """(table, first line?) when `op` prints one line of an MCode setup table, else None."""
+    for item in op.items:
+        if isinstance(item, ir.Status) and item.meaning in TABLE_READINGS:
+            table, first = TABLE_READINGS[item.meaning]
+            return table, item.index == first
+    return None
 
 
 class Unsupported(Exception):
@@ -558,7 +605,7 @@ class Writer:
         """Write the operation at `index`; returns how many operations it used (IS/OS take two)."""
         op = ops[index]
         pair = ops[index + 1] if index + 1 < len(ops) else None
-        if isinstance(op, ir.Setting) and op.name in ("input_function", "output_function"):
+        if isinstance(op, ir.Setting) and op.name in ("input_function", "output_function", "soft_limit_position"):
             try:
                 self.line(self.line_setup(op, pair), op.span)
             except Unsupported as exc:
@@ -659,6 +706,9 @@ class Writer:
             if op.signed:
                 raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
                                   "MCode prints positive numbers unsigned),")
+            table = table_listing(op)
+            if table is not None:  # one line of PR OS / PR LS: the statement is written at its first line
+                return f"PR {table[0]}" if table[1] else None
             items = ",".join(self.item(item) for item in op.items)
             prefix = self.prefix(op.axis) if op.axis else ""
             return f"{prefix}PR {items}{'' if op.newline else ';'}"
@@ -789,6 +839,15 @@ class Writer:
         return f"{self.prefix(op.axis)}{name} {kind}"
 
     def setting(self, op: ir.Setting) -> str:
+        register = registers().get(op.name)
+        if op.name not in SETTINGS and register is not None:  # a drive register (the catalog's `setting`)
+            info = ir_names.SETTINGS[op.name]
+            if info.value_type == "text":
+                if not isinstance(op.value, ir.Text):
+                    raise Unsupported(f"the setting {op.name} from a computed value")
+                return f"{self.prefix(op.axis)}{register}={op.value.value}"
+            value = units.from_ir(op.value, MS_TO_S) if info.unit is ir.Unit.S else op.value
+            return f"{self.prefix(op.axis)}{register}={self.expr(value)}"
         if op.name not in SETTINGS:
             info = ir_names.SETTINGS.get(op.name)
             raise Unsupported(f"the setting {op.name}" + (f" ({info.meaning})" if info else ""))
@@ -803,14 +862,20 @@ class Writer:
         return f"{self.prefix(op.axis)}{name}={self.expr(value)}"
 
     def line_setup(self, op: ir.Setting, pair) -> str:
+        if op.name == "soft_limit_position":  # LS=<0/1>,<position>,<0/1> (L4023-L4044)
+            if not (isinstance(pair, ir.Setting) and pair.name == "soft_limit_enable" and pair.index == op.index):
+                raise Unsupported("a software limit's position without its enable (MCode's LS sets both)")
+            return f"{self.prefix(op.axis)}LS={op.index},{self.position(op.value)},{self.expr(pair.value)}"
         table, name = (INPUT_TYPES, "IS") if op.name == "input_function" else (OUTPUT_TYPES, "OS")
         function = op.value.value if isinstance(op.value, ir.Text) else None
         if function not in table:
             raise Unsupported(f"an {op.name} of {function}")
         paired = isinstance(pair, ir.Setting) and pair.index == op.index \
             and pair.name == op.name.replace("function", "active_high")
-        if not paired:  # IS/OS set the active level too: writing one the source did not set changes it
-            raise Unsupported(f"an {op.name} without its active level (MCode's IS/OS set both; the source sets "
+        if not paired and name == "OS":  # `OS=3,29`: the type only, the line keeps its active level (L4646)
+            return f"{self.prefix(op.axis)}{name}={op.index},{table[function]}"
+        if not paired:  # IS sets the active level too (the manual shows no IS without it, L3500-L3533)
+            raise Unsupported(f"an {op.name} without its active level (MCode's IS sets both; the source sets "
                               "only the function)")
         active = pair.value
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
@@ -960,6 +1025,8 @@ class Writer:
 
     def expr(self, node) -> str:
         if isinstance(node, ir.Const):
+            if node.value == PI and node.unit is ir.Unit.NONE:
+                return "PI"  # the drive's PI, 3.141592654 (L6658)
             if node.unit is ir.Unit.STEPS and self.factor != 1:
                 return self.position(node)
             if node.unit in (ir.Unit.STEPS_PER_S, ir.Unit.STEPS_PER_S2) and self.factor != 1:
@@ -984,6 +1051,8 @@ class Writer:
             if node.op == "!":
                 raise Unsupported("a logical NOT inside an expression")
             return ("-" if node.op == "-" else "!") + operand
+        if isinstance(node, ir.BinOp) and read_back(node) is not None:
+            return read_back(node)
         if isinstance(node, ir.BinOp):
             if isinstance(node.right, ir.BinOp):
                 raise Unsupported("an expression that needs parentheses (MCode evaluates left to right)")
@@ -995,12 +1064,19 @@ class Writer:
             if node.name == "pi":
                 return "PI"
             name = FUNCTIONS.get(node.name)
+            if node.name in ("log", "log2", "log10"):  # LO is the logarithm the profile says (docs/dialects/mcode.md)
+                lo = self.profile.get("mcode.lo_function", "log")
+                name = "LO" if node.name == lo else ("L_" if node.name == "log10" else None)
             if name is None or len(node.args) != 1:
                 raise Unsupported(f"the function {node.name}")
             return f"{name} {self.expr(node.args[0])}"
         raise Unsupported(f"the value {type(node).__name__}")
 
     def status(self, node: ir.Status) -> str:
+        if node.meaning in registers():  # a drive register read back (PR CW)
+            return registers()[node.meaning]
+        if node.meaning in SETTINGS and SETTINGS[node.meaning][1] == 1 and node.meaning not in READINGS:
+            return SETTINGS[node.meaning][0]  # a setting read back in its own units (PR TE)
         if node.meaning in INDEXED_READINGS:
             prefix, numbers = INDEXED_READINGS[node.meaning]
             index = node.index if node.meaning != "analog" else (node.index or 1) + 4

@@ -615,6 +615,14 @@ class Module:
     # never copies into the axes. Empty (the default): an axis's own setting applies at once, and a
     # `*` setting is written into every axis (an unaddressed X150 command, L177).
     axis_sets: tuple[MotionParam, ...] = ()
+    # The product's value of each setting or reading the program uses that the simulator does not
+    # cause (a drive register's factory default, the device's identity), in the IR's units: what a
+    # reading of it gives before the program sets it (docs/IR.md, "Module facts"). A setting not
+    # listed reads 0.
+    device_values: dict[str, object] = field(default_factory=dict)
+    # How the values of a text-like reading print: reading -> {value: text} (MCode `PR MD` prints
+    # the last move's kind as MA, MR or SL, lexium-mcode.txt L4145-L4153).
+    print_texts: dict[str, dict[str, str]] = field(default_factory=dict)
 
     def routine(self, name: str) -> Routine | None:
         for routine in self.routines:
@@ -770,4 +778,5 @@ def copy_module(module: Module) -> Module:
         routines.append(dataclasses.replace(routine, blocks=blocks))
     variables = {name: copy.copy(v) for name, v in module.variables.items()}
     return dataclasses.replace(module, variables=variables, routines=routines, externals=list(module.externals),
-                               registers=dict(module.registers))
+                               registers=dict(module.registers), device_values=dict(module.device_values),
+                               print_texts={k: dict(v) for k, v in module.print_texts.items()})

@@ -47,14 +47,17 @@ LOGIC_OPS: dict[str, str] = {
 FUNCTIONS: dict[str, str] = {
     "abs": "absolute value",
     "sqrt": "square root",
-    "sin": "sine of an angle in degrees",
-    "cos": "cosine of an angle in degrees",
-    "tan": "tangent of an angle in degrees",
-    "asin": "arc sine, in degrees",
-    "acos": "arc cosine, in degrees",
-    "atan": "arc tangent, in degrees",
+    # the angle unit: degrees, or radians while the setting `trig_radians` is 1 (its power-up value
+    # is the module's `device_values`; MCode RA, default radians, lexium-mcode.txt L5107)
+    "sin": "sine of an angle (degrees, or radians under `trig_radians`)",
+    "cos": "cosine of an angle (degrees, or radians under `trig_radians`)",
+    "tan": "tangent of an angle (degrees, or radians under `trig_radians`)",
+    "asin": "arc sine (degrees, or radians under `trig_radians`)",
+    "acos": "arc cosine (degrees, or radians under `trig_radians`)",
+    "atan": "arc tangent (degrees, or radians under `trig_radians`)",
     "log": "natural logarithm",
     "log10": "decimal logarithm",
+    "log2": "binary logarithm (base 2)",
     "exp": "e to the power of the argument",
     "pi": "the constant pi (no argument)",
     "int": "the integer part (truncation toward zero)",
@@ -110,6 +113,19 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("following_ratio", Unit.PERCENT),  # the `following_ratio` setting in force
     Reading("input_levels"),  # the active level of every input (1 active high), input 1 in bit 0
     Reading("output_levels"),  # the active level of every output (1 active high), output 1 in bit 0
+    # drive values the machine model has no cause to change: they read the module's `device_values`
+    # (the product's value) unless the simulator models them (docs/SIMULATOR.md, "Drive registers")
+    Reading("measured_velocity", Unit.STEPS_PER_S),  # the velocity the encoder measures (closed loop); no slip
+    #                                                   is modelled: the velocity
+    Reading("position_error", Unit.STEPS),  # closed-loop lead (-) or lag (+) of the rotor: 0, no slip modelled
+    Reading("output_fault"),  # over-current fault of the outputs, a bit mask: 0, none modelled
+    Reading("captured_position", Unit.STEPS),  # the position captured at the last trip or capture
+    Reading("velocity_changing"),  # 1 while the axis accelerates or decelerates
+    Reading("last_move"),  # the kind of the last move command: absolute, relative or slew (printed as the
+    #                        module's `print_texts` say)
+    Reading("part_number"),  # the device's part number (text, from the product profile)
+    Reading("firmware_version"),  # the device's firmware and hardware version (text, from the product profile)
+    Reading("resolution"),  # steps per motor revolution in force (the resolution setting)
 )}
 
 # SetHandler events: what makes the handler run.
@@ -141,6 +157,10 @@ class SettingInfo:
     unit: Unit
     meaning: str
     dialects: tuple[str, ...]
+    # how the value is held: "int" (a whole number), "float" (printed in the product's float format),
+    # "text" (a text the device keeps, e.g. a format); every setting can be read back as a reading
+    # `Status(name)`: the value the run set, else the module's `device_values` (the product's default)
+    value_type: str = "int"
 
 
 SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
@@ -181,7 +201,7 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("limits_disabled", Unit.NONE, "limit switches ignored, a bit mask: 1 the + limit, 2 the - limit "
                 "(0: both active)", ("x150",)),
     SettingInfo("position_maintenance", Unit.NONE, "1: a stepper is servoed back to its encoder position at rest, "
-                "0: off", ("x150",)),
+                "0: off", ("x150", "mcode")),
     SettingInfo("stop_on_stall", Unit.NONE, "1: a move stops (at its deceleration) when a stall is detected, 0: "
                 "it goes on", ("x150",)),
     SettingInfo("encoder_resolution", Unit.NONE, "encoder counts per motor revolution (after quadrature)",
@@ -227,6 +247,53 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("following_filter_time", Unit.S, "time constant of the filter on a following input", ("x150",)),
     SettingInfo("panel_stop_key", Unit.NONE, "1: the operator panel's STOP key stops motion and ends every loop "
                 "and program, 0: it is ignored", ("x150",)),
+    # Drive registers the program may set and read back, whose effect the simulator does not model
+    # (it keeps their value: docs/SIMULATOR.md, "Drive registers"); MCode's spelling in the catalog's
+    # `setting` key (compiler/catalogs/mcode.toml)
+    SettingInfo("trip_pulse_width", Unit.NONE, "pulse width of the trip (clock) output, in 50 ns units", ("mcode",)),
+    SettingInfo("analog_filter", Unit.NONE, "samples of the analog input's running-average filter", ("mcode",)),
+    SettingInfo("decel_jerk", Unit.NONE, "samples of the deceleration ramp held at constant deceleration "
+                "(S-curve jerk)", ("mcode",)),
+    SettingInfo("echo_mode", Unit.NONE, "how the device echoes the host's commands (0 all, 1 none, 2 no prompt, "
+                "3 queued)", ("mcode",)),
+    SettingInfo("clock_input_filter", Unit.NONE, "digital filter of the clock inputs (a code of the filter time)",
+                ("mcode",)),
+    SettingInfo("jog_enable", Unit.NONE, "1: the jog inputs move the axis, 0: they are ignored", ("mcode",)),
+    SettingInfo("lead_limit", Unit.NONE, "closed loop: the largest lead of the rotor, in motor steps, before a "
+                "fault", ("mcode",)),
+    SettingInfo("lag_limit", Unit.NONE, "closed loop: the largest lag of the rotor, in motor steps, before a fault",
+                ("mcode",)),
+    SettingInfo("program_lock", Unit.NONE, "1: the stored program cannot be listed, changed or uploaded",
+                ("mcode",)),
+    SettingInfo("limit_response", Unit.NONE, "how the axis responds to a limit switch (a mode number)", ("mcode",)),
+    SettingInfo("locked_rotor_timeout", Unit.S, "closed loop: time at the lag limit without rotor movement before "
+                "a locked rotor is declared", ("mcode",)),
+    SettingInfo("makeup_frequency", Unit.STEPS_PER_S, "closed loop: speed at which missed steps are made up",
+                ("mcode",)),
+    SettingInfo("makeup_mode", Unit.NONE, "closed loop: how missed steps are made up (a mode number)", ("mcode",)),
+    SettingInfo("numeric_move_enable", Unit.NONE, "1: a number typed alone repeats the last move kind with it",
+                ("mcode",)),
+    SettingInfo("float_format", Unit.NONE, "how floating-point values print: width, decimals, notation "
+                "(1 scientific), justification (1 left), as text `w,d,n,j`", ("mcode",), "text"),
+    SettingInfo("trig_radians", Unit.NONE, "1: the trigonometric functions work in radians, 0: in degrees",
+                ("mcode",)),
+    SettingInfo("direction_reversed", Unit.NONE, "1: the motor's plus and minus directions are swapped",
+                ("mcode",)),
+    SettingInfo("step_angle", Unit.NONE, "the motor's full-step angle in degrees", ("mcode",), "float"),
+    SettingInfo("stall_factor", Unit.NONE, "following error, in encoder counts, above which a stall is declared",
+                ("mcode",)),
+    SettingInfo("continue_on_stall", Unit.NONE, "1: a move goes on after a stall, 0: it stops", ("mcode",)),
+    SettingInfo("torque_direction", Unit.NONE, "closed-loop torque mode: 1 plus, 0 minus", ("mcode",)),
+    SettingInfo("torque_percent", Unit.PERCENT, "closed-loop torque mode: the largest torque", ("mcode",)),
+    SettingInfo("torque_speed", Unit.STEPS_PER_S, "closed-loop torque mode: the speed", ("mcode",)),
+    SettingInfo("velocity_filter", Unit.NONE, "closed loop: filtering of the measured velocity (0 none)",
+                ("mcode",)),
+    SettingInfo("soft_limit_position", Unit.STEPS, "the position of software limit `index` (0 the minus limit, "
+                "1 the plus limit)", ("mcode",)),
+    SettingInfo("soft_limit_enable", Unit.NONE, "1: software limit `index` (0 minus, 1 plus) stops the axis, 0: off",
+                ("mcode",)),
+    SettingInfo("warning_temperature", Unit.NONE, "temperature, in °C, above which the device raises a warning",
+                ("mcode",)),
 )}
 
 # The values of the input_function and output_function settings (an `ir.Text`).
@@ -260,4 +327,7 @@ OUTPUT_FUNCTIONS = ("general", "moving", "error", "stall", "velocity_changing", 
 
 def status_unit(meaning: str) -> Unit:
     reading = STATUS.get(meaning)
-    return reading.unit if reading else Unit.NONE
+    if reading is not None:
+        return reading.unit
+    setting = SETTINGS.get(meaning)  # a setting read back
+    return setting.unit if setting is not None else Unit.NONE

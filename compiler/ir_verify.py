@@ -188,7 +188,7 @@ def _spelling_problem(node) -> str:
         return f"logic operator '{node.op}' is not neutral"
     if isinstance(node, ir.Func) and node.name not in ir_names.FUNCTIONS:
         return f"function '{node.name}' is not a neutral function"
-    if isinstance(node, ir.Status) and node.meaning not in ir_names.STATUS:
+    if isinstance(node, ir.Status) and node.meaning not in ir_names.STATUS and node.meaning not in ir_names.SETTINGS:
         return f"reading '{node.meaning}' is not a neutral reading"
     if isinstance(node, ir.DeviceRef):
         return f"device register '{node.name}' in {node.dialect} spelling outside a Native operation"

@@ -41,7 +41,7 @@ ONCE_EVENTS = frozenset({"time", "position"})
 HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("stall", "fault", "error"),
                  "power": ("power_loss",)}
 DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
-CONTINUOUS = frozenset({"position", "encoder", "velocity", "moving", "moving_to_position"})  # readings that change between events
+CONTINUOUS = frozenset({"position", "encoder", "velocity", "measured_velocity", "moving", "moving_to_position"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 ROUND_STATES = 256  # states a loop may cycle through and still count as changing nothing
@@ -51,6 +51,12 @@ ROUND_STATES = 256  # states a loop may cycle through and still count as changin
 UNMODELLED = {"following_mode": "the axis follows an external input instead of running its own moves",
               "single_step": "a stored program runs one command per step request from the host"}
 
+
+# The functions whose angles follow the setting `trig_radians` (degrees when it is 0).
+TRIG = frozenset({"sin", "cos", "tan", "asin", "acos", "atan"})
+# Readings of what the machine model has no cause for (no slip, no over-current): the product's
+# value the module declares (`device_values`), else 0.
+UNCAUSED = frozenset({"position_error", "output_fault", "part_number", "firmware_version"})
 
 # Readings that report a setting: the setting they read and its value before the program sets it.
 SETTING_READINGS = {"following_ratio": ("following_ratio", 100), "input_levels": ("input_active_high", 0),
@@ -252,6 +258,8 @@ class Simulator:
         self.skipped = 0  # operations of the rounds jumped over (counted in trace.steps, never run)
         self.enable_mask = 0  # `handler_enable` (MCode TE): the events allowed to fire
         self.capture_input = self.scenario.capture  # None: the program's, else DEFAULT_CAPTURE_INPUT
+        self.captured = 0  # the position at the last capture (reading captured_position)
+        self.last_move: dict[str, str] = {}  # axis -> the kind of its last move command (reading last_move)
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -662,6 +670,8 @@ class Simulator:
         axes = tuple(a for a, _ in op.targets)
         if any(self._axis(a).moving(self.now) for a in self._expand(axes)):
             return Wait("busy", axes=axes, retry=True)
+        for name in self._expand(axes):
+            self.last_move[name] = op.mode.value
         self._move(op)
         return None
 
@@ -673,6 +683,7 @@ class Simulator:
 
     def _do_slew(self, op) -> Wait | None:
         for name in self._each(op.axis):
+            self.last_move[name] = "slew"
             self._slew(op, name)
         return None
 
@@ -752,9 +763,15 @@ class Simulator:
         """The settings the model has: which handlers are enabled, which input captures; every
         setting's value is kept for the readings that report it (SETTING_READINGS)."""
         value = self._eval_quiet(op.value) if not isinstance(op.value, ir.Text) else None
+        info = ir_names.SETTINGS.get(op.name)
+        if isinstance(op.value, ir.Text):
+            value = op.value.value  # kept as text: a format, an input's function, read back as written
+        elif info is not None and info.value_type == "float" and value is not None:
+            value = float(value)
         if value is not None:
             if op.axis == ir.ALL_AXES:  # every device now has this value
-                self.settings = {k: v for k, v in self.settings.items() if (k[0], k[2]) != (op.name, op.index)}
+                for key in [k for k in self.settings if (k[0], k[2]) == (op.name, op.index)]:
+                    del self.settings[key]  # in place: a virtual device keeps this table between runs
             self.settings[(op.name, op.axis, op.index)] = value
         if op.name == "input_function" and op.index is not None:  # which inputs a homing may use
             if isinstance(op.value, ir.Text) and op.value.value == "home":
@@ -823,6 +840,21 @@ class Simulator:
             return found if found is not None else default
         indices = {index for setting, _, index in self.settings if setting == name and index}
         return sum(1 << (index - 1) for index in indices if value(index))
+
+    def _setting_value(self, name: str, axis: str, index: int | None = None):
+        """The value of a setting in force: the one this run set for the axis (or for every axis),
+        else the product's (`Module.device_values`), else 0; a float setting reads as a float."""
+        found = self.settings.get((name, axis, index))
+        if found is None:
+            found = self.settings.get((name, ir.ALL_AXES, index))
+        if found is None:
+            found = next((v for (n, _a, i), v in self.settings.items() if n == name and i == index), None)
+        if found is None:
+            found = self.module.device_values.get(name, 0)
+        info = ir_names.SETTINGS.get(name)
+        if info is not None and info.value_type == "float" and isinstance(found, (int, Decimal)):
+            return float(found)
+        return found
 
     def _do_native(self, op) -> Wait | None:
         args = [values.plain(v) if (v := self._eval_quiet(a)) is not None else ir_print.expr_text(a)
@@ -1310,6 +1342,8 @@ class Simulator:
     def _trigger(self, event: str, handler: Handler) -> None:
         if not handler.routine:
             return
+        if event not in ("position", "relative") and self.machine.axes:  # PC: any trip but TP, TR (L4717-L4743)
+            self.captured = _round(next(iter(self.machine.axes.values())).at(self.now))
         if handler.once or event in ONCE_EVENTS:
             handler.armed = False
             if handler.gated and event in ENABLE_BITS:
@@ -1369,7 +1403,8 @@ class Simulator:
             return values.unary(expr.op, self._eval(expr.operand, real))
         if isinstance(expr, ir.Func):
             try:
-                return values.function(expr.name, [self._eval(a, real) for a in expr.args])
+                radians = bool(self._setting_value("trig_radians", "")) if expr.name in TRIG else False
+                return values.function(expr.name, [self._eval(a, real) for a in expr.args], radians)
             except values.ArithmeticFault as exc:
                 raise RuntimeFault("S002", str(exc)) from None
         if isinstance(expr, ir.Status):
@@ -1410,18 +1445,32 @@ class Simulator:
             return Decimal(repr(left)) if left != int(left) else int(left)
         if meaning in SETTING_READINGS:
             return self._setting_reading(meaning, status.axis or ir.ALL_AXES)
+        if meaning in ir_names.SETTINGS:  # a setting read back (docs/SIMULATOR.md, "Drive registers")
+            return self._setting_value(meaning, status.axis, index)
+        if meaning in UNCAUSED:  # the identity is a text: none when the profile gives none
+            return self.module.device_values.get(meaning, "" if meaning in ("part_number", "firmware_version") else 0)
+        if meaning == "captured_position":
+            return self.captured
+        if meaning == "last_move":
+            return self.last_move.get(self._each(status.axis or self._handler_axis())[0], "")
         axis = self._axis(self._each(status.axis or self._handler_axis())[0])  # '*': the first device's
         if meaning in CONTINUOUS:
             self.read_continuous = True
             self.round_reads.add((meaning, axis.name))
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
-        if meaning == "velocity":
+        if meaning in ("velocity", "measured_velocity"):  # no slip: the encoder measures the velocity
             return axis.speed(self.now)
         if meaning == "moving":
             return 1 if axis.moving(self.now) else 0
         if meaning == "moving_to_position":   # a move to a position runs (a slew is not one)
             return 1 if axis.moving(self.now) and axis.motion is not None and axis.motion.t_end != float("inf") else 0
+        if meaning == "velocity_changing":  # the speed changes: a ramp runs (MCode VC, L6047-L6079)
+            self.read_continuous = True
+            self.round_reads.add(("velocity", axis.name))
+            return 1 if axis.moving(self.now) and abs(axis.speed(self.now + 1e-6) - axis.speed(self.now)) > 1e-9 else 0
+        if meaning == "resolution":  # steps per revolution in force
+            return values.plain(axis.settings.get(ir.MotionParam.RESOLUTION, self.module.steps_per_rev))
         if meaning == "fault":
             return axis.fault
         if meaning == "enabled":
@@ -1468,17 +1517,33 @@ class Simulator:
     def _text(self, item, signed: bool = False) -> str:
         if isinstance(item, ir.Text):
             return item.value
-        if self.float_format and self._reads_float(item):
-            return values.float_text(float(self._eval(item)), self.float_format, self.float_pad)
+        texts = self.module.print_texts.get(item.meaning) if isinstance(item, ir.Status) else None
+        if texts is not None:  # a reading printed as the device writes its values (MCode PR MD)
+            value = self._eval(item)
+            return texts.get(value, str(value))
+        fmt = self._float_format()
+        if fmt and self._reads_float(item):
+            return values.float_text(float(self._eval(item)), fmt, self.float_pad)
         value = values.plain(self._eval(item))
+        if isinstance(value, str):  # a text setting or reading (a format, the device's identity)
+            return value
         text = str(int(value)) if isinstance(value, float) and value.is_integer() else str(value)
         return "+" + text if signed and not text.startswith("-") else text  # `Print.signed`: +0, +4000
 
     def _reads_float(self, item) -> bool:
-        """Whether a printed item reads a float64 variable: then it prints in the product's float
-        format (MCode PF, lexium-mcode.txt L4744-L4777)."""
+        """Whether a printed item reads a float64 variable or a float setting: then it prints in
+        the product's float format (MCode PF, lexium-mcode.txt L4744-L4777)."""
         return any(isinstance(node, ir.Var) and self._type(node.name) is ir.VarType.FLOAT64
+                   or isinstance(node, ir.Status) and getattr(ir_names.SETTINGS.get(node.meaning), "value_type",
+                                                              "") == "float"
                    for node in ir.walk_expr(item))
+
+    def _float_format(self):
+        """The float format in force: the `float_format` setting the run set, else the product's
+        (`[machine.arithmetic] float_print`)."""
+        found = next((v for (n, _a, _i), v in self.settings.items() if n == "float_format"), None)
+        parsed = values.float_format(found) if found is not None else None
+        return parsed or self.float_format
 
     # -- the trace -------------------------------------------------------------------------------
 

@@ -74,6 +74,19 @@ def float_text(value: float, fmt, pad: bool = False) -> str:
     return text
 
 
+def float_format(text) -> list[int] | None:
+    """A float format given as text `width,decimals,notation,justification` (MCode `PF=8,4,1,1`,
+    lexium-mcode.txt L4744-L4777): the numbers, or None when the text is not such a format. A
+    missing part keeps the default (10,6,0,0)."""
+    try:
+        parts = [int(p) for p in str(text).split(",") if p.strip()]
+    except ValueError:
+        return None
+    if not 0 < len(parts) <= 4 or any(not 0 <= p <= 32 for p in parts):
+        return None
+    return parts + [10, 6, 0, 0][len(parts):]
+
+
 def binary(op: str, a: Number, b: Number, division: str = "truncate") -> Number:
     """`a op b`. `division`: how an integer quotient rounds, "truncate" (toward zero) or "floor"
     (rounded down, toward minus infinity: MCode, lexium-mcode.txt L1249); the remainder `%` goes
@@ -121,7 +134,9 @@ def unary(op: str, a: Number) -> Number:
     raise ArithmeticFault(f"unknown operator '{op}'")
 
 
-def function(name: str, args: list[Number]) -> Number:
+def function(name: str, args: list[Number], radians: bool = False) -> Number:
+    """`name(args)`; `radians`: the trigonometric functions take and give radians, not degrees
+    (the setting `trig_radians`: MCode RA, default radians, lexium-mcode.txt L5107)."""
     if name == "pi":
         return math.pi
     if not args:
@@ -136,13 +151,16 @@ def function(name: str, args: list[Number]) -> Number:
         if name == "sqrt":
             return math.sqrt(v)
         if name in ("sin", "cos", "tan"):
-            return getattr(math, name)(math.radians(v))
+            return getattr(math, name)(v if radians else math.radians(v))
         if name in ("asin", "acos", "atan"):
-            return math.degrees(getattr(math, name)(v))
+            angle = getattr(math, name)(v)
+            return angle if radians else math.degrees(angle)
         if name == "log":
             return math.log(v)
         if name == "log10":
             return math.log10(v)
+        if name == "log2":
+            return math.log2(v)
         if name == "exp":
             return math.exp(v)
     except (ValueError, OverflowError):

@@ -18,11 +18,12 @@ it when it leaves a handler).
 
 from __future__ import annotations
 
-from mcc.compiler import cancel, ir, units
+from mcc.compiler import cancel, ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.resolve import Resolved, Resolver
+from mcc.compiler.mcode.tables import STAND_IN_VERSION, TABLES
 from mcc.compiler import homing
 from mcc.compiler.profiles import Profile
 
@@ -61,8 +62,22 @@ FULL_STEPS_PER_REV = 200  # a 1.8° motor (L645); profiles may say otherwise (`f
 MS_TO_S = 0.001
 COMPARE_OPS = {"=": "=", "<>": "!=", "<": "<", "<=": "<=", "=<": "<=", ">": ">", ">=": ">="}
 BINARY_OPS = {"+": "+", "-": "-", "*": "*", "/": "/", "&": "&", "|": "|", "^": "^"}
-FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "ln", "L_": "log10", "SI": "sin",
+# LO: the section calls it "Logarithm Base 2" (L6618, L6627) and its example's comment "log (base
+# 10)", but the value it prints for 51200 is 10.843495 = ln 51200 (L6636): mcc follows the printed
+# value, the natural logarithm, unless the profile's `[mcode] lo_function` says "log2" or "log10"
+# (docs/dialects/mcode.md).
+LO_FUNCTIONS = ("log", "log2", "log10")
+FUNCTIONS = {"AB": "abs", "CS": "cos", "C_": "acos", "LO": "log", "L_": "log10", "SI": "sin",
              "S_": "asin", "SQ": "sqrt", "TG": "tan", "T_": "atan"}
+TRIG = frozenset({"sin", "cos", "tan", "asin", "acos", "atan"})
+# PI "holds the value of PI" as the section's title writes it, 3.141592654 (L6658-L6676): 51200*PI
+# prints 160849.543885, where math.pi would give 160849.543864.
+PI = 3.141592654
+# The line tables PR reports (tables.TABLES): the neutral settings of a line's two parameters, and
+# how the first prints (an IS/OS type number from the function's name; the number itself for LS).
+TABLE_SETTINGS = {"OS": ("output_function", "output_active_high"), "LS": ("soft_limit_position", "soft_limit_enable")}
+# How PR MD prints the last move's kind (L4145-L4153).
+LAST_MOVE_TEXTS = {"absolute": "MA", "relative": "MR", "slew": "SL"}
 
 
 def first_arg_name(res: Resolved) -> str:
@@ -400,10 +415,12 @@ class Lowering:
         if kind in MOTION_PARAMS and args:
             param = MOTION_PARAMS[kind]
             return ir.SetMotion(param, axis, self.expr(args[0], ir.PARAM_UNITS[param]), span)
+        if command.entry.get("setting") and args:
+            return self.register_setting(command, args, axis, span)
         if kind in SETTINGS and args:
             setting, factor, unit = SETTINGS[kind]
             return ir.Setting(setting, axis, units.to_ir(self.expr(args[0]), factor, unit), span, command.index)
-        if name in ("IS", "OS") and len(args) == 3:
+        if name in ("IS", "OS", "LS") and len(args) == 3 or name == "OS" and len(args) == 2:
             line_setup = self.line_setup(name, axis, args, span)
             if line_setup is not None:
                 return line_setup
@@ -438,6 +455,10 @@ class Lowering:
             return ir.SetOutput(None, self.expr(args[0]), span)
         if kind == "drive_enable" and args:
             return ir.DriveEnable(axis, self.expr(args[0]), span)
+        if kind == "print" and len(args) == 1 and isinstance(args[0], st.Name) and stmt.suffix != ";":
+            listing = self.listing(args[0].key, axis, span)
+            if listing is not None:
+                return listing
         if kind == "print":
             items = []
             for arg in args:  # a text and the item glued to it (comma missing) are two items
@@ -470,19 +491,96 @@ class Lowering:
         return ir.Native(DIALECT, name, tuple(self.native_arg(command, a) for a in args),
                          form="=" if stmt.form == "assign" else (" " if args else ""), axis=axis, span=span)
 
+    def register_setting(self, command: cat.Command, args, axis: str, span):
+        """`CW=100`, `SA=0.9`, `PF=8,4,1,1`: a drive register the catalog names a neutral setting
+        (its `setting` key); the simulator keeps the value and reads it back (docs/SIMULATOR.md,
+        "Drive registers"). A text setting (PF's four numbers) needs literal numbers."""
+        name = command.entry.get("setting")
+        info = ir_names.SETTINGS[name]
+        self.declare_device_value(command)
+        if info.value_type == "text":
+            values = [self.expr(a) for a in args]
+            if not all(isinstance(v, ir.Const) for v in values):
+                return self.native(command, args, span, axis)
+            text = ",".join(format(v.value) for v in values)
+            return ir.Setting(name, axis, ir.Text(text, span), span)
+        factor = MS_TO_S if info.unit is ir.Unit.S else 1
+        return ir.Setting(name, axis, units.to_ir(self.expr(args[0]), factor, info.unit), span)
+
+    def declare_device_value(self, command: cat.Command) -> None:
+        """The value the register reads before the program sets it: the catalog's factory default
+        (each entry's manual lines), in the IR's units; the identity from the profile's [device]."""
+        name = command.entry.get("setting") or command.entry.get("reading") or SETTINGS.get(command.ir, ("",))[0]
+        if not name or name in self.module.device_values:
+            return
+        if name == "part_number":  # none known: the device prints 0 (docs/PROFILES.md)
+            value = self.profile.get("device.part_number") or 0
+        elif name == "firmware_version":
+            value = self.profile.get("device.version") or STAND_IN_VERSION
+        else:
+            value = command.entry.default
+            info = ir_names.SETTINGS.get(name)
+            if info is not None and info.unit is ir.Unit.S and isinstance(value, (int, float)):
+                value = value * MS_TO_S
+            if name == "last_move":
+                self.module.print_texts[name] = dict(LAST_MOVE_TEXTS)
+        if value is not None:
+            self.module.device_values[name] = value
+
+    def native(self, command: cat.Command, args, span, axis: str):
+        return ir.Native(DIALECT, command.name, tuple(self.native_arg(command, a) for a in args), form="=",
+                         axis=axis, span=span)
+
+    def listing(self, name: str, axis: str, span) -> list[ir.Print] | None:
+        """`PR OS`, `PR LS`, `PR UV`: one print per line of the table, as the drive answers it
+        (L4647-L4650, L4044, L5972): each line reads the line's settings in force (their factory
+        values declared on the module); UV lists the user variables declared before it, `name = G|L
+        value` (G global, declared outside a program; L local)."""
+        if name == "UV":
+            return [ir.Print((ir.Text(f"{v.name} = {'G' if v.scope == 'global' else 'L'} ", span), ir.Var(v.name, span)),
+                             span=span) for v in self.module.variables.values()]
+        if name not in TABLE_SETTINGS:
+            return None
+        lines, form = TABLES[name]
+        first, second = TABLE_SETTINGS[name]
+        factory = next(iter(lines.values()))
+        if name == "OS":
+            self.module.print_texts[first] = {function: str(number) for number, function in OUTPUT_TYPES.items()}
+            self.module.device_values.setdefault(first, OUTPUT_TYPES[factory[0]])
+        else:
+            self.module.device_values.setdefault(first, factory[0])
+        self.module.device_values.setdefault(second, factory[1])
+        prints = []
+        for n in lines:
+            head, _, rest = form.replace("{n}", str(n)).partition("{0}")
+            middle, _, tail = rest.partition("{1}")
+            items = (ir.Text(head, span), ir.Status(first, axis, n, span), ir.Text(middle, span),
+                     ir.Status(second, axis, n, span)) + ((ir.Text(tail, span),) if tail else ())
+            prints.append(ir.Print(items, span=span))
+        return prints
+
     def line_setup(self, name: str, axis: str, args, span):
         """`IS=1,1,0` / `OS=1,17,1` with literal numbers: an input's or output's function and its
         active level, as two neutral settings (returned as one list the caller flattens)."""
         values = [self.expr(a) for a in args]
         if not all(isinstance(v, ir.Const) for v in values):
             return None
-        line, kind_of, active = (v.value for v in values)
+        if name == "LS":  # LS=<0/1>,<position>,<0/1>: a software limit (L4023-L4044)
+            if len(values) != 3 or values[0].value not in (0, 1) or values[2].value not in (0, 1):
+                return None
+            limit = values[0].value
+            return [ir.Setting("soft_limit_position", axis, self.expr(args[1], ir.Unit.STEPS), span, limit),
+                    ir.Setting("soft_limit_enable", axis, values[2], span, limit)]
+        line, kind_of = values[0].value, values[1].value
+        active = values[2].value if len(values) == 3 else None  # OS=3,29 keeps the active level (L4646)
         table = INPUT_TYPES if name == "IS" else OUTPUT_TYPES
-        if kind_of not in table or not isinstance(line, int) or line not in range(1, 5) or active not in (0, 1):
+        if kind_of not in table or not isinstance(line, int) or line not in range(1, 5) or active not in (0, 1, None):
             return None
         what = "input" if name == "IS" else "output"
-        return [ir.Setting(f"{what}_function", axis, ir.Text(table[kind_of], args[1].span), span, line),
-                ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, line)]
+        function = ir.Setting(f"{what}_function", axis, ir.Text(table[kind_of], args[1].span), span, line)
+        if active is None:
+            return [function]
+        return [function, ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, line)]
 
     def resolution(self, axis: str, node: st.Node, span):
         """`MS=256`: microsteps per full step. The IR counts steps per revolution, and a literal
@@ -558,11 +656,14 @@ class Lowering:
                 self.declare_register(command)
                 return ir.Var(upper, node.span)
             if upper == "PI":
-                return ir.Func("pi", (), node.span)
+                return ir.Const(PI, unit, node.span)
             if upper in self.resolver.names.labels:
                 return ir.LabelRef(upper, node.span)
             meaning = command.ir if command is not None else ""
             index = command.index if command is not None else None
+            read_back = self.read_back(command, node) if command is not None else None
+            if read_back is not None:
+                return read_back
             if meaning in READINGS:
                 reading = READINGS[meaning]
                 indexed = reading in ("input", "output", "analog")
@@ -579,7 +680,13 @@ class Lowering:
         if isinstance(node, st.Binary):
             return ir.BinOp(BINARY_OPS.get(node.op, node.op), self.expr(node.left), self.expr(node.right), node.span)
         if isinstance(node, st.FuncCall):
-            return ir.Func(FUNCTIONS.get(node.name, node.name.lower()), (self.expr(node.operand),), node.span)
+            name = FUNCTIONS.get(node.name, node.name.lower())
+            if node.name == "LO":
+                chosen = self.profile.get("mcode.lo_function", "log")
+                name = chosen if chosen in LO_FUNCTIONS else "log"
+            if name in TRIG and "RA" in self.cat.commands:  # angles in the unit RA gives (default radians, L5107)
+                self.declare_device_value(self.cat.commands["RA"])
+            return ir.Func(name, (self.expr(node.operand),), node.span)
         if isinstance(node, st.String):
             return ir.Text(node.text, node.span)
         if isinstance(node, st.Juxtaposed):
@@ -587,6 +694,27 @@ class Lowering:
         if isinstance(node, st.Comparison):
             return self.cond(node)
         raise TypeError(f"unexpected node {type(node).__name__}")
+
+    def read_back(self, command: cat.Command, node: st.Name):
+        """A read of a drive register that is a neutral setting or reading (the catalog's `setting`,
+        `reading` or a setting `ir` kind): the value in force, in the register's own units."""
+        setting = command.entry.get("setting")
+        reading = command.entry.get("reading")
+        if command.ir == "resolution":  # MS: microsteps per full step, the steps per revolution in force / 200
+            return ir.BinOp("/", ir.Status("resolution", self.drive_axis(), None, node.span),
+                            ir.Const(self.full_steps), node.span)
+        if not setting and not reading and command.ir in SETTINGS and command.ir not in READINGS:
+            setting, factor, _unit = SETTINGS[command.ir]
+        elif setting:
+            factor = MS_TO_S if ir_names.SETTINGS[setting].unit is ir.Unit.S else 1
+        elif reading:
+            factor = 1
+        else:
+            return None
+        self.declare_device_value(command)
+        indexed = command.index is not None and setting == "input_debounce"
+        status = ir.Status(setting or reading, self.drive_axis(), command.index if indexed else None, node.span)
+        return units.from_ir(status, factor) if factor != 1 else status
 
     def drive_axis(self) -> str:
         return self.profile.axes[0] if self.profile.axes else "1"

@@ -112,6 +112,11 @@ class DeviceMachine:
         for axis in (self.profile.axes if self.profile is not None else ()):
             self.machine.axis(axis)   # the product's axes exist from power-up, as in `mcc sim`
         self.variables: dict[str, int | float] = {}
+        # the settings the commands and programs set (an input's polarity, a register's value), kept
+        # from one run to the next as the drive keeps them: the simulator's `settings` and
+        # `active_high` tables of every run are these
+        self.settings: dict[tuple[str, str, int | None], object] = {}
+        self.active_high: dict[int, bool] = {}
         self.clock = 0.0                      # virtual seconds the device has run
         self.status = "idle"                  # of the program: idle | running | error
         self.reason = ""
@@ -158,6 +163,8 @@ class DeviceMachine:
         self.machine.shared["defaults"] = defaults(module.steps_per_rev, simulator.product)
         self.machine.shared["sets"] = tuple(module.axis_sets)
         simulator.machine = self.machine      # the device's machine: what earlier commands left
+        simulator.settings = self.settings
+        simulator.active_high = self.active_high
         self.moving.clear()
         self.slewing.clear()
         try:

@@ -18,12 +18,14 @@ import re
 from dataclasses import dataclass, field
 from functools import lru_cache
 
-from mcc.compiler import catalog, ir
+from mcc.compiler import catalog, ir, ir_names
+from mcc.compiler.mcode.tables import STAND_IN_VERSION, TABLES
 from mcc.compiler.profiles import load as load_profile
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
+from mcc.sim import values
 
 ACK, NAK = b"\x06", b"\x15"
 USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
@@ -46,6 +48,7 @@ class Name:
     access: str
     default: object
     range: tuple | None
+    setting: str = ""   # the neutral setting the register holds (the catalog's `setting` key)
 
 
 @lru_cache(maxsize=None)
@@ -55,7 +58,7 @@ def names() -> dict[str, Name]:
     for entry in catalog.load("mcode").entries:
         if entry.kind in ("operator", "function"):
             continue
-        info = Name(entry.kind, entry.get("access", "") or "", entry.default, entry.range)
+        info = Name(entry.kind, entry.get("access", "") or "", entry.default, entry.range, entry.get("setting", ""))
         index = entry.get("index")
         spellings = [f"{entry.name}{i}" for i in range(index[0], index[1] + 1)] if index else [entry.name]
         for spelling in spellings:
@@ -79,17 +82,8 @@ def split_items(text: str) -> list[str]:
     return items
 
 
-# The setups kept per line, set with `IS=<n>,<type>,<active>` and reported as a table by PR IS,
-# PR OS, PR LS: name -> ({line: the factory value of its other parameters}, how PR writes a
-# line). IS: inputs 1-4 type 0 LOW active (L3504-L3506), the analog input 5 voltage 0-5 V
-# (L3557-L3561), the index input 6 LOW active (L3595-L3600); OS: outputs 1-3 type 16 LOW active
-# (L4618-L4621, the reply of L4647-L4650); LS: the minus (0) and plus (1) limits at 0, disabled
-# (L4023-L4026, the reply format of L4044).
-TABLES: dict[str, tuple[dict[int, tuple[int, ...]], str]] = {
-    "IS": ({1: (0, 0), 2: (0, 0), 3: (0, 0), 4: (0, 0), 5: (9, 0), 6: (0, 0)}, "IS = {n}, {0}, {1}"),
-    "OS": ({1: (16, 0), 2: (16, 0), 3: (16, 0)}, "OS = {n}, {0}, {1}"),
-    "LS": ({0: (0, 0), 1: (0, 0)}, "LS={n}, {0}, {1}"),
-}
+# The setups kept per line (IS, OS, LS) and how PR writes them: compiler/mcode/tables.py, which
+# the lowering reads too.
 CLOCK_TYPES = (13, 14, 15)   # IS types of the input 3/4 pair: setting one sets the other (L3522)
 INDEX_INPUT = 6              # IS=6,<active>: its only parameter is the active state (L3595-L3605)
 
@@ -124,7 +118,7 @@ class MCodeDevice(VirtualDevice):
         # The drive's identity, as PR VR and PR PN report it (L6185-L6192, L4868-L4875): the
         # product profile's [device] version and part_number; mcc's own stand-in without them.
         identity = self.sim.profile
-        self.version = version or (identity.get("device.version") if identity is not None else None) or "LMDCM 6.002"
+        self.version = version or (identity.get("device.version") if identity is not None else None) or STAND_IN_VERSION
         self.part_number = (identity.get("device.part_number") if identity is not None else None) or ""
         self.memory = Memory(variables={n: i.default for n, i in names().items()
                                         if i.kind in ("variable", "flag") and i.default is not None})
@@ -385,9 +379,20 @@ class MCodeDevice(VirtualDevice):
             elif item.upper() == "EF":
                 out += str(self.memory.variables.get("EF", 0))
             else:
-                value = self.read(item)
-                out += str(value)
+                out += self.text_of(item, self.read(item))
         return [out]
+
+    def text_of(self, name: str, value) -> str:
+        """A value as PR prints it: a floating-point register (F1-F8, SA: the catalog's default is
+        a float) in the print format PF in force (default 10,6,0,0, L4744-L4777), as `mcc sim`
+        prints it (sim/values.float_text); any other value as it is."""
+        info = names().get(name.upper())
+        if info is not None and isinstance(info.default, float) and isinstance(value, (int, float)):
+            fmt = values.float_format(self.var("PF", info.default)) or values.float_format(names()["PF"].default)
+            profile = self.sim.profile
+            pad = bool(profile.get("machine.arithmetic.float_print_pad", False)) if profile is not None else False
+            return values.float_text(float(value), fmt, pad)
+        return str(value)
 
     def cmd_VA(self, rest: str) -> list[str]:
         self.declare(rest, "G")
@@ -478,6 +483,12 @@ class MCodeDevice(VirtualDevice):
 
     def before_run(self, values: dict | None = None) -> None:
         self.sim.variables.update(self.numbers() if values is None else values)
+        for name, info in names().items():  # the drive registers as the device holds them (after a power cycle too)
+            value = self.memory.variables.get(name)
+            if info.setting and value is not None:
+                unit = ir_names.SETTINGS[info.setting].unit
+                self.sim.settings[(info.setting, AXIS, None)] = value / 1000 if unit is ir.Unit.S and \
+                    isinstance(value, (int, float)) else value
 
     def after_run(self) -> None:
         """What the run changed, back into the variables the host reads."""
@@ -486,6 +497,11 @@ class MCodeDevice(VirtualDevice):
                 self.memory.user[name][1] = plain(value)
             elif re.fullmatch(r"[RF]\d+", name) and name in names():
                 self.memory.variables[name] = plain(value)
+        for name, info in names().items():  # drive registers a program set (CW=100 in a program EX ran)
+            value = self.sim.settings.get((info.setting, AXIS, None)) if info.setting else None
+            if value is not None:
+                unit = ir_names.SETTINGS[info.setting].unit
+                self.memory.variables[name] = plain(round(value * 1000, 6) if unit is ir.Unit.S else value)
         settings = self.sim.machine.axis(AXIS).settings
         for name, param in SETTINGS.items():
             if param in settings:
