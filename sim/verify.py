@@ -287,9 +287,10 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
             scenario = with_idle_levels(scenario, source, source_profile, idle)
         opts = options or default_options(scenario)
         a = known.get(id(scenario)) or simulate(source, scenario, _copy(opts), source_profile, checked=True)
-        b = simulate(output, scenario, _copy(opts), output_profile, checked=True)
-        moved = _translated(scenario, _axis_map(a, b), ratio)
-        if moved is not scenario:  # the switches and positions of the output's axes, in its steps
+        scenario_out = _analog_scaled(scenario, source_profile, output_profile)
+        b = simulate(output, scenario_out, _copy(opts), output_profile, checked=True)
+        moved = _translated(scenario_out, _axis_map(a, b), ratio)
+        if moved is not scenario_out:  # the switches and positions of the output's axes, in its steps
             b = simulate(output, moved, _copy(opts), output_profile, checked=True)
         runs = [_Run(source, scenario, source_profile, a, opts.max_steps),
                 _Run(output, moved, output_profile, b, opts.max_steps)]
@@ -300,6 +301,21 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
                                                             kinds, by_count, tol, horizon):
             return found
     return None
+
+
+def _analog_scaled(scenario: Scenario, source_profile, output_profile) -> Scenario:
+    """The scenario's analog values (the source device's counts) in the output device's counts, the
+    same voltage: profiles give `machine.analog.counts` (1024 on an MDrivePlus, 4096 on a Lexium
+    drive, docs/dialects/mcode.md); without both, or when equal, the scenario itself."""
+    def counts(profile) -> int:
+        return int(profile.get("machine.analog.counts", 0) or 0) if profile is not None else 0
+
+    src, out = counts(source_profile), counts(output_profile)
+    if not scenario.analog or not src or not out or src == out:
+        return scenario
+    import dataclasses
+
+    return dataclasses.replace(scenario, analog={k: v * out / src for k, v in scenario.analog.items()})
 
 
 @dataclass
@@ -588,12 +604,13 @@ def _last_line(trace: Trace) -> int | None:
 
 
 def check_translation(path: str, dialect: str, before: str | ir.Module, after_text: str, after_dialect: str | None = None,
-                      profile=None, scenarios: list[Scenario] | None = None) -> str:
+                      profile=None, scenarios: list[Scenario] | None = None, source_profile=None) -> str:
     """Why the translation of `path` into `after_text` cannot be trusted, or "" when it verifies.
 
     `before` is the source text (or its module, already lowered); the translation is lowered as
     `after_dialect` (default: the same dialect). Used by `mcc compile --verify`, `mcc fmt --verify`
-    and `mcc lint --fix --verify`: a non-empty answer means nothing is written."""
+    and `mcc lint --fix --verify`: a non-empty answer means nothing is written. `source_profile`
+    is the source's product when it is not `profile`'s (a migration between MCode families)."""
     from mcc.compiler import dialects, driver
     from mcc.sim.interpreter import ContractError
 
@@ -601,7 +618,7 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
     if isinstance(before, ir.Module):
         source = before
     else:
-        checked = driver.check_file(path, dialect, profile, before)
+        checked = driver.check_file(path, dialect, source_profile or profile, before)
         if checked.analysis is None or checked.analysis.module is None or checked.has_errors:
             return "the source has errors, so it cannot be simulated"
         source = checked.analysis.module
@@ -611,7 +628,7 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
         return "the written program has errors, so it cannot be simulated"
     if same_program(source, written.analysis.module):
         return ""  # the same operations in the same order: nothing a run could tell apart
-    src_profile = profile if profile is not None and profile.dialect == source.dialect else None
+    src_profile = source_profile or (profile if profile is not None and profile.dialect == source.dialect else None)
     try:
         src_profile = src_profile or driver.profile_for(dialects.get(source.dialect), None)
         out_profile = out_profile or driver.profile_for(dialects.get(target), None)

@@ -19,6 +19,7 @@ from mcc.compiler.profiles import Profile
 
 USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]{0,2}\Z")
 STRICT_USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]\Z")
+SHORT_USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]?\Z")  # label_rule "short": one or two characters
 GLUED = re.compile(r"([A-Za-z]{1,2})([0-9]+)\Z")
 VALUE_TYPES = ("int", "number")
 
@@ -53,7 +54,7 @@ def firmware_tuple(text: str) -> tuple[int, ...]:
 
 class Resolver:
     def __init__(self, profile: Profile, diags: Diagnostics):
-        self.cat = cat.load()
+        self.cat = cat.for_profile(profile)
         self.profile = profile
         self.diags = diags
         self.names = Names()
