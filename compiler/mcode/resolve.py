@@ -98,6 +98,13 @@ class Resolver:
         stmt = res.stmt
         if stmt.form == "number":
             return True
+        if res.legacy is not None and self.cat.family:
+            legacy = res.legacy  # a command of the older family that its catalog variant does not have
+            self.diags.add("M102", stmt.head.span,
+                           f"{legacy.name} ({legacy.summary.rstrip('.')}) is not in mcc's catalog of the "
+                           f"{self.cat.products.get(self.cat.family, self.cat.family)} family: no public source "
+                           "gives its form (docs/dialects/mcode.md); mcc cannot check or convert it")
+            return False
         if res.legacy is not None:
             legacy = res.legacy
             self.diags.add("M102", stmt.head.span,

@@ -108,3 +108,21 @@ def test_source_profile_of_another_dialect_is_a_usage_error(tmp_path):
     path = write(tmp_path, "PG 100\n E\nPG\n")
     result = run("compile", "--source-profile", "pmx-4ex-sa", "--profile", "lmd-o", path)
     assert result.exit_code == 2 and "--source-profile" in result.output
+
+
+def test_lint_takes_float_registers_from_the_program(tmp_path):
+    """F1 is a user variable on an MDrivePlus (real programs declare `VA F1=410`, greezybacon/mcontrol
+    mdrive_base.mxt): lint M308 (a float truncated, lexium-mcode.txt L2812) is for the Lexium float
+    registers only."""
+    path = write(tmp_path, "VA F1=410\nVA FS=0\nPG 100\nLB K1\n FS=F1+1\n PR FS\n E\nPG\nS\n' end\n")
+    result = run("lint", "--profile", "mdrive-plus", path)
+    assert "M308" not in result.output, result.output
+    lexium = run("lint", "--profile", "lmd-c", path)
+    assert "M104" in lexium.output
+
+
+def test_family_command_without_public_source(tmp_path):
+    """S5 (analog set-up in mcc's older table) has no public description: M102 says mcc cannot check it."""
+    path = write(tmp_path, "S5=9,0\nPG 1\n E\nPG\n")
+    result = run("check", "--profile", "mdrive-plus", path)
+    assert result.exit_code == 1 and "M102" in result.output and "no public source" in result.output
