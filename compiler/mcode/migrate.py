@@ -63,6 +63,7 @@ class Migration:
         self.source_cat = cat.for_profile(source)
         self.target_cat = cat.for_profile(target)
         self.analog = (analog_counts(source), analog_counts(target))
+        self.output_points: set[int | None] = set()
         self.encoder = (encoder_counts(source), encoder_counts(target))
         self.where = f"{target.title or target.name} (profile '{target.name}')"
 
@@ -71,6 +72,8 @@ class Migration:
                                      f"by hand, or compile for profile '{self.source.name}'")
 
     def run(self, module: ir.Module) -> None:
+        self.output_points = {op.index for _, block in module.blocks() for op in block.ops
+                              if isinstance(op, ir.Setting) and op.name == "output_function"}
         for _, block in module.blocks():
             for index, op in enumerate(block.ops):
                 block.ops[index] = self.op(op)
@@ -101,11 +104,32 @@ class Migration:
                                  "counts do not convert exactly")
         if op.name == "output_function" and op.index is not None and f"O{op.index}" not in self.target_cat.commands:
             self.refuse(op.span, f"I/O point {op.index} as an output: the target has no output {op.index}")
+        if op.name in ("input_function", "output_function") and self.target_cat.io_setup == "point":
+            self.point_setting(op)
         if op.name == "io_sourcing" and self.target_cat.io_setup != "point":
             kind = "sourcing" if isinstance(op.value, ir.Const) and op.value.value == 1 else "sinking"
             self.diags.add("M203", op.span, f"I/O point {op.index} is set {kind} here; on {self.where} sinking or "
                                             "sourcing is set by the bias of the Reference input (wiring), not by "
                                             "the program: wire it so")
+
+    def point_setting(self, op: ir.Setting) -> None:
+        """A Lexium IS/OS on a family whose I/O points are either inputs or outputs (S1-S4): the
+        function must be one S<n> has, and one point cannot be both."""
+        command = self.target_cat.lookup(f"S{op.index}")
+        if command is None:
+            self.refuse(op.span, f"setting up {'input' if op.name == 'input_function' else 'output'} {op.index}: "
+                                 "the target's I/O points are S1-S4")
+            return
+        from mcc.compiler.mcode.lower import INPUT_TYPES, OUTPUT_TYPES
+
+        table = INPUT_TYPES if op.name == "input_function" else OUTPUT_TYPES
+        number = next((n for n, name in table.items() if isinstance(op.value, ir.Text) and name == op.value.value), None)
+        allowed = command.forms()[0].args[0].values if command.forms() else None
+        if number is not None and allowed is not None and number not in allowed:
+            self.refuse(op.span, f"function {number} ({op.value.value}): the target's S{op.index} has no such function")
+        if op.index in self.output_points and op.name == "input_function":
+            self.refuse(op.span, f"input {op.index} and output {op.index} are two pins of the source but one I/O "
+                                 f"point (S{op.index}) of the target")
 
     def encoder_differs(self) -> bool:
         return bool(self.encoder[0]) and self.encoder[0] != self.encoder[1]
@@ -151,6 +175,11 @@ class Migration:
             self.refuse(node.span, f"reading the analog input: {source} counts on '{self.source.name}', {target} "
                                    f"on '{self.target.name}', and the target's reading cannot give the source's "
                                    "exactly")
+        if node.meaning == "input" and node.index in self.output_points and self.source_cat.io_setup == "point" \
+                and self.target_cat.io_setup != "point":
+            self.refuse(node.span, f"reading I{node.index}, the level of I/O point {node.index}, which the program sets "
+                                   f"up as an output: on the target, input {node.index} is another pin than output "
+                                   f"{node.index}")
         if node.meaning == "encoder" and self.encoder_differs():
             self.refuse(node.span, f"reading the encoder counter: {self.encoder_counts_text()}, which do not "
                                    "convert exactly")

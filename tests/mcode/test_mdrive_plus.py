@@ -126,3 +126,25 @@ def test_family_command_without_public_source(tmp_path):
     path = write(tmp_path, "S5=9,0\nPG 1\n E\nPG\n")
     result = run("check", "--profile", "mdrive-plus", path)
     assert result.exit_code == 1 and "M102" in result.output and "no public source" in result.output
+
+
+def test_migration_back_to_the_family(tmp_path):
+    """Lexium -> MDrivePlus: IS/OS become S<n> ([conv]); a Lexium function S1-S4 lack (12, capture;
+    [io] lists 0-8, 11, 16-20), one point used as input and output, and the 12-bit analog reading,
+    which the 10-bit one cannot give, are refused on their lines."""
+    ok = write(tmp_path, "IS=2,1,0\nOS=1,17,1\nPG 100\nLB SU\n HM 1\n H\n E\nPG\n", "ok.mxt")
+    result = run("compile", "--source-profile", "lmd-c", "--profile", "mdrive-plus", ok)
+    assert result.exit_code == 0, result.output
+    assert result.output.splitlines()[:2] == ["S2=1,0", "S1=17,1"]
+    bad = write(tmp_path, "IS=1,12,0\nOS=1,17,1\nPG 100\nLB SU\n R1=I5\n E\nPG\n", "bad.mxt")
+    refused = run("compile", "--source-profile", "lmd-c", "--profile", "mdrive-plus", bad)
+    assert refused.exit_code == 1
+    assert [line.split(":")[1] for line in refused.output.splitlines() if "M202" in line] == ["1", "1", "5"]
+
+
+def test_migration_refuses_reading_an_output_point(tmp_path):
+    """On an MDrivePlus I2 reads I/O point 2 even when it is an output; on a Lexium drive input 2 and
+    output 2 are two pins ([conv]: "In the Lexium MDrive, the I/O points are fixed as inputs and outputs")."""
+    path = write(tmp_path, "S1=0,0,0\nS2=17,1,0\nPG 100\nLB SU\n BR SU, I2=0\n E\nPG\n")
+    result = run("compile", "--source-profile", "mdrive-plus", "--profile", "lmd-o", path)
+    assert result.exit_code == 1 and ":5:" in next(l for l in result.output.splitlines() if "M202" in l)
