@@ -109,7 +109,9 @@ class Resolver:
             legacy = res.legacy
             self.diags.add("M102", stmt.head.span,
                            f"{legacy.name} is an {legacy.family} command ({legacy.summary.rstrip('.')}); "
-                           f"Lexium products do not have it: use {self.lexium_equivalent(res)}")
+                           f"Lexium products do not have it: use {self.lexium_equivalent(res)} (a program for that "
+                           "family: check it with `--profile mdrive-plus`, move it with `mcc compile "
+                           "--source-profile mdrive-plus`)")
             return False
         if res.command is None:
             return self.check_user_statement(res)
