@@ -282,6 +282,7 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
                                 source_profile, idle)
         known[id(lows)] = simulate(source, lows, _copy(options or default_options(lows)), source_profile, checked=True)
         scenarios = [lows] + default_scenarios(source, source_profile, known[id(lows)])[1:]
+        scenarios += _analog_scenarios(source, source_profile, output_profile)
     for scenario in scenarios:
         if id(scenario) not in known:
             scenario = with_idle_levels(scenario, source, source_profile, idle)
@@ -303,14 +304,32 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     return None
 
 
+def _analog_counts(profile) -> int:
+    return int(profile.get("machine.analog.counts", 0) or 0) if profile is not None else 0
+
+
+def _analog_scenarios(source: ir.Module, source_profile, output_profile) -> list[Scenario]:
+    """Between two products whose analog inputs count differently (a migration from an MDrivePlus
+    to a Lexium drive), a program that reads an analog input is also run with each read input at a
+    reading that no scale factor leaves alone (a third of the source's full scale, plus one), so a
+    conversion that forgets the scale is found: with no analog values both read 0."""
+    src, out = _analog_counts(source_profile), _analog_counts(output_profile)
+    if not src or not out or src == out:
+        return []
+    read = sorted({node.index or 1 for _, block in source.blocks()
+                   for expr in [e for op in block.ops for e in ir.op_exprs(op)] + list(ir.term_exprs(block.terminator))
+                   for node in ir.walk_expr(expr) if isinstance(node, ir.Status) and node.meaning == "analog"})
+    if not read:
+        return []
+    value = src // 3 + 1
+    return [Scenario(analog={n: value for n in read}, name=f"analog input{'s' if len(read) > 1 else ''} at {value}")]
+
+
 def _analog_scaled(scenario: Scenario, source_profile, output_profile) -> Scenario:
     """The scenario's analog values (the source device's counts) in the output device's counts, the
     same voltage: profiles give `machine.analog.counts` (1024 on an MDrivePlus, 4096 on a Lexium
     drive, docs/dialects/mcode.md); without both, or when equal, the scenario itself."""
-    def counts(profile) -> int:
-        return int(profile.get("machine.analog.counts", 0) or 0) if profile is not None else 0
-
-    src, out = counts(source_profile), counts(output_profile)
+    src, out = _analog_counts(source_profile), _analog_counts(output_profile)
     if not scenario.analog or not src or not out or src == out:
         return scenario
     import dataclasses

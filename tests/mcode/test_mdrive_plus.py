@@ -148,3 +148,19 @@ def test_migration_refuses_reading_an_output_point(tmp_path):
     path = write(tmp_path, "S1=0,0,0\nS2=17,1,0\nPG 100\nLB SU\n BR SU, I2=0\n E\nPG\n")
     result = run("compile", "--source-profile", "mdrive-plus", "--profile", "lmd-o", path)
     assert result.exit_code == 1 and ":5:" in next(l for l in result.output.splitlines() if "M202" in l)
+
+
+def test_migration_validation_drives_the_analog_input(tmp_path):
+    """Without scenarios, a migrated program that reads the analog input is also run with a reading
+    (a third of the 10-bit full scale, plus one, [conv]) on both products: a conversion that forgot
+    the scale is found."""
+    from mcc.compiler import driver
+    from mcc.sim.verify import check_translation
+
+    path = write(tmp_path, "PG 100\nLB SU\n R1=I5\n PR R1\n E\nPG\n")
+    source, target = profiles.load("mdrive-plus"), profiles.load("lmd-o")
+    module = driver.check_file(path, "mcode", source).analysis.module
+    good = "PG 100\nLB SU\nR1=I5/4\nPR R1\nE\nPG\n"
+    assert check_translation(path, "mcode", module, good, "mcode", target, None, source) == ""
+    found = check_translation(path, "mcode", module, good.replace("I5/4", "I5"), "mcode", target, None, source)
+    assert "342" in found and "1368" in found
