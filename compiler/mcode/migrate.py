@@ -26,6 +26,7 @@ import dataclasses
 from mcc.compiler import ir
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as cat
+from mcc.compiler.mcode.lower import INPUT_TYPES, OUTPUT_TYPES
 from mcc.compiler.profiles import Profile
 
 DIALECT = "mcode"
@@ -92,8 +93,8 @@ class Migration:
             return
         command = self.source_cat.lookup(name)
         if command is not None and command.ir == "io_setup":
-            self.refuse(op.span, f"{name} with values computed at run time: the Lexium drive sets an input up "
-                                 f"with IS and an output with OS, so the function must be a number here")
+            self.refuse(op.span, f"{name} with values computed at run time: the target sets an input up with IS "
+                                 "and an output with OS, so the function must be a number here")
         else:
             title = f" ({command.entry.title})" if command is not None else ""
             self.refuse(op.span, f"{name}{title} has no equivalent on the target")
@@ -120,8 +121,6 @@ class Migration:
             self.refuse(op.span, f"setting up {'input' if op.name == 'input_function' else 'output'} {op.index}: "
                                  "the target's I/O points are S1-S4")
             return
-        from mcc.compiler.mcode.lower import INPUT_TYPES, OUTPUT_TYPES
-
         table = INPUT_TYPES if op.name == "input_function" else OUTPUT_TYPES
         number = next((n for n, name in table.items() if isinstance(op.value, ir.Text) and name == op.value.value), None)
         allowed = command.forms()[0].args[0].values if command.forms() else None

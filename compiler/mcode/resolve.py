@@ -73,6 +73,8 @@ class Resolver:
             res.command = commands[upper]
         elif upper in self.cat.legacy:
             res.legacy = self.cat.legacy[upper]
+        elif self.cat.family and upper in (lexium := cat.load().commands) and upper not in self.names.variables:
+            res.command = lexium[upper]  # a Lexium command the older family lacks: M114 names the products
         elif len(upper) == 3 and upper[1:] in commands and not stmt.party and word[0].isalnum():
             res.party, res.command = word[0], commands[upper[1:]]
         elif (m := GLUED.match(word)) and m.group(1).upper() in commands and upper not in self.names.variables:

@@ -164,3 +164,11 @@ def test_migration_validation_drives_the_analog_input(tmp_path):
     assert check_translation(path, "mcode", module, good, "mcode", target, None, source) == ""
     found = check_translation(path, "mcode", module, good.replace("I5/4", "I5"), "mcode", target, None, source)
     assert "342" in found and "1368" in found
+
+
+def test_lexium_io_setup_on_the_family_names_the_products(tmp_path):
+    """IS/OS are Lexium's: "The S1-S4 command has been changed to Is for input setup and Os for
+    output setup" ([conv]); on the family IS is M114 naming where it exists, not an undeclared name."""
+    path = write(tmp_path, "IS=1,1,0\nPG 1\n E\nPG\n")
+    result = run("check", "--profile", "mdrive-plus", path)
+    assert result.exit_code == 1 and "M114" in result.output and "Lexium MDrive" in result.output
