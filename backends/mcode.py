@@ -131,7 +131,7 @@ class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
         self.module = module
         self.profile = profile
-        self.cat = cat.load()
+        self.cat = cat.for_profile(profile)  # Lexium MCode, or the profile's older family (S1-S4 I/O set-up)
         self.listing = Listing(DIALECT)
         self.diags: Diagnostics = self.listing.diagnostics
         self.limit = int(profile.get("limits.line_length", 64))
@@ -606,11 +606,18 @@ class Writer:
         op = ops[index]
         pair = ops[index + 1] if index + 1 < len(ops) else None
         if isinstance(op, ir.Setting) and op.name in ("input_function", "output_function", "soft_limit_position"):
+            third = ops[index + 2] if index + 2 < len(ops) else None
+            sourcing = third if isinstance(third, ir.Setting) and third.name == "io_sourcing" \
+                and third.index == op.index and isinstance(pair, ir.Setting) and pair.index == op.index else None
             try:
-                self.line(self.line_setup(op, pair), op.span)
+                self.line(self.line_setup(op, pair, sourcing), op.span)
             except Unsupported as exc:
                 self.unsupported(op.span, str(exc))
-            return 2 if isinstance(pair, ir.Setting) and pair.index == op.index else 1
+            return (3 if sourcing is not None else 2) if isinstance(pair, ir.Setting) and pair.index == op.index else 1
+        if isinstance(op, ir.Setting) and op.name == "io_sourcing" and self.cat.io_setup != "point":
+            # sinking/sourcing is wiring on a Lexium drive (the Reference input's bias): the
+            # migration reported it (compiler/mcode/migrate.py); nothing to write
+            return 1
         self.op(op)
         return 1
 
@@ -861,7 +868,7 @@ class Writer:
             value = units.from_ir(value, 1 / factor)
         return f"{self.prefix(op.axis)}{name}={self.expr(value)}"
 
-    def line_setup(self, op: ir.Setting, pair) -> str:
+    def line_setup(self, op: ir.Setting, pair, sourcing=None) -> str:
         if op.name == "soft_limit_position":  # LS=<0/1>,<position>,<0/1> (L4023-L4044)
             if not (isinstance(pair, ir.Setting) and pair.name == "soft_limit_enable" and pair.index == op.index):
                 raise Unsupported("a software limit's position without its enable (MCode's LS sets both)")
@@ -878,6 +885,11 @@ class Writer:
             raise Unsupported(f"an {op.name} without its active level (MCode's IS sets both; the source sets "
                               "only the function)")
         active = pair.value
+        if self.cat.io_setup == "point":  # MDrivePlus: S<point>=<function>,<active>[,<sink/source>]
+            extra = f",{self.expr(sourcing.value)}" if sourcing is not None else ""
+            if f"S{op.index}" not in self.cat.commands:
+                raise Unsupported(f"setting up I/O point {op.index} (the drive has S1-S4)")
+            return f"{self.prefix(op.axis)}S{op.index}={table[function]},{self.expr(active)}{extra}"
         return f"{self.prefix(op.axis)}{name}={op.index},{table[function]},{self.expr(active)}"
 
     def all_outputs(self, op: ir.SetOutput) -> list[str]:

@@ -177,6 +177,10 @@ def report(results, fmt: str, extra=None) -> None:
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="How to report diagnostics and statistics.")
 @click.option("--profile", help="Target profile: a built-in name or a path to a TOML file.")
+@click.option("--source-profile", metavar="PROFILE",
+              help="The profile FILE was written for, when it is not the target's (default: --profile): FILE is "
+                   "checked with it, and an MCode program moved to another MCode family (e.g. --source-profile "
+                   "mdrive-plus --profile lmd-o) is converted and validated on the way.")
 @click.option("-O0", "opt_level", flag_value="O0", help="No optimization: the program as written.")
 @click.option("-O1", "opt_level", flag_value="O1", default=True,
               help="Local, safe optimizations (the default): folding, copies, dead stores, repeated settings, "
@@ -197,8 +201,8 @@ def report(results, fmt: str, extra=None) -> None:
               metavar="SCENARIO.toml", help="Scenarios for the validation (repeatable; default: generated from the "
                                             "program, every input it reads low, high and toggling).")
 def compile_cmd(file: str, target: str | None, dialect: str | None, output: str | None, listing: str | None,
-                fmt: str, profile: str | None, opt_level: str, passes: str | None, overwrite_input: bool,
-                verify: bool | None, inputs: tuple[str, ...]) -> None:
+                fmt: str, profile: str | None, source_profile: str | None, opt_level: str, passes: str | None,
+                overwrite_input: bool, verify: bool | None, inputs: tuple[str, ...]) -> None:
     """Compile FILE into a device-ready program.
 
     The program is checked first; nothing is written when it has errors. The output passes
@@ -213,6 +217,7 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
       mcc compile program.prg -o build/program.prg --listing build/program.lst
       mcc compile program.mxt --format json -o out.mxt
       mcc compile program.prg --target mcode --verify -o program.mxt
+      mcc compile mdrive.mxt --source-profile mdrive-plus --profile lmd-o -o lexium.mxt
     """
     from mcc.compiler import driver
 
@@ -220,6 +225,10 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
         output = None
     check_outputs(file, profile, output, listing, overwrite_input)
     prof = load_profile(profile)
+    try:
+        src_prof = load_profile(source_profile)
+    except click.BadParameter as exc:
+        raise click.BadParameter(exc.message, param_hint="--source-profile") from None
     if passes:
         from mcc.compiler.opt import pass_names
 
@@ -234,8 +243,12 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
         click.echo("mcc: note: --no-verify: the compiled program is not validated against its source in the "
                    "simulator", err=True)
     result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes,
-                                 verify=verify is not False, scenarios=scenarios, always_verify=verify is True)
+                                 verify=verify is not False, scenarios=scenarios, always_verify=verify is True,
+                                 source_profile=src_prof)
     check_profile_dialect(prof, {result.dialect, result.target})
+    if src_prof is not None and src_prof.dialect != result.dialect:
+        raise click.BadParameter(f"profile '{src_prof.name}' is for {src_prof.dialect}, not for {result.dialect}",
+                                 param_hint="--source-profile")
     produced = result.listing is not None and not result.has_errors
     write_failed = False
     if produced and (output or listing):

@@ -14,6 +14,7 @@ from typing import Any
 
 from mcc.compiler import dialects
 from mcc.compiler import ir
+from mcc.compiler.mcode import migrate
 from mcc.compiler.analysis import Analysis
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics
 from mcc.compiler.profiles import Profile
@@ -249,7 +250,7 @@ BUDGET_CODES = frozenset({"A201", "X203", "M116"})  # the program does not fit t
 def compile_file(path: str, dialect: str | None = None, target: str | None = None,
                  profile: Profile | None = None, text: str | None = None, opt_level: str = "O1",
                  passes: str | None = None, verify: bool = True, scenarios: list | None = None,
-                 always_verify: bool = False) -> FileResult:
+                 always_verify: bool = False, source_profile: Profile | None = None) -> FileResult:
     """Check one file and, when it has no errors, optimize its IR at `opt_level` (or run the
     comma-separated `passes`) and generate code for the target dialect.
 
@@ -257,8 +258,12 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
     simulator whenever it is not a plain re-spelling of it: another target, or a pass that changed
     something (`needs_validation`); `always_verify` validates in every case. A difference is S010
     on the source line and the listing is not to be written. `scenarios` replace the default ones
-    (docs/SIMULATOR.md, "Verification")."""
-    result = check_file(path, dialect, profile, text, memory=False)
+    (docs/SIMULATOR.md, "Verification").
+
+    `source_profile` is the product the program was written for when it is not `profile`'s: the
+    file is checked with it, and an MCode program moved to another MCode family (MDrivePlus ->
+    Lexium) is converted on the way (compiler/mcode/migrate.py) and always validated."""
+    result = check_file(path, dialect, source_profile or profile, text, memory=False)
     result.target = target or result.dialect
     analysis = result.analysis
     if analysis is None or analysis.module is None or result.has_errors:
@@ -269,10 +274,17 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
     try:
         target_dialect = dialects.get(result.target)
         target_profile = profile_for(target_dialect, profile)
-        listing, stats = generate(analysis.module, target_dialect, target_profile, opt_level, passes)
+        module = analysis.module
+        migrating = source_profile is not None and migrate.differs(source_profile, target_profile)
+        if migrating:
+            module = migrate.migrate(module, source_profile, target_profile, diags)
+            if diags.has_errors:
+                result.diagnostics = diags.items
+                return result
+        listing, stats = generate(module, target_dialect, target_profile, opt_level, passes)
         result.optimization = stats
         if any(p.changed for p in stats.passes):
-            baseline, _ = generate(analysis.module, target_dialect, target_profile, "O0", None)
+            baseline, _ = generate(module, target_dialect, target_profile, "O0", None)
             if new_errors(listing, baseline):
                 # The optimized graph is one the target's structurer cannot write although the
                 # program as written can be: keep the program as written rather than fail.
@@ -285,14 +297,15 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         if budget and not passes:
             listing.diagnostics.items[:] = [d for d in listing.diagnostics
                                             if d not in budget] + [with_level_note(d, fits_at(
-                                                analysis.module, target_dialect, target_profile, opt_level))
+                                                module, target_dialect, target_profile, opt_level))
                                                                    for d in budget]
         level = f"; optimization: -{stats.level}" + (f" (passes {passes})" if passes else "")
         listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)
         result.listing = listing
-        if verify and not diags.has_errors and (always_verify or needs_validation(result, stats)):
-            verify_translation(result, target_profile, diags, scenarios)
+        if verify and not diags.has_errors and (always_verify or migrating or needs_validation(result, stats)):
+            verify_translation(result, target_profile, diags, scenarios,
+                               source_profile if migrating else None)
     except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
         internal_error(diags, path, exc, f"generating {result.target} code")
     result.diagnostics = diags.items
@@ -307,7 +320,7 @@ def needs_validation(result: FileResult, stats) -> bool:
 
 
 def verify_translation(result: FileResult, target_profile: Profile, diags: Diagnostics,
-                       scenarios: list | None = None) -> None:
+                       scenarios: list | None = None, source_profile: Profile | None = None) -> None:
     """The written program is simulated against its source (docs/SIMULATOR.md): one that the
     simulator finds behaving differently is an error (S010) on the source line of the first
     divergence, so nothing is written; a compile never exits 0 with a program that does something
@@ -317,7 +330,7 @@ def verify_translation(result: FileResult, target_profile: Profile, diags: Diagn
     from mcc.sim.verify import check_translation, explain
 
     problem = check_translation(result.path, result.dialect, result.analysis.module, result.listing.text,
-                                result.target, target_profile, scenarios)
+                                result.target, target_profile, scenarios, source_profile)
     if not problem:
         return
     found = re.match(r"line (\d+), ", problem)

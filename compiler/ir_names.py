@@ -182,6 +182,8 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS",
                 ("mcode", "x150")),
     SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode", "x150")),
+    SettingInfo("io_sourcing", Unit.NONE, "1: I/O point `index` sources current, 0: it sinks (MDrivePlus S1-S4; "
+                "wiring on Lexium drives)", ("mcode",)),
     SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis", ("arcus",)),
     SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again",
                 ("arcus",)),

@@ -282,14 +282,16 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
                                 source_profile, idle)
         known[id(lows)] = simulate(source, lows, _copy(options or default_options(lows)), source_profile, checked=True)
         scenarios = [lows] + default_scenarios(source, source_profile, known[id(lows)])[1:]
+        scenarios += _analog_scenarios(source, source_profile, output_profile)
     for scenario in scenarios:
         if id(scenario) not in known:
             scenario = with_idle_levels(scenario, source, source_profile, idle)
         opts = options or default_options(scenario)
         a = known.get(id(scenario)) or simulate(source, scenario, _copy(opts), source_profile, checked=True)
-        b = simulate(output, scenario, _copy(opts), output_profile, checked=True)
-        moved = _translated(scenario, _axis_map(a, b), ratio)
-        if moved is not scenario:  # the switches and positions of the output's axes, in its steps
+        scenario_out = _analog_scaled(scenario, source_profile, output_profile)
+        b = simulate(output, scenario_out, _copy(opts), output_profile, checked=True)
+        moved = _translated(scenario_out, _axis_map(a, b), ratio)
+        if moved is not scenario_out:  # the switches and positions of the output's axes, in its steps
             b = simulate(output, moved, _copy(opts), output_profile, checked=True)
         runs = [_Run(source, scenario, source_profile, a, opts.max_steps),
                 _Run(output, moved, output_profile, b, opts.max_steps)]
@@ -300,6 +302,39 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
                                                             kinds, by_count, tol, horizon):
             return found
     return None
+
+
+def _analog_counts(profile) -> int:
+    return int(profile.get("machine.analog.counts", 0) or 0) if profile is not None else 0
+
+
+def _analog_scenarios(source: ir.Module, source_profile, output_profile) -> list[Scenario]:
+    """Between two products whose analog inputs count differently (a migration from an MDrivePlus
+    to a Lexium drive), a program that reads an analog input is also run with each read input at a
+    reading that no scale factor leaves alone (a third of the source's full scale, plus one), so a
+    conversion that forgets the scale is found: with no analog values both read 0."""
+    src, out = _analog_counts(source_profile), _analog_counts(output_profile)
+    if not src or not out or src == out:
+        return []
+    read = sorted({node.index or 1 for _, block in source.blocks()
+                   for expr in [e for op in block.ops for e in ir.op_exprs(op)] + list(ir.term_exprs(block.terminator))
+                   for node in ir.walk_expr(expr) if isinstance(node, ir.Status) and node.meaning == "analog"})
+    if not read:
+        return []
+    value = src // 3 + 1
+    return [Scenario(analog={n: value for n in read}, name=f"analog input{'s' if len(read) > 1 else ''} at {value}")]
+
+
+def _analog_scaled(scenario: Scenario, source_profile, output_profile) -> Scenario:
+    """The scenario's analog values (the source device's counts) in the output device's counts, the
+    same voltage: profiles give `machine.analog.counts` (1024 on an MDrivePlus, 4096 on a Lexium
+    drive, docs/dialects/mcode.md); without both, or when equal, the scenario itself."""
+    src, out = _analog_counts(source_profile), _analog_counts(output_profile)
+    if not scenario.analog or not src or not out or src == out:
+        return scenario
+    import dataclasses
+
+    return dataclasses.replace(scenario, analog={k: v * out / src for k, v in scenario.analog.items()})
 
 
 @dataclass
@@ -588,12 +623,13 @@ def _last_line(trace: Trace) -> int | None:
 
 
 def check_translation(path: str, dialect: str, before: str | ir.Module, after_text: str, after_dialect: str | None = None,
-                      profile=None, scenarios: list[Scenario] | None = None) -> str:
+                      profile=None, scenarios: list[Scenario] | None = None, source_profile=None) -> str:
     """Why the translation of `path` into `after_text` cannot be trusted, or "" when it verifies.
 
     `before` is the source text (or its module, already lowered); the translation is lowered as
     `after_dialect` (default: the same dialect). Used by `mcc compile --verify`, `mcc fmt --verify`
-    and `mcc lint --fix --verify`: a non-empty answer means nothing is written."""
+    and `mcc lint --fix --verify`: a non-empty answer means nothing is written. `source_profile`
+    is the source's product when it is not `profile`'s (a migration between MCode families)."""
     from mcc.compiler import dialects, driver
     from mcc.sim.interpreter import ContractError
 
@@ -601,7 +637,7 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
     if isinstance(before, ir.Module):
         source = before
     else:
-        checked = driver.check_file(path, dialect, profile, before)
+        checked = driver.check_file(path, dialect, source_profile or profile, before)
         if checked.analysis is None or checked.analysis.module is None or checked.has_errors:
             return "the source has errors, so it cannot be simulated"
         source = checked.analysis.module
@@ -609,9 +645,11 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
     written = driver.check_file(path, target, out_profile, after_text, memory=False)
     if written.analysis is None or written.analysis.module is None or written.has_errors:
         return "the written program has errors, so it cannot be simulated"
-    if same_program(source, written.analysis.module):
+    if source_profile is None and same_program(source, written.analysis.module):
         return ""  # the same operations in the same order: nothing a run could tell apart
-    src_profile = profile if profile is not None and profile.dialect == source.dialect else None
+    # (not between two products: the same operations may read other numbers there, I5 on an
+    # MDrivePlus and on a Lexium drive)
+    src_profile = source_profile or (profile if profile is not None and profile.dialect == source.dialect else None)
     try:
         src_profile = src_profile or driver.profile_for(dialects.get(source.dialect), None)
         out_profile = out_profile or driver.profile_for(dialects.get(target), None)

@@ -41,11 +41,6 @@ def trip_bit(event: str) -> int:
     return int(command.entry.get("trip_bit", 0)) if command is not None else 0
 
 
-def is_float_register(name: str) -> bool:
-    command = catalog().lookup(name)
-    return command is not None and command.is_float
-
-
 def reads_any(item, meanings: tuple[str, ...]) -> bool:
     """Whether an operation or terminator reads one of the named device readings."""
     found = flow.op_reads(item) if not isinstance(item, (ir.Branch, ir.Jump, ir.Return, ir.End, ir.FallOff)) \
@@ -436,9 +431,12 @@ def declaration_in_loop(ctx: Context) -> None:
 def float_truncated(ctx: Context) -> None:
     for _, _, op in flow.ops(ctx.module, (ir.Assign, ir.SetMotion)):
         target = op.target.name if isinstance(op, ir.Assign) else None
-        if target is not None and is_float_register(target):
+        # the module's types, not the Lexium catalog's: on an MDrivePlus (profile mdrive-plus) F1 is a
+        # user variable like any other (docs/dialects/mcode.md)
+        if target is not None and ctx.module.type_of(target) is ir.VarType.FLOAT64:
             continue
-        floats = sorted({n.name for n in ir.walk_expr(op.value) if isinstance(n, ir.Var) and is_float_register(n.name)})
+        floats = sorted({n.name for n in ir.walk_expr(op.value)
+                         if isinstance(n, ir.Var) and ctx.module.type_of(n.name) is ir.VarType.FLOAT64})
         if floats:
             what = target or "the setting"
             ctx.report(op.span, f"{', '.join(floats)} {'is a' if len(floats) == 1 else 'are'} floating point; "

@@ -2,7 +2,9 @@
 
 Reads compiler/catalogs/mcode.toml (every Lexium command, variable, flag, keyword and function) and
 mcode-legacy.toml (commands of the older MDrivePlus/MForce family), expands indexed families
-(F1-F8, R1-R4, ...) and answers the lookups the checks need.
+(F1-F8, R1-R4, ...) and answers the lookups the checks need. A profile of an older MCode family
+(`[mcode] family = "mdrive-plus"`) gets that family's catalog instead (`for_profile`): the variant
+in compiler/catalogs/mcode-families.toml applied to the Lexium one.
 """
 
 from __future__ import annotations
@@ -127,6 +129,8 @@ class McodeCatalog:
     products: dict[str, str]
     functions: dict[str, Command]
     increment_groups: frozenset[str] = frozenset()  # [increment] groups: what IC/DC may step
+    family: str = ""  # "" for Lexium MCode, else the variant of mcode-families.toml
+    io_setup: str = "lines"  # "lines": IS/OS per input and output; "point": S1-S4 per I/O point
 
     def lookup(self, name: str) -> Command | None:
         return self.commands.get(name.upper())
@@ -149,6 +153,76 @@ class McodeCatalog:
         if function is None or not function.firmware or not version:  # no version given: the newest
             return function
         return function if version >= firmware_tuple(function.firmware) else None
+
+
+FAMILIES_FILE = "mcode-families.toml"
+
+
+def for_profile(profile) -> McodeCatalog:
+    """The catalog a profile's programs are checked with: Lexium MCode, or the family its
+    `[mcode] family` names (an unknown family is the Lexium catalog; `families()` lists them)."""
+    family = profile.get("mcode.family", "") if profile is not None else ""
+    if not family or family not in families():
+        return load()
+    return load_family(str(family))
+
+
+@lru_cache(maxsize=1)
+def _families_data() -> dict:
+    return toml.loads((generic.CATALOG_DIR / FAMILIES_FILE).read_text(encoding="utf-8")).get("variant", {})
+
+
+def families() -> dict[str, dict]:
+    """The MCode family variants by name (compiler/catalogs/mcode-families.toml)."""
+    return _families_data()
+
+
+@lru_cache(maxsize=None)
+def load_family(name: str) -> McodeCatalog:
+    """The catalog of an older MCode family: the commands of its `like` product, less its `absent`
+    names and the commands of a newer firmware than its own, with its `override`s and its own
+    entries. The family's product code is its name; its programs may use every name left out as
+    their own (real MDrivePlus programs declare `VA LO=12200`, label `LB AO`)."""
+    base = load()
+    variant = families()[name]
+    like = variant.get("like", "")
+    absent = {str(n).upper() for n in variant.get("absent", ())}
+    version = firmware_tuple(str(variant.get("firmware", "")))
+    overrides = {str(k).upper(): v for k, v in variant.get("override", {}).items()}
+    commands: dict[str, Command] = {}
+    for key, command in base.commands.items():
+        products = command.products
+        if key in absent or (products and like not in products):
+            continue
+        if command.firmware and version and version < firmware_tuple(command.firmware):
+            continue
+        entry = command.entry
+        if key in overrides:
+            entry = generic.entry_from_dict({**_entry_dict(entry), **overrides[key]})
+        commands[key] = Command(key, entry, command.index, command.derived + (name,))
+    for raw in variant.get("entry", []):
+        entry = generic.entry_from_dict({**raw, "products": [name]})
+        index = entry.get("index")
+        if isinstance(index, list) and len(index) == 2:
+            for i in range(int(index[0]), int(index[1]) + 1):
+                commands[f"{entry.name.upper()}{i}"] = Command(f"{entry.name.upper()}{i}", entry, i)
+        else:
+            commands[entry.name.upper()] = Command(entry.name.upper(), entry)
+    functions = {} if not version else {k: f for k, f in base.functions.items()
+                                        if not f.firmware or version >= firmware_tuple(f.firmware)}
+    legacy = {k: v for k, v in base.legacy.items() if k not in commands}
+    products = dict(base.products)
+    products[name] = variant.get("title", name)
+    return McodeCatalog(commands, legacy, products, functions, base.increment_groups, family=name,
+                        io_setup=str(variant.get("io_setup", "lines")))
+
+
+def _entry_dict(entry: generic.Entry) -> dict:
+    """An entry back as the dictionary it was read from (for an override)."""
+    return {"name": entry.name, "title": entry.title, "kind": entry.kind, "summary": entry.summary,
+            "syntax": list(entry.syntax), "unit": entry.unit,
+            "range": list(entry.range) if entry.range else None, "default": entry.default,
+            "products": entry.products, "manual": entry.manual, "notes": entry.notes, **entry.extra}
 
 
 def firmware_tuple(text: str) -> tuple[int, ...]:

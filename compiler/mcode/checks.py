@@ -11,7 +11,12 @@ from mcc.compiler import ir
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.lower import Lowering
-from mcc.compiler.mcode.resolve import STRICT_USER_NAME, USER_NAME
+from mcc.compiler.mcode.resolve import SHORT_USER_NAME, STRICT_USER_NAME, USER_NAME
+
+# limits.label_rule -> (pattern, what it asks for)
+NAME_RULES = {"strict": (STRICT_USER_NAME, "a letter then a letter or digit, exactly two characters"),
+              "relaxed": (USER_NAME, "a letter followed by up to two letters or digits"),
+              "short": (SHORT_USER_NAME, "a letter, alone or followed by a letter or digit")}
 from mcc.compiler.span import SourceFile
 
 
@@ -38,8 +43,7 @@ def check_user_names(lowering: Lowering, diags: Diagnostics) -> None:
     names = lowering.resolver.names
     cat = lowering.cat
     profile = lowering.profile
-    relaxed = profile.get("limits.label_rule", "strict") == "relaxed"
-    pattern = USER_NAME if relaxed else STRICT_USER_NAME
+    pattern, rule = NAME_RULES.get(str(profile.get("limits.label_rule", "strict")), NAME_RULES["strict"])
     for kind, table in (("label", names.labels), ("variable", names.variables)):
         for key, node in table.items():
             if key == "SU" and kind == "label":
@@ -54,8 +58,6 @@ def check_user_names(lowering: Lowering, diags: Diagnostics) -> None:
                 diags.add("M104", node.span, f"{kind} name {node.text} is {what}: user names must not be "
                                              "MCode names; choose another")
             elif not pattern.match(node.text):
-                rule = "a letter then a letter or digit, exactly two characters" if not relaxed else \
-                    "a letter followed by up to two letters or digits"
                 diags.add("M103", node.span, f"{kind} name '{node.text}' is not a valid MCode name ({rule})")
     for key, node in names.variables.items():
         if key in names.labels:

@@ -420,6 +420,10 @@ class Lowering:
         if kind in SETTINGS and args:
             setting, factor, unit = SETTINGS[kind]
             return ir.Setting(setting, axis, units.to_ir(self.expr(args[0]), factor, unit), span, command.index)
+        if kind == "io_setup" and len(args) in (2, 3):  # MDrivePlus S1-S4 (mcode-families.toml)
+            point_setup = self.point_setup(command.index, axis, args, span)
+            if point_setup is not None:
+                return point_setup
         if name in ("IS", "OS", "LS") and len(args) == 3 or name == "OS" and len(args) == 2:
             line_setup = self.line_setup(name, axis, args, span)
             if line_setup is not None:
@@ -581,6 +585,23 @@ class Lowering:
         if active is None:
             return [function]
         return [function, ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, line)]
+
+    def point_setup(self, point: int | None, axis: str, args, span):
+        """`S1=1,0,0` (MDrivePlus) with literal numbers: I/O point 1 becomes an input or an output by
+        its function (inputs 0-11, outputs 16-20), with its active level, and sinking (0) or
+        sourcing (1): the same neutral settings as Lexium's IS/OS, plus `io_sourcing`."""
+        values = [self.expr(a) for a in args]
+        if point is None or not all(isinstance(v, ir.Const) for v in values):
+            return None
+        function, active = values[0].value, values[1].value
+        what, table = ("input", INPUT_TYPES) if function in INPUT_TYPES else ("output", OUTPUT_TYPES)
+        if function not in table or active not in (0, 1):
+            return None
+        out = [ir.Setting(f"{what}_function", axis, ir.Text(table[function], args[0].span), span, point),
+               ir.Setting(f"{what}_active_high", axis, ir.Const(active), span, point)]
+        if len(values) == 3:
+            out.append(ir.Setting("io_sourcing", axis, values[2], span, point))
+        return out
 
     def resolution(self, axis: str, node: st.Node, span):
         """`MS=256`: microsteps per full step. The IR counts steps per revolution, and a literal

@@ -19,6 +19,7 @@ from mcc.compiler.profiles import Profile
 
 USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]{0,2}\Z")
 STRICT_USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]\Z")
+SHORT_USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]?\Z")  # label_rule "short": one or two characters
 GLUED = re.compile(r"([A-Za-z]{1,2})([0-9]+)\Z")
 VALUE_TYPES = ("int", "number")
 
@@ -53,7 +54,7 @@ def firmware_tuple(text: str) -> tuple[int, ...]:
 
 class Resolver:
     def __init__(self, profile: Profile, diags: Diagnostics):
-        self.cat = cat.load()
+        self.cat = cat.for_profile(profile)
         self.profile = profile
         self.diags = diags
         self.names = Names()
@@ -72,6 +73,8 @@ class Resolver:
             res.command = commands[upper]
         elif upper in self.cat.legacy:
             res.legacy = self.cat.legacy[upper]
+        elif self.cat.family and upper in (lexium := cat.load().commands) and upper not in self.names.variables:
+            res.command = lexium[upper]  # a Lexium command the older family lacks: M114 names the products
         elif len(upper) == 3 and upper[1:] in commands and not stmt.party and word[0].isalnum():
             res.party, res.command = word[0], commands[upper[1:]]
         elif (m := GLUED.match(word)) and m.group(1).upper() in commands and upper not in self.names.variables:
@@ -97,11 +100,20 @@ class Resolver:
         stmt = res.stmt
         if stmt.form == "number":
             return True
+        if res.legacy is not None and self.cat.family:
+            legacy = res.legacy  # a command of the older family that its catalog variant does not have
+            self.diags.add("M102", stmt.head.span,
+                           f"{legacy.name} ({legacy.summary.rstrip('.')}) is not in mcc's catalog of the "
+                           f"{self.cat.products.get(self.cat.family, self.cat.family)} family: no public source "
+                           "gives its form (docs/dialects/mcode.md); mcc cannot check or convert it")
+            return False
         if res.legacy is not None:
             legacy = res.legacy
             self.diags.add("M102", stmt.head.span,
                            f"{legacy.name} is an {legacy.family} command ({legacy.summary.rstrip('.')}); "
-                           f"Lexium products do not have it: use {self.lexium_equivalent(res)}")
+                           f"Lexium products do not have it: use {self.lexium_equivalent(res)} (a program for that "
+                           "family: check it with `--profile mdrive-plus`, move it with `mcc compile "
+                           "--source-profile mdrive-plus`)")
             return False
         if res.command is None:
             return self.check_user_statement(res)
