@@ -45,6 +45,15 @@ def load_profile(name: str | None):
         raise click.BadParameter(str(exc), param_hint="--profile") from None
 
 
+def file_settings(path: str):
+    """The configuration of `path` (the nearest mcc.toml / pyproject.toml [tool.mcc]) for choosing
+    its profile (compiler/selection.py: --profile, then a `mcc: profile=` line, then
+    per-file-profiles, then target). Mistakes in the file are reported by `mcc lint`."""
+    from mcc.compiler import config
+
+    return config.Resolver().for_path(path)
+
+
 def regular_files(ctx, param, value):
     """Click callback: a path named on the command line must not be a FIFO, device or socket
     (reading one would wait forever or never end); directories are left to the command."""
@@ -126,9 +135,9 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | 
     prof = load_profile(profile)
     piped = read_stdin(files, stdin_filename, dialect)
     if piped is not None:
-        results = [driver.check_file(piped[0], dialect, prof, piped[1])]
+        results = [driver.check_file(piped[0], dialect, prof, piped[1], settings=file_settings(piped[0]))]
     else:
-        results = [driver.check_file(path, dialect, prof) for path in files]
+        results = [driver.check_file(path, dialect, prof, settings=file_settings(path)) for path in files]
     if verify_ir:
         for result in results:
             driver.verify_ir(result)
@@ -228,7 +237,8 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
         click.echo("mcc: note: --no-verify: the compiled program is not validated against its source in the "
                    "simulator", err=True)
     result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes,
-                                 verify=verify is not False, scenarios=scenarios, always_verify=verify is True)
+                                 verify=verify is not False, scenarios=scenarios, always_verify=verify is True,
+                                 settings=file_settings(file))
     check_profile_dialect(prof, {result.dialect, result.target})
     produced = result.listing is not None and not result.has_errors
     write_failed = False
