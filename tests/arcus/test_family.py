@@ -133,3 +133,10 @@ def test_several_programs_compile_to_arcus_and_are_refused_elsewhere(mcc) -> Non
     other = mcc("compile", "--profile", "pmx-2ed-sa", fixture, "--target", "mcode")
     output = other.stdout + other.stderr
     assert other.returncode == 1 and "G003" in output and "program 1 runs at the same time" in output
+
+
+def test_format_writes_prg_with_a_space_as_the_manuals_do() -> None:
+    """`PRG 0` (2ED p.61, ACE p.74 examples), like GOSUB n and SUB n."""
+    from mcc.compiler.arcus.format import format_text
+
+    assert format_text("prg0\nx1000\nEND\n", "p.prg", profiles.load("ace-sde")).splitlines()[:2] == ["PRG 0", "X1000"]
