@@ -583,6 +583,8 @@ class Lowering:
                 return self.variable(info.spelled, node.span)
             keyword, match = info.keyword, info.match
             axis = match.axis or (ir.ALL_AXES if keyword.axis == "optional" else "")
+            if keyword.get("neutral", True) is False:  # the product's register means something else (MST bits)
+                return ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
             return self.reading(keyword.name, axis, match.index, node.span) or \
                 ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
         if isinstance(node, st.Unary):

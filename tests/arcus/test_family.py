@@ -140,3 +140,17 @@ def test_format_writes_prg_with_a_space_as_the_manuals_do() -> None:
     from mcc.compiler.arcus.format import format_text
 
     assert format_text("prg0\nx1000\nEND\n", "p.prg", profiles.load("ace-sde")).splitlines()[:2] == ["PRG 0", "X1000"]
+
+
+def test_motor_status_bits_of_the_siblings_are_not_the_4exs() -> None:
+    """ACE p.39 Table 6.1 numbers the motor status bits otherwise than the PMX-4EX-SA (L720: bit 0
+    accelerating; on the ACE-SDE bit 0 is constant speed): MSTX stays an Arcus register there
+    (converting it is refused), and is the neutral motor_status on the PMX-4EX-SA."""
+    from mcc.compiler import ir
+
+    def reads(profile: str) -> list:
+        result = driver.check_file("p.prg", "arcus", profiles.load(profile), "V1=MSTX\nEND\n")
+        return [op.value for _, block in result.analysis.module.blocks() for op in block.ops]
+
+    assert isinstance(reads("ace-sde")[0], ir.DeviceRef)
+    assert isinstance(reads("pmx-4ex-sa")[0], ir.Status) and reads("pmx-4ex-sa")[0].meaning == "motor_status"
