@@ -115,7 +115,9 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="text: one diagnostic per finding with the source line; json: one JSON object on stdout.")
-@click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file.")
+@click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file. Wins "
+                                "over a `mcc: profile=` line in the file and the configuration's per-file-profiles "
+                                "and target (docs/CONFIGURATION.md).")
 @click.option("--verify-ir", is_flag=True, help="Also run the IR verifier after lowering (violations are G010).")
 @stdin_option
 def check(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str | None, verify_ir: bool,
