@@ -71,9 +71,10 @@ def directive(source: SourceFile, dialect: str) -> tuple[str, Span] | None:
         body = stripped.lstrip(marks)
         found = DIRECTIVE.search(body)
         if found is not None and body[:found.start()].strip() == "":
-            column = line.index(stripped) + (len(stripped) - len(body)) + found.start("spec") + 1
+            column = line.index(stripped) + (len(stripped) - len(body)) + found.start("spec")
             spec = found.group("spec")
-            return spec, Span(source.path, number, column, number, column + len(spec))
+            start = source.line_starts[number - 1] + column
+            return spec, source.span(start, start + len(spec))
     return None
 
 
