@@ -46,6 +46,15 @@ def load_profile(name: str | None):
         raise click.BadParameter(str(exc), param_hint="--profile") from None
 
 
+def file_settings(path: str):
+    """The configuration of `path` (the nearest mcc.toml / pyproject.toml [tool.mcc]) for choosing
+    its profile (compiler/selection.py: --profile, then a `mcc: profile=` line, then
+    per-file-profiles, then target). Mistakes in the file are reported by `mcc lint`."""
+    from mcc.compiler import config
+
+    return config.Resolver().for_path(path)
+
+
 def regular_files(ctx, param, value):
     """Click callback: a path named on the command line must not be a FIFO, device or socket
     (reading one would wait forever or never end); directories are left to the command."""
@@ -109,7 +118,9 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
               help="text: one diagnostic per finding with the source line; json: one JSON object on stdout; "
                    "sarif, github, gitlab, junit: as `mcc lint --format`.")
 @click.option("--rules-url", metavar="URL", help="SARIF: each rule's helpUri, with {code} replaced by the code.")
-@click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file.")
+@click.option("--profile", help="Target profile: a built-in name (see `mcc profiles`) or a path to a TOML file. Wins "
+                                "over a `mcc: profile=` line in the file and the configuration's per-file-profiles "
+                                "and target (docs/CONFIGURATION.md).")
 @click.option("--verify-ir", is_flag=True, help="Also run the IR verifier after lowering (violations are G010).")
 @stdin_option
 def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str | None, profile: str | None,
@@ -129,9 +140,9 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str 
     prof = load_profile(profile)
     piped = read_stdin(files, stdin_filename, dialect)
     if piped is not None:
-        results = [driver.check_file(piped[0], dialect, prof, piped[1])]
+        results = [driver.check_file(piped[0], dialect, prof, piped[1], settings=file_settings(piped[0]))]
     else:
-        results = [driver.check_file(path, dialect, prof) for path in files]
+        results = [driver.check_file(path, dialect, prof, settings=file_settings(path)) for path in files]
     if verify_ir:
         for result in results:
             driver.verify_ir(result)
@@ -244,7 +255,7 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
                    "simulator", err=True)
     result = driver.compile_file(file, dialect, target, prof, opt_level=opt_level, passes=passes,
                                  verify=verify is not False, scenarios=scenarios, always_verify=verify is True,
-                                 source_profile=src_prof)
+                                 source_profile=src_prof, settings=file_settings(file))
     check_profile_dialect(prof, {result.dialect, result.target})
     if src_prof is not None and src_prof.dialect != result.dialect:
         raise click.BadParameter(f"profile '{src_prof.name}' is for {src_prof.dialect}, not for {result.dialect}",

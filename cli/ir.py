@@ -34,7 +34,9 @@ def ir_cmd(files: tuple[str, ...], dialect: str | None, fmt: str, profile: str |
     from mcc.compiler import driver, ir_print
 
     prof = load_profile(profile)
-    results = [driver.check_file(path, dialect, prof) for path in files]
+    from mcc.cli.commands import file_settings
+
+    results = [driver.check_file(path, dialect, prof, settings=file_settings(path)) for path in files]
     check_profile_dialect(prof, {r.dialect for r in results})
     if verify_ir:
         for result in results:

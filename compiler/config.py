@@ -36,7 +36,7 @@ ALWAYS_ON = ("G001", "G102", "G103")  # internal errors and configuration errors
 SEVERITIES = tuple(s.value for s in Severity)
 LIST_KEYS = ("select", "extend-select", "ignore", "exclude")
 DEFAULT_FAIL_ON = "warning"  # `mcc lint` exits 1 on a warning, as ruff on any finding (docs/LINT.md)
-KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity")
+KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles")
 
 
 class ConfigError(Exception):
@@ -113,6 +113,20 @@ class Settings:
     per_file_ignores: tuple[tuple[str, tuple[str, ...]], ...] = ()
     fail_on: str = "warning"  # DEFAULT_FAIL_ON
     exclude: tuple[str, ...] = ()
+    # glob -> profile (name or absolute path), in the file's order: the first glob that matches a
+    # file and names a profile of its dialect chooses it (compiler/selection.py)
+    per_file_profiles: tuple[tuple[str, str], ...] = ()
+    cli_profile: str | None = None  # --profile: wins over everything (compiler/selection.py)
+
+    def profile_for_path(self, path: str, dialect: str) -> tuple[str, str] | None:
+        """(glob, profile) of the first `per-file-profiles` entry that matches `path` for `dialect`."""
+        if not self.per_file_profiles:
+            return None
+        rel = relative_to(path, self.root)
+        for pattern, spec in self.per_file_profiles:
+            if glob_matches(pattern, rel) and load_profile(spec).dialect == dialect:
+                return pattern, spec
+        return None
 
     def profile_spec(self, dialect: str) -> str | None:
         for key, spec in self.targets:
@@ -173,12 +187,10 @@ class Settings:
         layers = self.selection.layers
         if overrides.layer != Layer():
             layers = (*layers, overrides.layer)
-        targets = self.targets
-        if overrides.profile:  # the command line's profile wins for its own dialect
-            prof = load_profile(overrides.profile)
-            targets = ((prof.dialect, overrides.profile),) + tuple(t for t in targets if t[0] != prof.dialect)
-        return Settings(self.root, self.path, targets, Selection(layers), self.severity, self.per_file_ignores,
-                        overrides.fail_on or self.fail_on, self.exclude)
+        # the command line's profile wins for its own dialect, over a directive and the file's keys
+        return Settings(self.root, self.path, self.targets, Selection(layers), self.severity, self.per_file_ignores,
+                        overrides.fail_on or self.fail_on, self.exclude, self.per_file_profiles,
+                        overrides.profile or self.cli_profile)
 
 
 def relative_to(path: str, root: str) -> str:
@@ -351,7 +363,8 @@ class Reader:
         return Settings(root=root, path=str(self.path), targets=self.targets(table.get("target")),
                         selection=Selection(layers), severity=self.severities(table.get("severity")),
                         per_file_ignores=self.per_file(table.get("per-file-ignores")),
-                        fail_on=self.fail_on(table.get("fail-on")), exclude=self.strings(table, "exclude"))
+                        fail_on=self.fail_on(table.get("fail-on")), exclude=self.strings(table, "exclude"),
+                        per_file_profiles=self.per_file_profiles(table.get("per-file-profiles")))
 
     def strings(self, table: dict, key: str) -> tuple[str, ...]:
         value = table.get(key)
@@ -439,6 +452,28 @@ class Reader:
             self.error("G103", ("per-file-ignores",), "'per-file-ignores' must be a table: \"glob\" = [codes]")
             return ()
         return tuple((pattern, self.codes(value, pattern, ("per-file-ignores", pattern))) for pattern in value)
+
+    def per_file_profiles(self, value: Any) -> tuple[tuple[str, str], ...]:
+        """`per-file-profiles = {"arcus/*.prg" = "pmx-2ed-sa"}`: glob -> profile name or path."""
+        if value is None:
+            return ()
+        if not isinstance(value, dict):
+            self.error("G103", ("per-file-profiles",), "'per-file-profiles' must be a table: \"glob\" = \"profile\"")
+            return ()
+        out = []
+        for pattern, spec in value.items():
+            keys = ("per-file-profiles", pattern)
+            if not isinstance(spec, str):
+                self.error("G103", keys, "a per-file profile is a profile name or a path to a profile file")
+                continue
+            resolved = self.profile_path(spec)
+            try:
+                load_profile(resolved)
+            except Exception as exc:  # ProfileError, or a profile file with broken contents
+                self.error("G103", keys, str(exc), needle=spec)
+                continue
+            out.append((pattern, resolved))
+        return tuple(out)
 
     def fail_on(self, value: Any) -> str:
         if value is None:

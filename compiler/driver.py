@@ -33,6 +33,8 @@ class FileResult:
     output: str | None = None
     target: str = ""
     optimization: Any = None  # opt.OptStats of the compilation
+    profile: Profile | None = None  # the profile the file was checked with (compiler/selection.py)
+    profile_source: str = ""  # why that one: "command line", "directive", "per-file-profiles", ...
 
     @property
     def has_errors(self) -> bool:
@@ -223,9 +225,14 @@ def measure_memory(analysis: Analysis, dialect: dialects.Dialect, profile: Profi
 
 
 def check_file(path: str, dialect: str | None = None, profile: Profile | None = None,
-               text: str | None = None, memory: bool = True) -> FileResult:
+               text: str | None = None, memory: bool = True, settings=None) -> FileResult:
     """Parse, lower and check one file (the work of `mcc check`); with `memory`, also the program
-    memory against the target's budget (compile measures it in the backend instead)."""
+    memory against the target's budget (compile measures it in the backend instead).
+
+    The profile is chosen by `selection.choose`: `profile` (the command line's) if it is for the
+    file's dialect, else a `mcc: profile=` line at the top of the file, else the configuration
+    `settings` (per-file-profiles, target), else the dialect's default; with the default, a file
+    that fails and fits another profile gets that profile named (G021)."""
     diags = Diagnostics()
     found = resolve_dialect(path, dialect)
     if found is None:
@@ -236,12 +243,45 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
     source = SourceFile(path, text) if text is not None else read_source(path, diags)
     result = FileResult(path, found.name, source=source)
     if source is not None:
+        from mcc.compiler import selection
+
+        choice = selection.choose(path, found.name, source, settings, profile)
+        diags.extend(choice.diagnostics)
+        profile = result.profile = choice.profile
+        result.profile_source = choice.source
         with fewer_collections():  # one pause for the whole check: see `fewer_collections`
             result.analysis = analyze_source(source, found, profile, diags)
             if memory and result.analysis is not None and not diags.has_errors:
                 measure_memory(result.analysis, found, profile, diags)
+        if not choice.chosen and diags.has_errors:
+            suggest_profile(result, found, diags)
     result.diagnostics = diags.items
     return result
+
+
+def suggest_profile(result: FileResult, dialect: dialects.Dialect, diags: Diagnostics) -> None:
+    """A failing file read with the dialect's default profile that fits another built-in profile
+    of its dialect better: one G021 naming it replaces the errors (compiler/selection.py)."""
+    from mcc.compiler import selection
+
+    errors = sum(1 for d in diags.items if d.severity.value == "error")
+    if any(d.code in ("G001", "G020") for d in diags.items):
+        return  # an internal error, or a file in another language altogether
+
+    def errors_with(profile: Profile) -> int:
+        trial = Diagnostics()
+        analysis = analyze_source(result.source, dialect, profile, trial)
+        if analysis is not None and not trial.has_errors:
+            measure_memory(analysis, dialect, profile, trial)
+        return sum(1 for d in trial.items if d.severity.value == "error")
+
+    try:
+        found = selection.suggest(result.source, dialect.name, result.profile, errors, errors_with)
+    except Exception as exc:  # noqa: BLE001 - the no-traceback guarantee
+        internal_error(diags, result.path, exc, "looking for the profile the file fits")
+        return
+    if found is not None:
+        diags.items[:] = [d for d in diags.items if d.code == "G022"] + [found]
 
 
 BUDGET_CODES = frozenset({"A201", "X203", "M116"})  # the program does not fit the target's memory
@@ -250,7 +290,7 @@ BUDGET_CODES = frozenset({"A201", "X203", "M116"})  # the program does not fit t
 def compile_file(path: str, dialect: str | None = None, target: str | None = None,
                  profile: Profile | None = None, text: str | None = None, opt_level: str = "O1",
                  passes: str | None = None, verify: bool = True, scenarios: list | None = None,
-                 always_verify: bool = False, source_profile: Profile | None = None) -> FileResult:
+                 always_verify: bool = False, source_profile: Profile | None = None, settings=None) -> FileResult:
     """Check one file and, when it has no errors, optimize its IR at `opt_level` (or run the
     comma-separated `passes`) and generate code for the target dialect.
 
@@ -263,17 +303,31 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
     `source_profile` is the product the program was written for when it is not `profile`'s: the
     file is checked with it, and an MCode program moved to another MCode family (MDrivePlus ->
     Lexium) is converted on the way (compiler/mcode/migrate.py) and always validated."""
-    result = check_file(path, dialect, source_profile or profile, text, memory=False)
+    result = check_file(path, dialect, source_profile or profile, text, memory=False, settings=settings)
     result.target = target or result.dialect
     analysis = result.analysis
     if analysis is None or analysis.module is None or result.has_errors:
         return result
+    diags = Diagnostics(result.diagnostics)
+    programs = [r for r in analysis.module.routines if r.kind is ir.RoutineKind.PROGRAM]
+    if programs and result.target != result.dialect:
+        for routine in programs:  # a conversion of several programs at once would be another program
+            diags.add("G003", routine.span or file_span(path),
+                      f"program {routine.number} runs at the same time as program 0: a {result.target} program runs "
+                      f"one program at a time, so the file cannot be converted as it is; compile it to {result.dialect}, "
+                      "or convert each program in a file of its own")
+        result.diagnostics = diags.items
+        return result
     if result.target != result.dialect and not ir_keeps_contract(result):
         return result
-    diags = Diagnostics(result.diagnostics)
+    if programs:  # the optimizer does not know that the programs share variables and the machine
+        opt_level, passes = "O0", None
     try:
         target_dialect = dialects.get(result.target)
-        target_profile = profile_for(target_dialect, profile)
+        # the file's own profile for its own dialect (compiler/selection.py), the command line's for
+        # another, and always the command line's when the source names its own (a migration)
+        own = result.target == result.dialect and result.profile is not None and source_profile is None
+        target_profile = result.profile if own else profile_for(target_dialect, profile)
         module = analysis.module
         migrating = source_profile is not None and migrate.differs(source_profile, target_profile)
         if migrating:

@@ -528,6 +528,7 @@ class RoutineKind(str, Enum):
     HANDLER = "handler"
     POWERUP = "powerup"
     IMMEDIATE = "immediate"
+    PROGRAM = "program"  # a program that runs at the same time as the main one (Arcus PRG n, n >= 1)
 
 
 @dataclass(slots=True, eq=False)

@@ -1,5 +1,6 @@
 """Recognising a file written in a neighbouring controller's language (Parker 6K, another
-indexer's X-code, an Arcus DMX or PMX-2ED program) that was given to the wrong reader.
+indexer's X-code) that was given to the wrong reader (an Arcus PMX-2ED-SA, ACE-SDE or DMX-ETH program
+is one of the arcus dialect's products: compiler/selection.py suggests its profile, G021).
 
 Such a file fails on most of its lines. Instead of one error per line, mcc reports one diagnostic
 (G020) that names what the file looks like, with the lines that show it, so the file never gets a

@@ -19,7 +19,7 @@ OPENERS = {"IF": "ENDIF", "WHILE": "ENDWHILE", "SUB": "ENDSUB"}
 
 def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
     index = m.Index("arcus")
-    cat = acat.load()
+    cat = acat.load(getattr(profile, "product", acat.DEFAULT_PRODUCT))  # the product's statements (PRG on the siblings)
     for line in tree.lines:
         stmt = line.statement
         if isinstance(stmt, st.Command) and stmt.parts and stmt.parts[0].word.upper() == "SUB" \

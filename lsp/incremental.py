@@ -27,6 +27,7 @@ import importlib
 from typing import Any, Callable
 
 from mcc.compiler import cancel, dialects, driver
+from mcc.compiler import selection
 from mcc.compiler.config import Settings, load_profile
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Edit, Fix
 from mcc.compiler.lint import engine
@@ -192,10 +193,12 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
         return engine.check_text(path, text, settings, dialect), None
     if cache is None or cache.dialect.name != found.name:
         cache = LineCache(found)
-    profile = settings.profile(found.name) or load_profile(found.default_profile)
-    diags = Diagnostics()
     source = SourceFile(path, text)
-    result = driver.FileResult(path, found.name, source=source)
+    # the profile as `mcc check` chooses it (compiler/selection.py: --profile, directive, per-file-profiles, target)
+    choice = selection.choose(path, found.name, source, settings)
+    profile = choice.profile
+    diags = Diagnostics(list(choice.diagnostics))
+    result = driver.FileResult(path, found.name, source=source, profile=profile, profile_source=choice.source)
     with driver.fewer_collections():  # over every step, as `driver.check_file`
         try:
             with cancel.stopping_when(stop):
@@ -206,6 +209,8 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
             if stop is not None and stop():
                 return None, cache
             driver.measure_memory(result.analysis, found, profile, diags)
+        if not choice.chosen and diags.has_errors:
+            driver.suggest_profile(result, found, diags)  # G021, as `mcc check` does
     result.diagnostics = diags.items
     return engine.Checked(path, result.dialect, result, profile), cache
 

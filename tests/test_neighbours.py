@@ -34,8 +34,12 @@ def test_a_broken_x150_program_keeps_its_own_diagnostics() -> None:
     assert "G020" not in found and len([c for c in found if c.startswith("X")]) >= 6
 
 
-def test_two_prg_blocks_alone_stay_per_line() -> None:
-    assert codes("p.prg", "PRG 0\nX1000\nEND\nPRG 1\nY1000\nEND\n") == ["A121", "A121", "A110"]
+def test_two_prg_blocks_are_a_sibling_program_not_a_neighbour() -> None:
+    """Two PRG blocks are a PMX-2ED-SA program (its manual p.61-62, p.66: PRG n ... END, axes X and
+    Y): no G020, but G021 naming the profile it fits (issue 24: the siblings are profiles of the
+    arcus dialect now, docs/dialects/arcus.md "Family")."""
+    found = driver.check_file("p.prg", text="PRG 0\nX1000\nEND\nPRG 1\nY1000\nEND\n")
+    assert [d.code for d in found.diagnostics] == ["G021"] and "'pmx-2ed-sa'" in found.diagnostics[0].message
 
 
 def test_nothing_is_compiled_and_the_exit_code_is_1(tmp_path) -> None:

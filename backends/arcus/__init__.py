@@ -61,6 +61,7 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
     ctx.number_subroutines()
     main: list = []
     subs: list[tuple[ir.Routine, list, Span | None]] = []
+    programs: list[tuple[ir.Routine, list, Span | None]] = []  # PRG n blocks beside the main program
     dispatched = 0
     for routine in module.routines:
         kind = routine.kind
@@ -72,13 +73,15 @@ def program(module: ir.Module, profile: Profile) -> tuple[Context, list, int]:
         dispatched += fallback
         if kind is ir.RoutineKind.SUBROUTINE:
             subs.append((routine, code, end_span))
+        elif kind is ir.RoutineKind.PROGRAM:
+            programs.append((routine, code, end_span))
         elif kind is ir.RoutineKind.IMMEDIATE:  # commands that run before the program
             main = [n for n in code if not isinstance(n, EndNode)] + main
         else:
             main += code
-    move_modes.write_switches(main, subs, profile, module.modes_stated)
+    move_modes.write_switches(main, subs, profile, module.modes_stated, programs)
     temporaries.check(ctx)
-    stmts = Writer(ctx).program(main, subs)
+    stmts = Writer(ctx).program(main, subs, programs)
     return ctx, stmts, dispatched
 
 

@@ -28,7 +28,7 @@ class Context:
         self.module = module
         self.profile = profile
         self.config = Config.from_profile(profile)
-        self.cat = arcus_catalog.load()
+        self.cat = arcus_catalog.load(profile.product)
         self.diags = Diagnostics()
         self.temps = Temps(self.config.temporaries)
         self.var_map: dict[str, str] = {}
@@ -104,11 +104,12 @@ class Context:
             used = {int(VARIABLE.match(n.upper()).group(1)) for n in self.variable_names
                     if VARIABLE.match(n.upper())} | set(self.config.temporaries) | \
                    {int(v[1:]) for v in self.var_map.values()}
-            free = next((i for i in range(0, 64) if i not in used), None)
+            low, high = self.config.variables
+            free = next((i for i in range(low, high + 1) if i not in used), None)
             if free is None:
-                self.diags.add("A205", self.span_of(var), f"no Arcus variable left for {var.name}: V0-V63 are all "
-                                                          "used or reserved")
-                free = 0
+                self.diags.add("A205", self.span_of(var), f"no Arcus variable left for {var.name}: V{low}-V{high} "
+                                                          "are all used or reserved")
+                free = low
             self.var_map[name] = f"V{free}"
         return ir.Var(self.var_map[name], var.span)
 

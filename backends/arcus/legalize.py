@@ -324,7 +324,8 @@ class Legalizer:
         self.emit(ir.Slew(self.axis(op.axis, op), direction=op.direction, span=op.span))
 
     def op_home(self, op: ir.Home) -> None:
-        if op.method not in HOME_KEYWORDS or op.direction not in (1, -1):
+        modes = {int(k.get("home_mode")) for k in self.ctx.cat.keywords if k.ir == "home" and k.get("home_mode") is not None}
+        if HOME_KEYWORDS.get(op.method) not in modes or op.direction not in (1, -1):
             self.ctx.unsupported(op, f"homing by '{op.method}' without a direction has no Arcus statement "
                                      "(HOME, ZHOME and ZOME home in + or - on the switch, switch+index or index)")
             raise Skip
@@ -413,6 +414,12 @@ class Legalizer:
             self.emit(ir.Native(DIALECT, "EO", (ir.Const(mask),), "=", "", op.span))
             return
         bit = convert.Axes.LETTERS.index(axis) + 1
+        bits = self.ctx.cat.lookup("EO", index=bit)
+        if bits is None or bits.index_range is None:
+            # a product with one enable output and no EO<bit> (ACE-SDE p.31 §6.5): EO itself
+            value = self.ranged("EO", value, op)
+            self.emit(ir.Native(DIALECT, "EO", (self.value(value, op),), "=", "", op.span))
+            return
         value = self.ranged("EO", value, op, index=bit)
         self.emit(ir.Native(DIALECT, f"EO{bit}", (self.value(value, op),), "=", "", op.span))
 

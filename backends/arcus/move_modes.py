@@ -218,10 +218,14 @@ def _inserted(nodes: list, seen: dict[tuple, State], path: tuple) -> list:
 
 
 def write_switches(main: list, subs: list[tuple[ir.Routine, list, object]], profile: Profile,
-                   stated: str = "") -> None:
+                   stated: str = "", programs: list[tuple[ir.Routine, list, object]] = ()) -> None:
     """The whole pass: the main program's body and each subroutine's, in place. `stated`: the
-    source states its mode before its first move (`Module.modes_stated`), so the output does too."""
+    source states its mode before its first move (`Module.modes_stated`), so the output does too.
+    `programs` run beside the main program (PRG n): either mode may be in force when they start."""
     routines = {MAIN: main}
-    for routine, body, _ in subs:
+    for routine, body, _ in (*subs, *programs):
         routines[routine.name] = body
-    Modes(routines, profile, stated).write()
+    modes = Modes(routines, profile, stated)
+    for routine, _, _ in programs:
+        modes.entry[routine.name] = BOTH
+    modes.write()

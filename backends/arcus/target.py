@@ -13,7 +13,8 @@ from mcc.compiler.profiles import Profile
 
 DIALECT = "arcus"
 AXES = ("X", "Y", "Z", "U")
-HOME_KEYWORDS = {"switch": 0, "switch+index": 2, "index": 3}  # IR method -> ASCII homing mode (catalog home_mode)
+# IR method -> ASCII homing mode (catalog home_mode); "limit" is LHOME, on the products that have it
+HOME_KEYWORDS = {"switch": 0, "limit": 1, "switch+index": 2, "index": 3}
 MOTION_IR = {ir.MotionParam.MAX_SPEED: "max_speed", ir.MotionParam.INITIAL_SPEED: "initial_speed",
              ir.MotionParam.ACCEL: "accel"}
 
@@ -34,6 +35,7 @@ class Config:
     allocate_from: int
     axes: tuple[str, ...]
     max_copied: int
+    variables: tuple[int, int] = (0, 63)  # the product's V numbers (`[arcus] variables`)
 
     @classmethod
     def from_profile(cls, profile: Profile) -> "Config":
@@ -49,7 +51,8 @@ class Config:
                    default_cost=int(cost.get("default", 1)), temporaries=temps,
                    sub_range=(int(rng[0]), int(rng[1])),
                    allocate_from=int(profile.get("arcus.allocate_subroutines_from", 1)), axes=axes,
-                   max_copied=int(profile.get("arcus.loop_test_copy_max", 4)))
+                   max_copied=int(profile.get("arcus.loop_test_copy_max", 4)),
+                   variables=tuple(int(v) for v in (profile.get("arcus.variables") or [0, 63]))[:2])
 
     def cost(self, key: str) -> int:
         return max(1, self.costs.get(key, self.default_cost))

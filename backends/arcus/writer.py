@@ -45,11 +45,21 @@ class Writer:
         self.homes = {int(k.get("home_mode")): k for k in cat.keywords
                       if k.ir == "home" and k.get("home_mode") is not None}
 
-    def program(self, main: list, subs: list[tuple[ir.Routine, list, Span | None]]) -> list[Stmt]:
-        """The main program, END unless it ends with one, then each subroutine as SUB n ... ENDSUB."""
+    def program(self, main: list, subs: list[tuple[ir.Routine, list, Span | None]],
+                programs: list[tuple[ir.Routine, list, Span | None]] = ()) -> list[Stmt]:
+        """The main program, END unless it ends with one, then each subroutine as SUB n ... ENDSUB.
+        With `programs` (PRG n, n >= 1: products that run several programs at once) the main
+        program is written as PRG 0 and each other program as PRG n ... END before the subroutines."""
+        if programs:
+            self.add("PRG 0", "PRG", None, [("ENTRY", "PRG 0")])
         self.flatten(main)
         if not main or not isinstance(main[-1], EndNode):
             self.add("END", "END", None, [("HALT", "")])
+        for routine, code, _ in programs:
+            self.add(f"PRG {routine.number}", "PRG", routine.span, [("ENTRY", f"PRG {routine.number}")])
+            self.flatten(code)
+            if not code or not isinstance(code[-1], EndNode):
+                self.add("END", "END", None, [("HALT", "")])
         for routine, code, end_span in subs:
             number = self.ctx.sub_numbers.get(routine.name)
             if number is None:

@@ -9,6 +9,12 @@ without a line of keyword-specific code.
 Each pattern is rewritten once with named groups so that a match also tells which axis, bit,
 direction and suffix were written: `[XYZU]` is the axis, `[+-]` the direction, `[PN]` the
 suffix, any other bracketed digit class (with its quantifier) the index.
+
+The catalog describes the standalone language of the whole Arcus family (PMX-4EX-SA, PMX-2ED-SA,
+ACE-SDE, DMX-ETH). `load(product)` gives one product's view: an entry with `products` exists only
+on the products it names (the others meet it as "a statement of another controller", A121), and
+the catalog's `[variants."<product>"."<entry id>"]` tables replace keys of an entry for that
+product (its bit range, value range, pattern). Data, not code: docs/dialects/arcus.md, "Family".
 """
 
 from __future__ import annotations
@@ -162,18 +168,49 @@ class Match:
     suffix: str = ""
 
 
+DEFAULT_PRODUCT = "pmx-4ex-sa"
+
+
+def available(entry: generic.Entry, product: str) -> bool:
+    """Whether the entry exists on `product` (an entry without `products` exists on every one)."""
+    return not entry.products or product in entry.products
+
+
+def _variant(entry: generic.Entry, overrides: dict) -> generic.Entry:
+    """The entry with some of its keys replaced for one product."""
+    raw = {"name": entry.name, "title": entry.title, "kind": entry.kind, "summary": entry.summary,
+           "syntax": list(entry.syntax), "unit": entry.unit, "default": entry.default, "products": entry.products,
+           "manual": entry.manual, "notes": entry.notes, **entry.extra}
+    if entry.range is not None:
+        raw["range"] = list(entry.range)
+    raw.update(overrides)
+    return generic.entry_from_dict(raw)
+
+
+def _keyword(entry: generic.Entry) -> Keyword:
+    pattern = entry.get("pattern", "")
+    return Keyword(entry, re.compile(_named(pattern), re.IGNORECASE), _stem(pattern))
+
+
 class ArcusCatalog:
-    def __init__(self, raw: generic.Catalog):
+    def __init__(self, raw: generic.Catalog, product: str = DEFAULT_PRODUCT):
         self.raw = raw
+        self.product = product
         self.keywords: list[Keyword] = []
+        self.elsewhere: list[Keyword] = []  # statements of the family's other products
         self.by_first: dict[str, list[Keyword]] = {}
         self.by_name: dict[str, list[Keyword]] = {}
         self._matches: dict[str, Match | None] = {}  # texts repeat a lot (WAITX, V1, DO7)
+        variants = (raw.data.get("variants", {}) or {}).get(product, {}) or {}
         for entry in raw.entries:
             pattern = entry.get("pattern", "")
             if not pattern or not pattern[0].isalpha():
                 continue  # the ';' comment entry: the grammar handles it
-            keyword = Keyword(entry, re.compile(_named(pattern), re.IGNORECASE), _stem(pattern))
+            if not available(entry, product):
+                self.elsewhere.append(_keyword(entry))
+                continue
+            override = variants.get(entry.get("id", entry.name))
+            keyword = _keyword(_variant(entry, override) if isinstance(override, dict) else entry)
             self.keywords.append(keyword)
             self.by_first.setdefault(keyword.stem[0], []).append(keyword)
             self.by_name.setdefault(entry.name.upper(), []).append(keyword)
@@ -213,6 +250,18 @@ class ArcusCatalog:
                          {"+": 1, "-": -1}.get(groups.get("dir") or "", 0), (groups.get("suffix") or "").upper())
         return best
 
+    def match_elsewhere(self, text: str) -> Match | None:
+        """The longest statement of another product of the family at the start of `text` (for
+        "a PMX-4EX-SA statement: the ACE-SDE does not have it")."""
+        best: Match | None = None
+        for keyword in self.elsewhere:
+            if keyword.kind == ASCII_ONLY:
+                continue
+            found = keyword.regex.match(text)
+            if found is not None and (best is None or found.end() > best.end):
+                best = Match(keyword, found.end())
+        return best
+
     def stems(self, text: str) -> list[Keyword]:
         """Keywords whose literal stem starts `text`, longest stem first (for 'JOGX needs a direction')."""
         found = [k for k in self.by_first.get(text[:1], ()) if text.startswith(k.stem)]
@@ -231,6 +280,9 @@ class ArcusCatalog:
         return sorted({k.name for k in self.keywords if k.kind not in (ASCII_ONLY, OTHER_PRODUCT)})
 
 
-@lru_cache(maxsize=1)
-def load() -> ArcusCatalog:
-    return ArcusCatalog(generic.load("arcus"))
+@lru_cache(maxsize=None)
+def load(product: str = DEFAULT_PRODUCT) -> ArcusCatalog:
+    """The catalog as `product` has it (an unknown product code reads as the PMX-4EX-SA)."""
+    raw = generic.load("arcus")
+    known = raw.data.get("products", {}) or {}
+    return ArcusCatalog(raw, product if product in known else DEFAULT_PRODUCT)

@@ -131,7 +131,7 @@ def part(p: st.Part, numbered: bool = False) -> str:
 @lru_cache(maxsize=None)
 def takes_number(word: str) -> bool:
     """Keywords written with a space before their number (the catalog's form "number")."""
-    found = catalog().match(word)
+    found = catalog().match(word) or catalog().match_elsewhere(word)  # PRG n of the family's other products
     return found is not None and found.end == len(word) and found.keyword.form == "number"
 
 

@@ -126,6 +126,8 @@ class Lowering:
         self.labels = 0
         self.block: ir.Block | None = self.new_block()
         self.stack: list[Frame] = []
+        self.programs: dict[int, Resolved] = {}  # PRG n lines (products with several programs)
+        self.current_program = 0
         self.dead_warned = False
         self.last_span: Span | None = None
 
@@ -161,7 +163,9 @@ class Lowering:
             {"ELSE": self.else_, "ENDIF": self.close, "ENDWHILE": self.close, "ENDSUB": self.close,
              "END": self.end}[res.name](res)
         elif shape == NUMBERED:
-            if res.name == "SUB":
+            if res.name == "PRG":
+                self.open_program(res)
+            elif res.name == "SUB":
                 self.open_sub(res)
             elif res.name == "GOSUB":
                 self.program.calls.append(res)
@@ -337,9 +341,52 @@ class Lowering:
         self.block = frame.resume
         self.dead_warned = False
 
+    def open_program(self, res: Resolved) -> None:
+        """PRG n (products that run several programs at once, `[arcus] programs`): PRG 0 is the main
+        program; each other program is a PROGRAM routine that runs beside it (docs/IR.md). Programs
+        are top-level blocks, each ended by its END; the subroutines after the last END are shared."""
+        if self.stack:
+            outer = self.stack[0]
+            self.diags.add("A115", res.span,
+                           f"PRG inside the {outer.kind} of line {outer.span.line}: a program block starts at the top "
+                           f"level; close the {outer.kind} first", notes=(f"{outer.span.label}: the {outer.kind} opened here",))
+            while self.stack:
+                self.close_frame(self.stack.pop(), res.span)
+        number = res.number
+        if res.valid and number in self.programs:
+            first = self.programs[number]
+            self.diags.add("A107", res.number_span or res.span,
+                           f"PRG {number} is already defined at line {first.span.line}: give each program its own number",
+                           notes=(f"{first.span.label}: the first PRG {number}",))
+            res.valid = False
+        if self.block is not None and self.routine.kind is ir.RoutineKind.PROGRAM or \
+                (self.routine is self.main and self.block is not None and self.programs):
+            open_one = next(iter(p for n, p in self.programs.items() if self.current_program == n), None)
+            self.diags.add("A109", res.span,
+                           f"PRG {number} starts before the END of program {self.current_program}: end each program "
+                           "with END before the next PRG (2ED p.61, ACE p.74)",
+                           notes=(f"{open_one.span.label}: program {self.current_program} starts here",)
+                           if open_one is not None else ())
+            self.terminate(res, ir.End(res.span))
+        if res.valid:
+            self.programs[number] = res
+            self.current_program = number
+            if number == 0 and self.program.end is None:
+                return  # the main program: the statements before its END
+        # a bad or repeated number still opens a program, so that its lines are read as one (no A110)
+        name = f"PRG{number}" if res.valid else f"%PRG{number}.{self.labels}"
+        routine = ir.Routine(name, ir.RoutineKind.PROGRAM, span=res.span, number=number)
+        self.module.routines.append(routine)
+        self.routine = routine
+        self.block = self.new_block(res.span)
+        self.dead_warned = False
+
     def end(self, res: Resolved) -> None:
         self.terminate(res, ir.End(res.span))
-        if not self.stack and self.routine is self.main:
+        if not self.stack and self.routine.kind is ir.RoutineKind.PROGRAM:
+            self.block = None
+            self.routine = self.main
+        elif not self.stack and self.routine is self.main:
             if self.program.end is None:
                 self.program.end = res
             self.block = None
@@ -492,12 +539,32 @@ class Lowering:
         if name == "EO" and res.shape == WRITE:
             if res.match.index is not None and 1 <= res.match.index <= len(AXES):
                 return ir.DriveEnable(AXES[res.match.index - 1], self.expr(res.value), res.span)
+            if self.profile.get("arcus.enable_outputs", "outputs") == "drive":
+                return self.drive_enables(res)
             return ir.Setting("enable_outputs", ir.ALL_AXES, self.expr(res.value), res.span)
         args: tuple = ()
         if res.shape == WRITE:
             args = (self.expr(res.value, self.unit(res)),)
         return ir.Native(DIALECT, res.spelled, args, form="=" if res.shape == WRITE else "",
                          axis=res.match.axis, span=res.span)
+
+    def drive_enables(self, res: Resolved) -> list[ir.Op]:
+        """EO=<value> where each enable output switches one axis's motor current (profile `[arcus]
+        enable_outputs = "drive"`: PMX-2ED-SA p.26 §7.5, Table 7.1; ACE-SDE p.31 §6.5): a drive
+        enable per axis of the product, bit 0 the first axis. A number gives each axis its bit; a
+        variable gives a single axis its value, and each of several axes its bit ((V & 2^i) / 2^i)."""
+        axes = tuple(a for a in self.profile.axes if a in AXES) or AXES
+        value = self.expr(res.value)
+        out: list[ir.Op] = []
+        for bit, axis in enumerate(axes):
+            if isinstance(value, ir.Const):
+                on: ir.Expr = ir.Const((int(value.value) >> bit) & 1, ir.Unit.NONE, value.span)
+            elif len(axes) == 1:
+                on = value
+            else:
+                on = ir.BinOp("/", ir.BinOp("&", value, ir.Const(1 << bit), res.span), ir.Const(1 << bit), res.span)
+            out.append(ir.DriveEnable(axis, on, res.span))
+        return out
 
     # expressions -------------------------------------------------------------------------------------
     def variable(self, name: str, span: Span) -> ir.Var:
@@ -516,6 +583,8 @@ class Lowering:
                 return self.variable(info.spelled, node.span)
             keyword, match = info.keyword, info.match
             axis = match.axis or (ir.ALL_AXES if keyword.axis == "optional" else "")
+            if keyword.get("neutral", True) is False:  # the product's register means something else (MST bits)
+                return ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
             return self.reading(keyword.name, axis, match.index, node.span) or \
                 ir.DeviceRef(DIALECT, keyword.name, keyword.ir, axis, match.index, node.span)
         if isinstance(node, st.Unary):

@@ -114,7 +114,7 @@ def _offset(part: st.Part, i: int) -> tuple[Span, int]:
 
 class Resolver:
     def __init__(self, profile: Profile, diags: Diagnostics):
-        self.cat = cat.load()
+        self.cat = cat.load(profile.product)
         self.profile = profile
         self.diags = diags
         self._refs: dict[str, RefInfo | None] = {}
@@ -124,6 +124,13 @@ class Resolver:
                                                    self.cat.limit("subroutines.last", 31)]
         self.sub_range = (int(rng[0]), int(rng[1]))
         self.gosub_zero = str(profile.get("arcus.gosub_zero", "warn"))
+        # the product's variables, axes and concurrent programs (its profile; docs/dialects/arcus.md, "Family")
+        variables = profile.get("arcus.variables") or [self.cat.limit("variables.first", 0),
+                                                       self.cat.limit("variables.last", 63)]
+        self.variables = (int(variables[0]), int(variables[1]))
+        self.axes = tuple(a for a in profile.axes if a in ("X", "Y", "Z", "U")) or ("X", "Y", "Z", "U")
+        self.programs = int(profile.get("arcus.programs", 0) or 0)
+        self.product = (profile.title or profile.product).split(" (")[0]
 
     # entry point -----------------------------------------------------------------------------
     def resolve(self, line: st.Line) -> Resolved:
@@ -141,6 +148,8 @@ class Resolver:
     def head(self, part: st.Part) -> cat.Match | None:
         """The keyword a part starts with, reporting unknown, host-only and foreign words."""
         match = self.cat.match(part.key)
+        if self.foreign(part, match):
+            return None
         if match is None:
             self.unknown(part)
             return None
@@ -149,13 +158,43 @@ class Resolver:
             self.host_command(part, match)
             return None
         if keyword.kind == cat.OTHER_PRODUCT:
-            products = ", ".join(p.upper() for p in (keyword.entry.products or ()))
-            self.diags.add("A121", part.word_span,
-                           f"{keyword.name} ({keyword.entry.title}) is a {products} statement: the "
-                           f"{self.profile.product.upper()} runs one program (remove the {keyword.name} line and "
-                           "put the program before END, its subroutines after)")
+            self.other_product(part, keyword)
+            return None
+        if match.axis and not self.check_axis(match.axis, part.word_span, match.keyword.spell(
+                match.axis, match.index, match.direction, match.suffix)):
             return None
         return match
+
+    def check_axis(self, axis: str, span: Span, what: str) -> bool:
+        """The axis letter is one of the product's (A129)."""
+        if axis in self.axes:
+            return True
+        have = ", ".join(self.axes)
+        self.diags.add("A129", span, f"{what}: the {self.product} has {'axis' if len(self.axes) == 1 else 'axes'} "
+                                     f"{have}, not {axis} (profile {self.profile.name}): write the statement for "
+                                     f"{'that axis' if len(self.axes) == 1 else 'one of them'}, or choose the "
+                                     "profile of the controller the program is for")
+        return False
+
+    def foreign(self, part: st.Part, match: cat.Match | None) -> bool:
+        """A statement of another product of the family that reads longer than any of this
+        product's (PRG on the PMX-4EX-SA, EO1 on the ACE-SDE): reported once (A121)."""
+        other = self.cat.match_elsewhere(part.key)
+        if other is None or (match is not None and match.end >= other.end):
+            return False
+        self.other_product(part, other.keyword)
+        return True
+
+    def other_product(self, part: st.Part, keyword: cat.Keyword) -> None:
+        """A statement of another controller of the family (A121), named with the products that have it."""
+        products = ", ".join(p.upper() for p in (keyword.entry.products or ()))
+        if keyword.name == "PRG":
+            advice = (f"the {self.product} runs one program: remove the PRG line and put the program before "
+                      "END, its subroutines after")
+        else:
+            advice = f"the {self.product} (profile {self.profile.name}) does not have it"
+        self.diags.add("A121", part.word_span, f"{keyword.name} ({keyword.entry.title}) is a {products} statement: "
+                                               f"{advice}")
 
     def unknown(self, part: st.Part) -> None:
         key = part.key
@@ -261,6 +300,9 @@ class Resolver:
                 ok = False
                 continue
             axis = match.keyword.name
+            if not self.check_axis(axis, part.word_span, f"{axis} in a move"):
+                ok = False
+                continue
             text = key[match.end:]
             span = sub_span(part, match.end, len(key)) if text else part.span
             value: st.Node | None = None
@@ -346,6 +388,12 @@ class Resolver:
             return
         number = int(leftover)
         res.number, res.number_span, res.valid = number, span, True
+        if name == "PRG":
+            if not 0 <= number < self.programs or m.group(1):
+                self.diags.add("A104", span, f"PRG {leftover}: the {self.product} runs programs 0-{self.programs - 1} "
+                                             f"(profile {self.profile.name}, arcus.programs = {self.programs})")
+                res.valid = False
+            return
         low, high = self.sub_range
         if not low <= number <= high or m.group(1):
             self.diags.add("A104", span, f"{name} {leftover}: subroutine numbers are {low}-{high} "
@@ -361,6 +409,8 @@ class Resolver:
         target = stmt.target
         match = self.cat.match(target.key)
         if match is not None and match.end != len(target.key):
+            if self.foreign(target, match):
+                return
             leftover = target.key[match.end:]
             sibling = self.cat.lookup(match.keyword.name, index=0)
             if leftover.isdigit() and sibling is not None and sibling.index_range:
@@ -379,6 +429,10 @@ class Resolver:
         keyword = match.keyword
         res.keyword, res.match, res.value = keyword, match, stmt.value
         form = keyword.form
+        if keyword.name == "SR" and match.index is not None and match.index >= self.programs:
+            self.diags.add("A119", target.span, f"{target.key}: the {self.product} runs programs 0-{self.programs - 1} "
+                                                f"(profile {self.profile.name}, arcus.programs = {self.programs})")
+            return
         if form == "expression":
             if self.check_variable(st.Ref(target)):
                 self.check_expression(stmt.value, res.spelled)
@@ -399,10 +453,10 @@ class Resolver:
         info = self.ref(ref)
         if info is None or not info.is_variable:
             return False
-        low, high = info.keyword.index_range or (0, 63)
+        low, high = self.variables
         if not low <= info.match.index <= high:
-            self.diags.add("A103", ref.span, f"{ref.part.key}: the controller has {high - low + 1} variables, "
-                                             f"V{low}-V{high} (L2671)")
+            self.diags.add("A103", ref.span, f"{ref.part.key}: the {self.product} has {high - low + 1} variables, "
+                                             f"V{low}-V{high} (profile {self.profile.name}, arcus.variables)")
             return False
         return True
 
@@ -452,7 +506,9 @@ class Resolver:
         info = self.ref(ref)
         if info is None:
             match = self.cat.match(ref.part.key)
-            if match is not None and match.end == len(ref.part.key):
+            if self.foreign(ref.part, match):
+                pass
+            elif match is not None and match.end == len(ref.part.key):
                 self.head(ref.part)  # host-only or other-product: reported there
             elif match is not None and (sibling := self.cat.lookup(match.keyword.name, index=0)) is not None \
                     and sibling.index_range and ref.part.key[match.end:].isdigit():
@@ -465,6 +521,8 @@ class Resolver:
         keyword = info.keyword
         if info.is_variable:
             return info if self.check_variable(ref) else None
+        if info.match.axis and not self.check_axis(info.match.axis, ref.span, info.spelled):
+            return None
         if not keyword.readable:
             self.diags.add("A124", ref.span, f"{info.spelled} ({keyword.entry.title}) cannot be read in a "
                                              "standalone program")

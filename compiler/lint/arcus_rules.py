@@ -72,6 +72,12 @@ def forward_all(module: ir.Module, transfer, join=frozenset.union, entry=frozens
 
 # The rules written once over the IR (compiler/lint/ir_rules.py), in Arcus's codes and words ------------
 
+def error_subroutine(ctx, routine) -> bool:
+    """The subroutine the controller jumps to on an error (`[arcus] error_subroutine`: SUB 31 on
+    the PMX-2ED-SA, p.43 §7.19.5, and the ACE-SDE, p.48 §6.21.5): no GOSUB needs to call it."""
+    return routine.number is not None and routine.number == ctx.profile.get("arcus.error_subroutine")
+
+
 def unused_sub_fix(ctx: Context, routine: ir.Routine) -> Fix | None:
     """Delete `SUB n` ... `ENDSUB` (the routine's span to its last return)."""
     last = routine.blocks[-1].terminator if routine.blocks else None
@@ -117,7 +123,7 @@ VOICE = ir_rules.Voice(
         "move-before-speed": {"params": (ir.MotionParam.MAX_SPEED, ir.MotionParam.INITIAL_SPEED,
                                          ir.MotionParam.ACCEL_TIME)},
     },
-    hooks={"fix": unused_sub_fix},
+    hooks={"fix": unused_sub_fix, "entry": error_subroutine},
 )
 ir_rules.register(VOICE)
 

@@ -83,12 +83,10 @@ class Checked:
 
 
 def check_text(path: str, text: str, settings: Settings, dialect: str | None = None) -> Checked:
-    found = driver.resolve_dialect(path, dialect)
-    profile = None
-    if found is not None:  # resolved here (and cached) so the driver does not re-read the default
-        profile = settings.profile(found.name) or load_profile(found.default_profile)
-    result = driver.check_file(path, dialect, profile, text)
-    return Checked(path, result.dialect, result, profile)
+    """`mcc check` of one text, with the profile `selection.choose` gives it (the command line's,
+    a `mcc: profile=` line, per-file-profiles, target, or the dialect's default)."""
+    result = driver.check_file(path, dialect, None, text, settings=settings)
+    return Checked(path, result.dialect, result, result.profile)
 
 
 def settle(checked: Checked, settings: Settings, rules: bool = True,
@@ -186,7 +184,9 @@ def fix_text(path: str, text: str, diags: list[Diagnostic], settings: Settings, 
     found = driver.resolve_dialect(path, options.dialect)
     profile = None
     if found is not None:
-        profile = settings.profile(found.name) or load_profile(found.default_profile)
+        from mcc.compiler import selection
+
+        profile = selection.choose(path, found.name, SourceFile(path, text), settings).profile
 
     def relint(new_text: str) -> list[Diagnostic]:
         return lint_text(path, new_text, settings, options.dialect)[1]

@@ -49,16 +49,24 @@ def formatter(dialect: str) -> ModuleType | None:
         raise
 
 
+def chosen_profile(path: str, dialect: str, text: str, settings: Settings):
+    """The file's profile as every command chooses it (compiler/selection.py)."""
+    from mcc.compiler import selection
+    from mcc.compiler.span import SourceFile
+
+    return selection.choose(path, dialect, SourceFile(path, text), settings).profile
+
+
 def format_text(text: str, path: str, dialect: str, settings: Settings = Settings(), strict: bool = False) -> str:
     module = formatter(dialect)
     if module is None:
         return text
-    return module.format_text(text, path, settings.profile(dialect), strict=strict)
+    return module.format_text(text, path, chosen_profile(path, dialect, text, settings), strict=strict)
 
 
 def verify(path: str, dialect: str, before: str, after: str, settings: Settings) -> str:
     """Empty when `after` means the same as `before`; otherwise the first differences."""
-    profile = settings.profile(dialect)
+    profile = chosen_profile(path, dialect, before, settings)
     old = module_of(driver.check_file(path, dialect, profile, before))  # only the IR stays alive,
     new = module_of(driver.check_file(path, dialect, profile, after))  # not both syntax trees
     if old is None or new is None:
@@ -74,7 +82,7 @@ def own_errors(path: str, dialect: str, text: str, settings: Settings, limit: in
     """The file's own errors (syntax first), as `line:column CODE message`: when a file that cannot
     be formatted has some, they are the reason to show, not an internal error of mcc."""
     try:
-        result = driver.check_file(path, dialect, settings.profile(dialect), text)
+        result = driver.check_file(path, dialect, chosen_profile(path, dialect, text, settings), text)
     except Exception:  # noqa: BLE001 - the caller falls back to its own message
         return ""
     errors = [d for d in result.diagnostics if d.severity.value == "error" and d.kind.value != "internal"]

@@ -403,8 +403,11 @@ def unused_subroutine(ctx: Context, voice: Voice) -> None:
         return
     symbols = ctx.analysis.symbols.routines
     make_fix = voice.hook("fix", lambda ctx, routine: None)
+    entry = voice.hook("entry", lambda ctx, routine: False)  # the device itself runs it (an error handler)
     for routine in ctx.module.routines:
         if routine.number is None or routine.kind not in (ir.RoutineKind.SUBROUTINE, ir.RoutineKind.MAIN):
+            continue
+        if entry(ctx, routine):
             continue
         if symbols[routine.name].used:
             continue

@@ -1,3 +1,4 @@
+; mcc: profile=pmx-4ex-sa
 PRG 0
 X1000
 END
