@@ -165,6 +165,25 @@ def initialize(params: t.InitializeParams) -> None:
         server.rules_url = options["rulesUrl"]
 
 
+WATCHERS = "mcc-configuration"  # the id of the file-watcher registration
+
+
+@server.feature(t.INITIALIZED)
+@quiet
+def initialized(params: t.InitializedParams) -> None:
+    """Ask the editor to tell when a configuration file changes on disk (LSP file watchers,
+    registered dynamically where the client supports it; VS Code does, Neovim 0.10+ too). Without
+    them the configuration is read again when the editor saves one (did_save)."""
+    workspace = getattr(server.client_capabilities, "workspace", None)
+    watched = getattr(workspace, "did_change_watched_files", None)
+    if not getattr(watched, "dynamic_registration", False):
+        return
+    watchers = [t.FileSystemWatcher(glob_pattern=f"**/{name}") for name in CONFIG_NAMES]
+    server.client_register_capability(t.RegistrationParams(registrations=[t.Registration(
+        id=WATCHERS, method=t.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+        register_options=t.DidChangeWatchedFilesRegistrationOptions(watchers=watchers))]))
+
+
 @server.feature(t.TEXT_DOCUMENT_DID_OPEN)
 @quiet
 def did_open(params: t.DidOpenTextDocumentParams) -> None:
