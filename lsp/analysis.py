@@ -126,7 +126,8 @@ def complete(snap: Snapshot) -> Snapshot:
     """The snapshot with its program memory (last step): every feature has what it needs."""
     from mcc.lsp import memory
 
-    return Snapshot(**{**snap.__dict__, "complete": True, "memory": memory.usage(snap)})
+    usage = memory.usage(snap)  # None when it cannot be priced: the figures carried stay (documents.py)
+    return Snapshot(**{**snap.__dict__, "complete": True, "memory": usage if usage is not None else snap.memory})
 
 
 def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resolver | None = None,

@@ -161,7 +161,8 @@ class Documents:
         if stop():
             return
         deferred = memory.priced(indexed) and self.memory_delay > 0
-        if deferred:  # until this version is priced, the lenses show the previous figures
+        if deferred or not memory.priced(indexed):
+            # until this version is priced (or, with errors, cannot be), the lenses show the last figures
             previous = self.latest.get(uri)
             indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
         # the editor model's own failure (G001) is one more diagnostic: published again then
