@@ -23,7 +23,6 @@ from pygls.uris import to_fs_path
 from mcc import __version__
 from mcc.compiler import dialects
 from mcc.compiler.codes import registry
-from mcc.compiler.span import SourceFile
 from mcc.lsp import actions, completion, convert, formatting, hover, lenses, navigation, outline, semantic
 from mcc.lsp.documents import Documents
 from mcc.lsp.units import LineText, Units
@@ -394,11 +393,8 @@ def formatted(uri: str, first: int | None = None, last: int | None = None):
     snap = server.snapshot(uri)
     if snap is None:
         return []
-    document = server.workspace.get_text_document(uri)
-    text = SourceFile(snap.path, document.source).text
-    lines = text.split("\n")
-    return server.units().out(formatting.edits(snap, text, first, last),
-                              lambda line: lines[line] if 0 <= line < len(lines) else "")
+    document = server.workspace.get_text_document(uri).source
+    return server.units().out(formatting.edits(snap, document, first, last), document_lines(uri))
 
 
 @server.feature(t.TEXT_DOCUMENT_FORMATTING)

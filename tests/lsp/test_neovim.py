@@ -1,5 +1,6 @@
 """A real editor: headless Neovim (the Debian package; .ci/run installs it) runs `mcc lsp` with its
-built-in client, opens a program with a planted error and reads back the diagnostics and a hover."""
+built-in client, opens a program with a planted error and reads back the diagnostics and a hover;
+and formats a file with CRLF line ends and writes it, which must give the bytes `mcc fmt` writes."""
 
 from __future__ import annotations
 
@@ -40,3 +41,27 @@ def test_neovim_shows_the_diagnostics_and_a_hover(tmp_path):
     assert planted[0]["source"] == "mcc" and planted[0]["severity"] == 1  # an error
     assert planted[0]["code"] == "M001"
     assert "**MR**" in result.get("hover", "") and "Move relative" in result["hover"]
+
+
+MESSY = "; cell   \r\nABS\r\nHSPD=30000   \r\nLSPD=500\r\nACC=250\r\nEO=1\r\nX1000\r\nWAITX\r\nEND\r\n\r\n\r\n"
+
+
+def test_neovim_formatting_writes_what_mcc_fmt_writes(tmp_path):
+    program = tmp_path / "messy.prg"
+    program.write_bytes(MESSY.encode())
+    expected_path = tmp_path / "expected" / "messy.prg"
+    expected_path.parent.mkdir()
+    expected_path.write_bytes(MESSY.encode())
+    subprocess.run([sys.executable, "-m", "mcc", "fmt", str(expected_path)], cwd=tmp_path, check=True,
+                   capture_output=True, timeout=120)
+    expected = expected_path.read_bytes()
+    assert expected != MESSY.encode() and b"\r\n" in expected  # there is something to format, CRLF kept
+    out = tmp_path / "result.json"
+    env = {**os.environ, "MCC_NVIM_OUT": str(out), "MCC_PYTHON": sys.executable, "MCC_FORMAT": "1",
+           "XDG_STATE_HOME": str(tmp_path), "XDG_DATA_HOME": str(tmp_path), "XDG_CONFIG_HOME": str(tmp_path)}
+    subprocess.run([NVIM, "--headless", "--clean", "-n", "-c", f"luafile {SCRIPT}", str(program)],
+                   cwd=tmp_path, env=env, timeout=120, capture_output=True, check=False)
+    result = json.loads(out.read_text(encoding="utf-8"))
+    assert result.get("error") is None, result["error"]
+    assert result["formatted"] > 0
+    assert program.read_bytes() == expected
