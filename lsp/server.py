@@ -359,7 +359,9 @@ def on_semantic_range(params: t.SemanticTokensRangeParams):
 
 
 @server.feature(t.TEXT_DOCUMENT_CODE_ACTION,
-                t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty]))
+                t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty,
+                                                       t.CodeActionKind.SourceFixAll, actions.FIX_ALL],
+                                    resolve_provider=True))
 @guarded
 def on_code_action(params: t.CodeActionParams):
     uri = params.text_document.uri
@@ -369,8 +371,40 @@ def on_code_action(params: t.CodeActionParams):
     selected = server.units().range_from_client(params.range, document_lines(uri))
     found = actions.code_actions(snap, selected, params.context)
     # the diagnostics an action names are the client's own, already in its units
-    return [attrs.evolve(new, diagnostics=old.diagnostics) if isinstance(new, t.CodeAction) else new
-            for old, new in zip(found, out(snap, found))]
+    answer = [attrs.evolve(new, diagnostics=old.diagnostics) if isinstance(new, t.CodeAction) else new
+              for old, new in zip(found, out(snap, found))]
+    only = params.context.only
+    if actions.fix_all_wanted(only) and actions.has_safe_fixes(snap):
+        if not only and resolves_edits():  # the light bulb: the edits are computed only if it is chosen
+            answer.append(actions.fix_all_action(snap, data={"uri": uri}))
+        else:  # asked for by kind (fix on save): computed now
+            answer.append(fix_all(snap, uri))
+    return answer
+
+
+def resolves_edits() -> bool:
+    """Whether the client can ask for an action's edit later (codeAction/resolve)."""
+    document = getattr(server.client_capabilities, "text_document", None)
+    support = getattr(getattr(document, "code_action", None), "resolve_support", None)
+    return "edit" in (getattr(support, "properties", None) or ())
+
+
+def fix_all(snap, uri: str) -> t.CodeAction:
+    """"Fix all" with its edits against the editor's current text, in the client's units."""
+    document = server.workspace.get_text_document(uri).source
+    edits = server.units().out(actions.fix_all_edits(snap, document), document_lines(uri))
+    return actions.fix_all_action(snap, edits)
+
+
+@server.feature(t.CODE_ACTION_RESOLVE)
+@guarded
+def on_code_action_resolve(action: t.CodeAction):
+    data = action.data if isinstance(action.data, dict) else {}
+    uri = data.get("uri")
+    snap = server.snapshot(str(uri)) if uri else None
+    if snap is None or actions.kind_text(action.kind) != actions.FIX_ALL:
+        return action
+    return attrs.evolve(action, edit=fix_all(snap, str(uri)).edit)
 
 
 @server.command(actions.EXPLAIN)
