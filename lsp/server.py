@@ -374,11 +374,15 @@ def on_code_action(params: t.CodeActionParams):
     answer = [attrs.evolve(new, diagnostics=old.diagnostics) if isinstance(new, t.CodeAction) else new
               for old, new in zip(found, out(snap, found))]
     only = params.context.only
-    if actions.fix_all_wanted(only) and actions.has_safe_fixes(snap):
-        if not only and resolves_edits():  # the light bulb: the edits are computed only if it is chosen
-            answer.append(actions.fix_all_action(snap, data={"uri": uri}))
-        else:  # asked for by kind (fix on save): computed now
-            answer.append(fix_all(snap, uri))
+    if only and actions.fix_all_wanted(only):
+        # asked for by kind (fix on save): computed now, from the editor's text (the latest analysis
+        # may be a version behind, or have published the checks before the lint rules' fixes)
+        action = fix_all(snap, uri)
+        if action.edit.changes[uri]:
+            answer.append(action)
+    elif not only and actions.has_safe_fixes(snap):
+        # the light bulb: the edits are computed only if it is chosen, where the editor can ask later
+        answer.append(actions.fix_all_action(snap, data={"uri": uri}) if resolves_edits() else fix_all(snap, uri))
     return answer
 
 
