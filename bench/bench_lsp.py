@@ -14,6 +14,8 @@ A real server process (stdio) is driven by pygls's client as an editor drives it
   one is analysed, which stops at its next checkpoint, compiler/cancel.py); the time from the last
   keystroke to the last publication of its version, the abandoned analyses (and the debounce, when
   one is set with --debounce) included: what the user sees once they stop typing.
+- start-up: the time from starting `mcc lsp` to the answer to `initialize` (the server answers it
+  before it imports the compiler), next to the time Python takes to import pygls alone.
 - hover and completion latency at random tokens, when the server is idle and while it is
   re-analysing after an edit (requests answer from the latest finished analysis). Target: <= 50 ms.
 
@@ -244,11 +246,41 @@ def frontend_alone(path: Path, text: str, repeat: int) -> list[float]:
     return times
 
 
+def initialize_ms() -> float:
+    """Milliseconds from starting `mcc lsp` to the first line of its answer to `initialize`."""
+    import json
+    import subprocess
+
+    start = time.perf_counter()
+    server = subprocess.Popen([sys.executable, "-m", "mcc", "lsp"], stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+    body = json.dumps({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+                       "params": {"processId": None, "rootUri": None, "capabilities": {}}}).encode()
+    server.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+    server.stdin.flush()
+    server.stdout.readline()
+    elapsed = (time.perf_counter() - start) * 1000
+    server.kill()
+    server.wait()
+    return elapsed
+
+
+def pygls_import_ms() -> float:
+    import subprocess
+
+    start = time.perf_counter()
+    subprocess.run([sys.executable, "-c", "import pygls.lsp.server"], check=True)
+    return (time.perf_counter() - start) * 1000
+
+
 async def main_async(options) -> None:
     root = Path(tempfile.mkdtemp(prefix="mcc-bench-lsp-"))
     bench = Bench()
     await bench.start(root, options.debounce)
     try:
+        starts = [initialize_ms() for _ in range(3)]
+        floor = [pygls_import_ms() for _ in range(3)]
+        print(f"start -> initialize answered: {summary(starts)}  (python -c 'import pygls.lsp.server': "
+              f"{summary(floor)})")
         print(f"mcc lsp: {options.edits} edits, bursts of typing and {options.requests} queries per dialect")
         for dialect in options.dialects.split(","):
             r = await bench_dialect(bench, root, dialect, options.lines, options.edits, options.requests)

@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import functools
 import gc
+import importlib
 import logging
 import os
 import sys
+import threading
 
 import attrs
 from lsprotocol import types as t
@@ -21,25 +23,88 @@ from pygls.lsp.server import LanguageServer
 from pygls.uris import to_fs_path
 
 from mcc import __version__
-from mcc.compiler import dialects
-from mcc.compiler.codes import registry
-from mcc.lsp import actions, completion, convert, formatting, hover, lenses, navigation, outline, semantic
-from mcc.lsp.documents import Documents
+from mcc.lsp import semantic
 from mcc.lsp.units import LineText, Units
 
 log = logging.getLogger("mcc.lsp")
 CONFIG_NAMES = ("mcc.toml", "pyproject.toml")
 REQUEST_FAILED = -32803  # LSP's RequestFailed: the request was valid but cannot be done (a refused rename)
+FIX_ALL = "source.fixAll.mcc"  # actions.FIX_ALL, named here so that the capabilities need no import
+
+
+class Lazy:
+    """A module imported when one of its names is first used. The compiler (Lark, the catalogs, the
+    IR, the lint rules) takes longer to import than pygls itself: imported when the server starts,
+    it held up the answer to `initialize` by a second or more. So `initialize` is answered with only
+    pygls loaded, and a thread imports the rest at once after it (`warm_up`), while the editor
+    sends its first documents."""
+
+    def __init__(self, name: str, attribute: str | None = None) -> None:
+        self._name, self._attribute, self._value = name, attribute, None
+
+    def load(self):
+        if self._value is None:
+            module = importlib.import_module(self._name)
+            self._value = getattr(module, self._attribute) if self._attribute else module
+        return self._value
+
+    def __getattr__(self, name: str):
+        return getattr(self.load(), name)
+
+    def __call__(self, *args, **kwargs):
+        return self.load()(*args, **kwargs)
+
+
+dialects = Lazy("mcc.compiler.dialects")
+registry = Lazy("mcc.compiler.codes", "registry")
+actions, completion, convert, formatting, hover, lenses, navigation, outline = (
+    Lazy(f"mcc.lsp.{name}") for name in
+    ("actions", "completion", "convert", "formatting", "hover", "lenses", "navigation", "outline"))
+WARM = ("mcc.lsp.documents", "mcc.lsp.analysis", "mcc.lsp.incremental", "mcc.lsp.mcode_index", "mcc.lsp.arcus_index",
+        "mcc.lsp.x150_index", "mcc.lsp.memory", "mcc.compiler.lint.rules", "mcc.lsp.actions", "mcc.lsp.completion",
+        "mcc.lsp.convert", "mcc.lsp.formatting", "mcc.lsp.hover", "mcc.lsp.lenses", "mcc.lsp.navigation",
+        "mcc.lsp.outline")
+
+
+def warm_up() -> None:
+    """Import the compiler and the features (in a thread, after `initialize` was answered)."""
+    try:
+        for name in WARM:
+            importlib.import_module(name)
+        from mcc.compiler import dialects as found
+
+        for dialect in found.DIALECTS.values():  # the frontends and their parsers
+            package = dialect.frontend.rsplit(".", 1)[0]
+            dialect.load_frontend()
+            importlib.import_module(package + ".parser")
+    except Exception:  # noqa: BLE001 - what fails here fails again, and is reported, where it is used
+        log.exception("importing the compiler failed")
 
 
 class MccServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("mcc", __version__, text_document_sync_kind=t.TextDocumentSyncKind.Incremental)
-        self.documents = Documents(self.publish, priced=self.refresh_lenses)
+        self._documents = None
+        self.debounce: float | None = None  # initializationOptions, applied when the documents are made
+        self.memory_delay: float | None = None
         self.rules_url: str | None = None
         # documents whose colours or folds were asked for before their first analysis finished:
         # answered empty, so the editor is asked to ask again when it has finished
         self.unanswered: set[str] = set()
+
+    @property
+    def documents(self):
+        """The open documents and their analyses (made, importing the compiler, at first use)."""
+        if self._documents is None:
+            from mcc.lsp.documents import Documents
+
+            documents = Documents(self.publish, priced=self.refresh_lenses)
+            if self.debounce is not None:
+                documents.debounce = self.debounce
+            if self.memory_delay is not None:
+                documents.memory_delay = self.memory_delay
+            self._documents = documents
+        return self._documents
 
     def publish(self, snap) -> None:
         diagnostics = [convert.diagnostic(d, snap.source, snap.uri, self.rules_url) for d in snap.diagnostics
@@ -111,11 +176,11 @@ def guarded(func):
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
-        except navigation.RenameError as exc:
-            raise JsonRpcException(str(exc), code=REQUEST_FAILED) from None
         except JsonRpcException:
             raise
-        except Exception:
+        except Exception as exc:
+            if isinstance(exc, navigation.RenameError):
+                raise JsonRpcException(str(exc), code=REQUEST_FAILED) from None
             log.exception("%s failed", func.__name__)
             raise
 
@@ -157,11 +222,13 @@ def reader(uri: str):
 def initialize(params: t.InitializeParams) -> None:
     options = params.initialization_options if isinstance(params.initialization_options, dict) else {}
     if isinstance(options.get("debounce"), (int, float)):
-        server.documents.debounce = max(0.0, float(options["debounce"]) / 1000.0)
+        server.debounce = max(0.0, float(options["debounce"]) / 1000.0)
     if isinstance(options.get("memoryDelay"), (int, float)):
-        server.documents.memory_delay = max(0.0, float(options["memoryDelay"]) / 1000.0)
+        server.memory_delay = max(0.0, float(options["memoryDelay"]) / 1000.0)
     if isinstance(options.get("rulesUrl"), str):
         server.rules_url = options["rulesUrl"]
+    # the answer goes out now; the compiler is imported meanwhile
+    threading.Thread(target=warm_up, name="mcc-import", daemon=True).start()
 
 
 WATCHERS = "mcc-configuration"  # the id of the file-watcher registration
@@ -360,7 +427,7 @@ def on_semantic_range(params: t.SemanticTokensRangeParams):
 
 @server.feature(t.TEXT_DOCUMENT_CODE_ACTION,
                 t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty,
-                                                       t.CodeActionKind.SourceFixAll, actions.FIX_ALL],
+                                                       t.CodeActionKind.SourceFixAll, FIX_ALL],
                                     resolve_provider=True))
 @guarded
 def on_code_action(params: t.CodeActionParams):
@@ -411,7 +478,7 @@ def on_code_action_resolve(action: t.CodeAction):
     return attrs.evolve(action, edit=fix_all(snap, str(uri)).edit)
 
 
-@server.command(actions.EXPLAIN)
+@server.command("mcc.explain")  # actions.EXPLAIN
 @guarded
 def explain(*arguments):
     """The rule's explanation page: shown in the editor when it can show documents, and returned."""
@@ -480,7 +547,8 @@ def on_status(params):
 @server.feature(t.SHUTDOWN)
 @quiet
 def on_shutdown(*_):
-    server.documents.shutdown()
+    if server._documents is not None:
+        server._documents.shutdown()
 
 
 def start(tcp: str | None = None, log_file: str | None = None, verbose: bool = False) -> None:
