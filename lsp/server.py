@@ -334,7 +334,7 @@ def on_completion(params: t.CompletionParams):
     uri = params.text_document.uri
     text = current_line(uri, params.position.line)
     answer = completion.complete(snap, text, character(uri, params.position).character, params.position.line)
-    return server.units().out(answer, document_lines(uri))
+    return answer if text.isascii() else server.units().out(answer, document_lines(uri))  # only that line's ranges
 
 
 @server.feature(t.TEXT_DOCUMENT_SIGNATURE_HELP, t.SignatureHelpOptions(trigger_characters=[" ", ",", "="]))
@@ -545,7 +545,7 @@ def on_status(params):
     if snap is None:
         return {"uri": uri, "version": None, "complete": False, "dialect": None}
     return {"uri": uri, "version": snap.version, "complete": snap.complete, "dialect": snap.dialect,
-            "diagnostics": len(snap.diagnostics)}
+            "diagnostics": len(snap.diagnostics), "timings": snap.timings}
 
 
 @server.feature(t.SHUTDOWN)
