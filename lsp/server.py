@@ -44,6 +44,7 @@ class Lazy:
 
     def load(self):
         if self._value is None:
+            imported()
             module = importlib.import_module(self._name)
             self._value = getattr(module, self._attribute) if self._attribute else module
         return self._value
@@ -64,6 +65,18 @@ WARM = ("mcc.lsp.documents", "mcc.lsp.analysis", "mcc.lsp.incremental", "mcc.lsp
         "mcc.lsp.x150_index", "mcc.lsp.memory", "mcc.compiler.lint.rules", "mcc.lsp.actions", "mcc.lsp.completion",
         "mcc.lsp.convert", "mcc.lsp.formatting", "mcc.lsp.hover", "mcc.lsp.lenses", "mcc.lsp.navigation",
         "mcc.lsp.outline")
+
+
+WARMING: list[threading.Thread] = []  # the thread of warm_up, once started
+
+
+def imported() -> None:
+    """Wait for warm_up's imports to finish. Two threads importing the same modules at once can
+    meet in a circular import, which Python breaks by failing one of them (_DeadlockError); so the
+    protocol thread does not import the compiler itself while warm_up does."""
+    for thread in WARMING:
+        if thread is not threading.current_thread():
+            thread.join()
 
 
 def warm_up() -> None:
@@ -96,6 +109,7 @@ class MccServer(LanguageServer):
     def documents(self):
         """The open documents and their analyses (made, importing the compiler, at first use)."""
         if self._documents is None:
+            imported()
             from mcc.lsp.documents import Documents
 
             documents = Documents(self.publish, priced=self.refresh_lenses)
@@ -232,7 +246,9 @@ def initialize(params: t.InitializeParams) -> None:
     if isinstance(options.get("rulesUrl"), str):
         server.rules_url = options["rulesUrl"]
     # the answer goes out now; the compiler is imported meanwhile
-    threading.Thread(target=warm_up, name="mcc-import", daemon=True).start()
+    if not WARMING:
+        WARMING.append(threading.Thread(target=warm_up, name="mcc-import", daemon=True))
+        WARMING[0].start()
 
 
 WATCHERS = "mcc-configuration"  # the id of the file-watcher registration
