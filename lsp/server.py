@@ -276,6 +276,7 @@ def did_open(params: t.DidOpenTextDocumentParams) -> None:
     uri = params.text_document.uri
     if params.text_document.language_id in dialects.DIALECTS:
         server.documents.dialects[uri] = params.text_document.language_id
+    configuration_moved(path_of(uri))  # its configuration files, as they are now
     server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
 
 
@@ -283,7 +284,42 @@ def did_open(params: t.DidOpenTextDocumentParams) -> None:
 @quiet
 def did_change(params: t.DidChangeTextDocumentParams) -> None:
     uri = params.text_document.uri
+    if configuration_moved(path_of(uri)):
+        reanalyse_all()
+        return
     server.documents.changed(uri, path_of(uri), reader(uri))
+
+
+STAMPS: dict[str, tuple] = {}  # directory of an open document -> configuration_stamp when last seen
+
+
+def configuration_stamp(directory: str) -> tuple:
+    """(folder, name, modification time, size) of every configuration file at or above `directory`
+    (a few stat calls: cheap enough for every keystroke)."""
+    out = []
+    folder = os.path.abspath(directory)
+    while True:
+        for name in CONFIG_NAMES:
+            try:
+                found = os.stat(os.path.join(folder, name))
+            except OSError:
+                continue
+            out.append((folder, name, found.st_mtime_ns, found.st_size))
+        parent = os.path.dirname(folder)
+        if parent == folder:
+            return tuple(out)
+        folder = parent
+
+
+def configuration_moved(path: str) -> bool:
+    """Whether a configuration file that may apply to `path` was created, changed or deleted since
+    the last edit of a document there. Editors without file watchers (Neovim before 0.10, Helix,
+    ...) never say so: the next keystroke then re-reads the configuration."""
+    directory = os.path.dirname(os.path.abspath(path))
+    stamp = configuration_stamp(directory)
+    before = STAMPS.get(directory)
+    STAMPS[directory] = stamp
+    return before is not None and before != stamp
 
 
 @server.feature(t.TEXT_DOCUMENT_DID_SAVE)
@@ -314,6 +350,8 @@ def watched_files(params: t.DidChangeWatchedFilesParams) -> None:
 
 def reanalyse_all() -> None:
     server.documents.configuration_changed()
+    for directory in list(STAMPS):
+        STAMPS[directory] = configuration_stamp(directory)
     for uri in list(server.workspace.text_documents):
         server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
 

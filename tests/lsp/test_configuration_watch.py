@@ -60,3 +60,18 @@ async def test_a_configuration_file_created_next_to_the_program_applies(client, 
     client.workspace_did_change_watched_files(t.DidChangeWatchedFilesParams(
         changes=[t.FileEvent(uri=config.as_uri(), type=t.FileChangeType.Deleted)]))
     assert await published(client, doc.uri, EXPECTED["mcode"]) == EXPECTED["mcode"]
+
+
+async def test_without_watchers_the_next_edit_reads_the_configuration_again(client, tmp_path):
+    """Editors without file watchers (Neovim before 0.10, Helix) never report a changed file: the
+    server looks at the configuration files' times and sizes at every edit."""
+    folder = tmp_path / "quiet"
+    folder.mkdir()
+    config = folder / "mcc.toml"
+    config.write_text('ignore = ["M3"]\n')
+    doc = OpenAt(client, folder / "feeder.mxt", fixture_text("mcode"))
+    assert codes(await doc.settled()) == set()
+    config.write_text('ignore = ["M306", "M309"]\n')  # no notification
+    doc.edit(0, 0, 0, " ")
+    assert await published(client, doc.uri, EXPECTED["mcode"] - {"M306", "M309"}) == \
+        EXPECTED["mcode"] - {"M306", "M309"}
