@@ -487,6 +487,7 @@ def on_semantic_range(params: t.SemanticTokensRangeParams):
                 t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty,
                                                        t.CodeActionKind.SourceFixAll, FIX_ALL],
                                     resolve_provider=True))
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_code_action(params: t.CodeActionParams):
     uri = params.text_document.uri
@@ -526,6 +527,7 @@ def fix_all(snap, uri: str) -> t.CodeAction:
 
 
 @server.feature(t.CODE_ACTION_RESOLVE)
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_code_action_resolve(action: t.CodeAction):
     data = action.data if isinstance(action.data, dict) else {}
@@ -561,12 +563,14 @@ def formatted(uri: str, first: int | None = None, last: int | None = None):
 
 
 @server.feature(t.TEXT_DOCUMENT_FORMATTING)
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_formatting(params: t.DocumentFormattingParams):
     return formatted(params.text_document.uri)
 
 
 @server.feature(t.TEXT_DOCUMENT_RANGE_FORMATTING)
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_range_formatting(params: t.DocumentRangeFormattingParams):
     return formatted(params.text_document.uri, params.range.start.line, params.range.end.line)
