@@ -33,7 +33,7 @@ X150_SEQUENCE = re.compile(r"(?:^|\s)\d*(?:XRP|XR|XG|XE|XU|GOSUB|GOTO)\s*(\d*)$"
 STATEMENT_START = {
     "mcode": re.compile(r"^\s*[!*^]?[A-Za-z]{0,3}$"),
     "arcus": re.compile(r"^\s*[A-Za-z]*$"),
-    "x150": re.compile(r"(?:^|\s)\d*B?[A-Za-z]*$"),
+    "x150": re.compile(r"(?:^|\s)\d*(B?[A-Za-z]*)$"),  # the command after its device address
 }
 WORD = re.compile(r"[A-Za-z0-9_]*$")
 COMMAND_KINDS = {"mcode": ("instruction", "variable", "flag"),
@@ -45,6 +45,7 @@ def complete(snap, line_text: str, character: int, line: int) -> t.CompletionLis
     before = line_text[:character]
     dialect = snap.dialect
     items: list[t.CompletionItem] = []
+    start = word_start(dialect, before)
     if dialect == "mcode" and MCODE_LABEL.match(before):
         items = symbols(snap, model.SYMBOL_LABEL)
     elif dialect == "mcode" and MCODE_CONDITION.match(before) and not in_comment(snap, before):
@@ -53,13 +54,16 @@ def complete(snap, line_text: str, character: int, line: int) -> t.CompletionLis
         items = symbols(snap, model.SYMBOL_VARIABLE)
     elif dialect == "arcus" and ARCUS_GOSUB.match(before):
         items = symbols(snap, model.SYMBOL_SUBROUTINE)
-    elif dialect == "x150" and X150_SEQUENCE.search(before):
+    elif dialect == "x150" and (found := X150_SEQUENCE.search(before)):
         items = symbols(snap, model.SYMBOL_SEQUENCE)
-    elif dialect in STATEMENT_START and STATEMENT_START[dialect].search(before) and not in_comment(snap, before):
+        start = found.start(1)  # the number after `1XR`
+    elif dialect in STATEMENT_START and (found := STATEMENT_START[dialect].search(before)) \
+            and not in_comment(snap, before):
         items = commands(snap, line) + (symbols(snap, model.SYMBOL_VARIABLE) if dialect != "x150" else [])
+        if dialect == "x150":
+            start = found.start(1)  # after the device address (`1` typed alone: nothing to replace)
     elif not in_comment(snap, before):
         items = symbols(snap, model.SYMBOL_VARIABLE) + values(snap)
-    start = word_start(dialect, before)
     replaced = t.Range(t.Position(line, start), t.Position(line, character))
     return t.CompletionList(is_incomplete=False, items=[with_range(item, replaced) for item in items])
 

@@ -76,3 +76,16 @@ async def test_mcode_labels_where_a_command_takes_one(client, typed):
     found = await items_at(client, doc, 2, len(typed))
     assert set(found) == {"G1"}
     assert applied(typed, found["G1"]) == typed + "G1"
+
+
+async def test_x150_sequence_numbers_and_a_lone_device_address(client):
+    """parker-x150.md L5125 (`<a>XRn`): after `1XR2` only the number is replaced; after a device
+    address alone (`1`) the commands are inserted after it, the address kept."""
+    doc = Doc(client, "sequences.x150", "1XD2\n1G\n1XT\n1XR2\n1\n")
+    await doc.settled()
+    found = await items_at(client, doc, 3, 4)
+    assert found["2"].text_edit.range == t.Range(t.Position(3, 3), t.Position(3, 4))
+    assert applied("1XR2", found["2"]) == "1XR2"
+    found = await items_at(client, doc, 4, 1)
+    assert found["G"].text_edit.range == t.Range(t.Position(4, 1), t.Position(4, 1))
+    assert applied("1", found["G"]) == "1G"
