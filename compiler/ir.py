@@ -264,12 +264,14 @@ class Move:
 
 @dataclass(slots=True)
 class Arc:
-    """Circular (angle None: full circle) or arc interpolation around a centre."""
+    """Circular (angle None: full circle) or arc interpolation around a centre. `angle` (degrees)
+    is the end point's direction from the centre, measured clockwise from the negative first
+    axis, not a sweep (docs/IR.md, "Arcs")."""
 
     axes: tuple[str, str]
     center: tuple[Expr, Expr]
     clockwise: bool
-    angle: Expr | None = None  # millidegrees
+    angle: Expr | None = None  # degrees: the end point's direction (docs/IR.md, "Arcs")
     span: Span | None = None
 
 

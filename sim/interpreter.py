@@ -206,6 +206,9 @@ class Simulator:
         # polarity the program set (IS, INL) or the product's default (docs/SIMULATOR.md, "Inputs")
         inputs = machine_table(self.product, "inputs")
         self.active_high_default = bool(inputs.get("active_high", True))
+        # the level of an input nothing drives; without one, the inactive level of its polarity
+        idle = inputs.get("idle_level")
+        self.idle_level = idle if idle in (0, 1) and not isinstance(idle, bool) else None
         count = inputs.get("count", 0)
         self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
@@ -878,9 +881,9 @@ class Simulator:
         cx, cy = float(self._eval(op.center[0])), float(self._eval(op.center[1]))
         x0, y0 = self._axis(ax).position, self._axis(ay).position
         radius = math.hypot(x0 - cx, y0 - cy)
-        degrees = float(self._eval(op.angle)) if op.angle is not None else 360.0
-        sweep = math.radians(abs(degrees)) * (-1 if op.clockwise else 1)
+        degrees = float(self._eval(op.angle)) if op.angle is not None else None
         angle0 = math.atan2(y0 - cy, x0 - cx)
+        sweep = _sweep(angle0, degrees, op.clockwise)
         length = radius * abs(sweep)
         end = (cx + radius * math.cos(angle0 + sweep), cy + radius * math.sin(angle0 + sweep))
         self._event(op, "arc", axes=[ax, ay], center=[cx, cy], degrees=degrees, clockwise=op.clockwise)
@@ -1192,6 +1195,8 @@ class Simulator:
         in force (an input nothing drives is not active, whichever way it is wired)."""
         level = self.machine.inputs.get(index)
         if level is None:
+            if self.idle_level is not None:  # the product's inputs rest at a level (pulled up)
+                return self.idle_level
             return 0 if self.active_high.get(index, self.active_high_default) else 1
         return level
 
@@ -1563,6 +1568,23 @@ def _severity(name: str):
     from mcc.compiler.diagnostics import Severity
 
     return Severity(name)
+
+
+def _sweep(start: float, degrees: float | None, clockwise: bool) -> float:
+    """The signed angle (radians, counter-clockwise positive) an arc turns through from the
+    direction `start` (radians, from the centre) to its end: `degrees` is the end point's
+    direction from the centre, measured clockwise from the negative first axis (docs/IR.md,
+    "Arcs"); the arc runs in its direction for less than a turn, a full turn when the end is the
+    start or when it has no end angle (a circle)."""
+    turn = 2 * math.pi
+    if degrees is None:
+        return -turn if clockwise else turn
+    theta = math.radians(degrees)
+    end = math.atan2(math.sin(theta), -math.cos(theta))  # clockwise from (-1, 0): (-cos, sin)
+    sweep = ((start - end) if clockwise else (end - start)) % turn
+    if sweep < 1e-9 or turn - sweep < 1e-9:
+        sweep = turn
+    return -sweep if clockwise else sweep
 
 
 def machine_table(profile, name: str) -> dict:

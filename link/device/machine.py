@@ -119,6 +119,12 @@ class DeviceMachine:
         self.slewing: dict[str, float] = {}   # axis -> velocity, for slews (jogs) that run on between commands
         self.last: Trace | None = None       # the trace of the last run
         self.outcome: Outcome | None = None   # how the last run (a program or a command) ended
+        # the device settings the runs set (the simulator's `settings`: (name, axis, index) -> value)
+        # and the input polarities: a device keeps them from one command or program to the next,
+        # so the host reads back what a stored program set and a report reads what earlier
+        # commands set
+        self.settings: dict = {}
+        self.active_high: dict[int, bool] = {}
 
     # -- the state the host protocol reads -------------------------------------------------------
     def position(self, axis: str) -> float:
@@ -130,6 +136,28 @@ class DeviceMachine:
 
     def setting(self, axis: str, param: ir.MotionParam) -> float:
         return self.machine.axis(axis).setting(param, self.machine.shared)
+
+    def input_level(self, index: int) -> int:
+        """Input `index`'s electrical level: what the host set, else the inactive level of the
+        polarity in force (the product's `[machine.inputs] active_high`): an input nothing
+        drives is not active."""
+        level = self.machine.inputs.get(index)
+        if level is not None:
+            return 1 if level else 0
+        table = self.profile.get("machine.inputs", {}) if self.profile is not None else {}
+        idle = table.get("idle_level") if isinstance(table, dict) else None
+        if idle in (0, 1) and not isinstance(idle, bool):
+            return idle
+        return 0 if self.active_high.get(index, self._active_high_default()) else 1
+
+    def input_logic(self, index: int) -> int:
+        """Input `index`'s logic state (1 active) through the polarity in force."""
+        level = self.input_level(index)
+        return level if self.active_high.get(index, self._active_high_default()) else 1 - level
+
+    def _active_high_default(self) -> bool:
+        table = self.profile.get("machine.inputs", {}) if self.profile is not None else {}
+        return bool(table.get("active_high", True)) if isinstance(table, dict) else True
 
     def stop(self) -> None:
         """The program is stopped (a stop command): it no longer runs and nothing moves."""
@@ -158,6 +186,8 @@ class DeviceMachine:
         self.machine.shared["defaults"] = defaults(module.steps_per_rev, simulator.product)
         self.machine.shared["sets"] = tuple(module.axis_sets)
         simulator.machine = self.machine      # the device's machine: what earlier commands left
+        simulator.settings = self.settings
+        simulator.active_high = self.active_high
         self.moving.clear()
         self.slewing.clear()
         try:
@@ -168,6 +198,7 @@ class DeviceMachine:
             return self._ended(Outcome("error", f"internal error in the simulator ({type(exc).__name__}: {exc}); "
                                                 "this is a bug in mcc, please report it"), program)
         self.last = trace
+        self.settings, self.active_high = simulator.settings, simulator.active_high
         simulator.finish_homing(max(self.run_limit, trace.time))  # its phases follow one another
         end = trace.time
         if trace.stopped == "end":
