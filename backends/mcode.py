@@ -658,6 +658,10 @@ class Writer:
             if op.signed:
                 raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
                                   "MCode prints positive numbers unsigned),")
+            formatted = [spec for spec in op.formats if spec]
+            if formatted:
+                raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "
+                                  "MCode's PR prints a number as it is, floats in the PF format),")
             items = ",".join(self.item(item) for item in op.items)
             prefix = self.prefix(op.axis) if op.axis else ""
             return f"{prefix}PR {items}{'' if op.newline else ';'}"

@@ -358,13 +358,17 @@ class Print:
     """Send text and values to the host. `axis` names the device that sends them when the line is
     addressed to one (an MCode party address); empty for the device the program runs on. `signed`:
     every value is sent with its sign, `+` for zero and positive numbers too (the X150's position
-    report `*+4000`, L3141); a backend that cannot write the sign refuses the print."""
+    report `*+4000`, L3141); a backend that cannot write the sign refuses the print. `formats`: the
+    format of each item, by position ("" or missing: as the value prints), from
+    `ir_names.PRINT_FORMATS` (`fixed 3`, `fixed 0 magnitude`, `bits 10`, `pad 2`): data the
+    simulator applies and a backend writes or refuses (docs/IR.md, "Print formats")."""
 
     items: tuple[Expr, ...]
     newline: bool = True
     span: Span | None = None
     axis: str = ""
     signed: bool = False
+    formats: tuple[str, ...] = ()
 
 
 @dataclass(slots=True)

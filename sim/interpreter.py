@@ -53,7 +53,7 @@ UNMODELLED = {"following_mode": "the axis follows an external input instead of r
 
 # Readings that report a setting: the setting they read and its value before the program sets it.
 SETTING_READINGS = {"following_ratio": ("following_ratio", 100), "input_levels": ("input_active_high", 0),
-                    "output_levels": ("output_active_high", 0)}
+                    "output_levels": ("output_active_high", 0), "switch_levels": ("switch_active_high", 0)}
 
 
 @dataclass
@@ -716,7 +716,9 @@ class Simulator:
         return None
 
     def _do_print(self, op) -> Wait | None:
-        text = "".join(self._text(item, op.signed) for item in op.items) + ("\n" if op.newline else "")
+        formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
+        text = "".join(self._text(item, op.signed, spec) for item, spec in zip(op.items, formats)) \
+            + ("\n" if op.newline else "")
         self.trace.prints.append((self.now, text))
         self.changes += 1
         self._event(op, "print", text=text)
@@ -1410,6 +1412,8 @@ class Simulator:
             self.round_reads.add((meaning, axis.name))
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
+        if meaning == "device_address":  # a numbered device's address; 0 for an axis with a letter
+            return int(axis.name) if axis.name.isdigit() else 0
         if meaning == "velocity":
             return axis.speed(self.now)
         if meaning == "moving":
@@ -1459,9 +1463,11 @@ class Simulator:
             return not self._cond(cond.cond)
         return self._eval(cond) != 0
 
-    def _text(self, item, signed: bool = False) -> str:
+    def _text(self, item, signed: bool = False, spec: str = "") -> str:
         if isinstance(item, ir.Text):
             return item.value
+        if spec:  # a print format (docs/IR.md, "Print formats")
+            return values.formatted(self._eval(item), spec, signed)
         if self.float_format and self._reads_float(item):
             return values.float_text(float(self._eval(item)), self.float_format, self.float_pad)
         value = values.plain(self._eval(item))

@@ -1033,23 +1033,24 @@ class Writer:
                 raise CannotWrite(f"X150 has no {'input' if name == 'input_function' else 'output'} function "
                                   f"'{function}' for line {index} (IN/OUT letters, L2058, L2974)", "G003")
             return prefix + ("IN" if name == "input_function" else "OUT") + str(index) + letters[function]
-        if name in ("input_active_high", "output_active_high"):
-            top = neutral.USER_INPUTS if name == "input_active_high" else neutral.OUTPUTS
+        if name in LEVELS:
+            top = LEVEL_COUNTS[name]
             if not (isinstance(op.value, ir.Const) and op.value.value in (0, 1) and 1 <= index <= top):
-                raise CannotWrite(f"X150 sets the active level of inputs 1-10 and outputs 1-6 to a constant 0 or 1 "
-                                  f"(INL/OUTL); this {name.replace('_', ' ')} has no equivalent", "G003")
+                raise CannotWrite(f"X150 sets the active level of its 7 dedicated inputs, inputs 1-10 and outputs "
+                                  f"1-6 to a constant 0 or 1 (INL/OUTL); this {name.replace('_', ' ')} has no "
+                                  "equivalent", "G003")
             bits = "X" * (index - 1) + str(int(op.value.value))
-            return prefix + ("INL_" + bits if name == "input_active_high" else "OUTL" + bits)
+            return prefix + level_command(name, bits)
         raise CannotWrite(f"the setting '{name}' ({describe_setting(name)}) has no X150 command", "G003")
 
     def levels(self, group: list) -> str:
         """Active levels of several inputs (or outputs) of one device as one INL/OUTL pattern."""
-        bits = ["X"] * (neutral.USER_INPUTS if group[0].name == "input_active_high" else neutral.OUTPUTS)
+        bits = ["X"] * LEVEL_COUNTS[group[0].name]
         for op in group:
             text = self.setting(op)
-            bits[op.index - 1] = text[-1]
+            bits[op.index - 1] = text[-1] if group[0].name != "switch_active_high" else text[-2]
         head = self.address(group[0].axis)
-        return head + ("INL_" if group[0].name == "input_active_high" else "OUTL") + "".join(bits).rstrip("X")
+        return head + level_command(group[0].name, "".join(bits).rstrip("X"))
 
     def handler(self, op: ir.SetHandler) -> None:
         command = HANDLER_COMMANDS.get(op.event)
@@ -1144,11 +1145,19 @@ class Writer:
         item = op.items[0] if len(op.items) == 1 else None
         report = report_command(op)
         if report is not None:
-            axis = neutral.report_axis(op) if report == "PR" else item.axis
+            axis = neutral.report_axis(op) if report == "PR" else neutral.levels_report_of(op)[1] \
+                if report in ("INL", "OUTL") else neutral.identity_report_of(op) if report == "QS" else item.axis
             if report == "PR" and self.factor_of(axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
             return self.address(op.axis or axis or ir.ALL_AXES) + report
+        sent = neutral.transmit_of(op)
+        if sent is not None:
+            return self.transmit(*sent)
+        if op.formats:
+            raise CannotWrite("X150 sends a formatted value only as TX (a text, then a variable with its decimals, "
+                              "L4463-L4483) or as its reports (PR, INL, OUTL, QS); this print has no equivalent",
+                              "G003")
         if any(isinstance(i, ir.Status) and i.meaning == "position" for i in op.items):
             raise CannotWrite("X150 sends a position only as its report, the sign always written (PR: *+4000, "
                               "*-25600, L3141); this print sends it in another form, which the host would read "
@@ -1159,6 +1168,17 @@ class Writer:
             return '"' + text.replace(" ", "_") + '"'
         raise CannotWrite("X150 transmits up to 50 characters of quoted text without quotes, underscores or a "
                           "line end (\"...\", L5589); this print has no equivalent", "G003")
+
+    def transmit(self, name: str, sign: bool, decimals: int, text: str) -> str:
+        """TXn,m,p,x (L4463-L4483): x is the rest of the command, printable ASCII without a comma."""
+        n = self.var_number(name)
+        if not n:
+            raise CannotWrite(f"X150 transmits only VAR1-VAR50 (TX); {name} has no equivalent", "G003")
+        if not text or len(text) > 40 or any(not 33 <= ord(c) <= 126 or c in ',";' for c in text) or decimals > 5:
+            raise CannotWrite("X150 transmits a variable after a text of printable characters without a comma, a "
+                              "quote or a semicolon, with up to 5 decimals (TX, L4463-L4483); this print has no "
+                              "equivalent", "G003")
+        return f"TX{n},{1 if sign else 0},{decimals},{text}"
 
     def assign(self, op: ir.Assign) -> str:
         n = self.var_number(op.target.name)
@@ -1454,7 +1474,14 @@ def describe(expr) -> str:
     return f"this {type(expr).__name__.lower()}"
 
 
-LEVELS = ("input_active_high", "output_active_high")
+LEVELS = ("input_active_high", "output_active_high", "switch_active_high")
+LEVEL_COUNTS = {"input_active_high": neutral.USER_INPUTS, "output_active_high": neutral.OUTPUTS,
+                "switch_active_high": len(neutral.DEDICATED)}
+
+
+def level_command(name: str, bits: str) -> str:
+    """INL_<user inputs>, INL<dedicated inputs>_ (L2136: LMT+ ... INDEX, then I1-I10) or OUTL<outputs>."""
+    return {"input_active_high": "INL_" + bits, "switch_active_high": "INL" + bits + "_"}.get(name, "OUTL" + bits)
 
 
 def level_run(nodes: list, index: int) -> list:
@@ -1475,13 +1502,21 @@ def level_run(nodes: list, index: int) -> list:
 # The readings X150 reports with a command of their own, a line each: PR (*-25600, L3141, the print
 # `neutral.position_report` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
 # 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
-REPORTS = {"following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
+REPORTS = {"following_ratio": "FOL"}
 
 
 def report_command(op: ir.Print) -> str | None:
-    """The X150 report a print is, when it is a line with one such reading alone."""
+    """The X150 report a print is, when it is a line with one such reading alone, or the shape the
+    lowering gives INL, OUTL (compiler/x150/neutral.levels_report) and QS (identity_report)."""
     if neutral.report_axis(op) is not None:
         return "PR"
+    levels = neutral.levels_report_of(op)
+    if levels is not None:
+        return levels[0]
+    if neutral.identity_report_of(op) is not None:
+        return "QS"
+    if op.formats:
+        return None
     if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline \
             and not op.signed:
         return REPORTS.get(op.items[0].meaning)

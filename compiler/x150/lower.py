@@ -62,7 +62,7 @@ KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKin
 NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "home", "delay", "wait_input", "assign", "save", "return",
                            "when"))
 NEUTRAL_NAMES = frozenset((*DIRECTION, "CUR", "O", "TRIP", "PZ", '"', "PR", "SB", "ST", *neutral.SETTINGS,
-                           "IN", "OUT", "INL", "OUTL", "HALT", "PS", "C", "#"))
+                           "IN", "OUT", "INL", "OUTL", "HALT", "PS", "C", "#", "TX", "QS"))
 # Queries that report a setting in force (`1FOL` -> FOLLOWING PERCENT = n%, L1569; `1INL` ->
 # *0000000_0000000000, L2134): a print of the setting's reading
 SETTING_REPORTS = {"FOL": "following_ratio", "INL": "input_levels", "OUTL": "output_levels"}
@@ -447,13 +447,26 @@ class Lowering:
             table = neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS
             setting = "input_function" if name == "IN" else "output_function"
             self.emit(ir.Setting(setting, axis, ir.Text(table[arg.function.upper()], arg.span), span, arg.index))
-        elif name in ("INL", "OUTL") and isinstance(arg, st.Pattern) and self.settable(command) \
-                and (name == "OUTL" or not neutral.split(arg.bits)[0]):
-            bits = arg.bits if name == "OUTL" else neutral.split(arg.bits)[1]
-            setting = "input_active_high" if name == "INL" else "output_active_high"
-            for index, bit in enumerate(bits.upper(), 1):  # X leaves a level as it is: one setting per level set
-                if bit in "01":
-                    self.emit(ir.Setting(setting, axis, ir.Const(int(bit), ir.Unit.NONE, arg.span), span, index))
+        elif name in ("INL", "OUTL") and isinstance(arg, st.Pattern) and self.settable(command):
+            # X leaves a level as it is: one setting per level set; INL's dedicated group (LMT+ ...
+            # INDEX, L2136) sets the switch inputs' levels (ir_names.SWITCH_INPUTS, the same order)
+            groups = [("output_active_high", arg.bits)] if name == "OUTL" else \
+                list(zip(("switch_active_high", "input_active_high"), neutral.split(arg.bits)))
+            for setting, bits in groups:
+                for index, bit in enumerate(bits.upper(), 1):
+                    if bit in "01":
+                        self.emit(ir.Setting(setting, axis, ir.Const(int(bit), ir.Unit.NONE, arg.span), span, index))
+        elif name in ("INL", "OUTL") and arg is None and not command.buffered:  # *0000100_1001000000 (L2141)
+            self.emit(neutral.levels_report(name, axis, span, self.sender(command)))
+        elif name == "TX" and isinstance(arg, st.Fields) and len(arg.values) == 3 and arg.tail \
+                and 1 <= arg.values[0] <= 50 and arg.values[1] in (0, 1) and 0 <= arg.values[2] <= 5 \
+                and not command.buffered:  # TXn,m,p,x: x then VARn (L4463-L4483)
+            var = st.VarRef(arg.values[0], arg.spans[0] if arg.spans else arg.span)
+            self.declare(var)
+            self.emit(neutral.transmit(ir.Var(var.name, var.span), arg.values[1] == 1, arg.values[2], arg.tail, span,
+                                       self.sender(command)))
+        elif name == "QS" and arg is None and not command.buffered:  # ;*01! (L3209-L3217)
+            self.emit(neutral.identity_report(axis, span, self.sender(command)))
         elif name in SETTING_REPORTS and arg is None and not command.buffered:
             self.emit(ir.Print((ir.Status(SETTING_REPORTS[name], axis, None, span),), True, span, self.sender(command)))
         elif name == "PS" and arg is None and axis_ok:  # pauses command execution, not motion (L3151)

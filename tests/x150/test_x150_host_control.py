@@ -79,8 +79,12 @@ def test_the_simulator_says_when_a_stopping_pause_catches_a_move():
 
 
 def test_setting_reports_print_the_value_in_force_or_the_factory_default():
+    """1INL reports the header and `*` the dedicated inputs' levels `_` the user inputs', input 1
+    first (parker-x150.md L2131-L2141); INL_X1 makes input 2 active high."""
     trace = simulate(module("1FOL\n1FOL50\n1FOL\n1INL\n1INL_X1\n1INL\n"))
-    assert [text.strip() for _, text in trace.prints] == ["100", "50", "0", "2"]
+    lines = [text.strip().splitlines()[-1] for _, text in trace.prints]
+    assert lines == ["100", "50", "*0000000_0000000000", "*0000000_0100000000"]
+    assert trace.prints[2][1].startswith("Input active levels are:\nLMT+ LMT- HOME AUX-IN STOP ENG INDEX_I1")
 
 
 def test_an_unaddressed_jog_moves_the_device_not_a_phantom_axis():
@@ -104,4 +108,5 @@ def test_settled_operations_are_those_no_move_can_reach():
 
 def test_setting_reports_are_per_device():
     trace = simulate(module("FOL50\n2FOL20\n1FOL\n2FOL\nFOL70\n2FOL\n2INL_1\n1INL\n2INL\n"))
-    assert [text.strip() for _, text in trace.prints] == ["50", "20", "70", "0", "1"]
+    assert [text.strip().splitlines()[-1] for _, text in trace.prints] == [
+        "50", "20", "70", "*0000000_0000000000", "*0000000_1000000000"]
