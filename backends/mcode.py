@@ -658,6 +658,9 @@ class Writer:
             if op.signed:
                 raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
                                   "MCode prints positive numbers unsigned),")
+            if op.traced:
+                raise Unsupported("a trace report of the command the device runs (a trace mode, X150 XTR, "
+                                  "parker-x150.md L5384),")
             formatted = [spec for spec in op.formats if spec]
             if formatted:
                 raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "

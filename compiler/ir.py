@@ -361,7 +361,9 @@ class Print:
     report `*+4000`, L3141); a backend that cannot write the sign refuses the print. `formats`: the
     format of each item, by position ("" or missing: as the value prints), from
     `ir_names.PRINT_FORMATS` (`fixed 3`, `fixed 0 magnitude`, `bits 10`, `pad 2`): data the
-    simulator applies and a backend writes or refuses (docs/IR.md, "Print formats")."""
+    simulator applies and a backend writes or refuses (docs/IR.md, "Print formats"). `traced`: the
+    device's own report of the command it runs, sent only while its `trace` setting is on (X150
+    XTR, parker-x150.md L5384-L5433; docs/IR.md, "Trace reports")."""
 
     items: tuple[Expr, ...]
     newline: bool = True
@@ -369,6 +371,7 @@ class Print:
     axis: str = ""
     signed: bool = False
     formats: tuple[str, ...] = ()
+    traced: bool = False
 
 
 @dataclass(slots=True)

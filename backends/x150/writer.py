@@ -147,7 +147,7 @@ def homing_waits(module: ir.Module) -> dict[int, int]:
 
 class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
-        self.module = module
+        self.module = without_trace_reports(module)
         self.profile = profile
         self.cat = cat.load()
         self.out = Written()
@@ -1045,12 +1045,15 @@ class Writer:
 
     def levels(self, group: list) -> str:
         """Active levels of several inputs (or outputs) of one device as one INL/OUTL pattern."""
-        bits = ["X"] * LEVEL_COUNTS[group[0].name]
+        bits = {name: ["X"] * LEVEL_COUNTS[name] for name in {op.name for op in group}}
         for op in group:
             text = self.setting(op)
-            bits[op.index - 1] = text[-1] if group[0].name != "switch_active_high" else text[-2]
+            bits[op.name][op.index - 1] = text[-1] if op.name != "switch_active_high" else text[-2]
         head = self.address(group[0].axis)
-        return head + level_command(group[0].name, "".join(bits).rstrip("X"))
+        if "switch_active_high" in bits:   # one INL: the dedicated group, `_`, the user inputs (L2136)
+            user = "".join(bits.get("input_active_high", [])).rstrip("X")
+            return head + "INL" + "".join(bits["switch_active_high"]).rstrip("X") + "_" + user
+        return head + level_command(group[0].name, "".join(bits[group[0].name]).rstrip("X"))
 
     def handler(self, op: ir.SetHandler) -> None:
         command = HANDLER_COMMANDS.get(op.event)
@@ -1492,8 +1495,10 @@ def level_run(nodes: list, index: int) -> list:
     group = [first]
     for node in nodes[index + 1:]:
         op = node.op if isinstance(node, Simple) else None
-        if not (isinstance(op, ir.Setting) and op.name == first.name and op.axis == first.axis
-                and op.index not in {o.index for o in group}):
+        # INL's dedicated levels and its user inputs' make one INL (`INLXXXX10X_1XX1X0XX`)
+        names = (first.name, "input_active_high") if first.name == "switch_active_high" else (first.name,)
+        if not (isinstance(op, ir.Setting) and op.name in names and op.axis == first.axis
+                and (op.name, op.index) not in {(o.name, o.index) for o in group}):
             break
         group.append(op)
     return group
@@ -1521,6 +1526,17 @@ def report_command(op: ir.Print) -> str | None:
             and not op.signed:
         return REPORTS.get(op.items[0].meaning)
     return None
+
+
+def without_trace_reports(module: ir.Module) -> ir.Module:
+    """The module without its trace reports (`Print.traced`): an X150 in trace mode reports each
+    command it runs by itself (XTR, L5384-L5433), so they are not written. A copy when it has some."""
+    if not any(isinstance(op, ir.Print) and op.traced for _, block in module.blocks() for op in block.ops):
+        return module
+    copy = ir.copy_module(module)
+    for _, block in copy.blocks():
+        block.ops[:] = [op for op in block.ops if not (isinstance(op, ir.Print) and op.traced)]
+    return copy
 
 
 def describe_setting(name: str) -> str:

@@ -84,6 +84,7 @@ class Frame:
     head: str = ""  # L/WHILE/REPEAT: the block to go back to
     exit: str = ""  # WHILE: the block after the loop
     counter: str = ""  # L: the hidden counter variable
+    count: object = None  # L: the count it starts from (an IR expression)
     branch: ir.Branch | None = None  # IF: the conditional branch, its `otherwise` patched by ELSE/NIF
     ends: list[ir.Jump] = field(default_factory=list)  # IF: jumps to the join, patched at NIF
     else_seen: bool = False
@@ -134,6 +135,8 @@ class Lowering:
         self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
+        # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them
+        self.tracing = any(c.mnemonic == "XTR" for c in self.tree.commands())
         self.name_units()
         self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
         kinds = self.routine_kinds()
@@ -276,6 +279,8 @@ class Lowering:
         for command in unit.commands:
             self.lower_command(command)
         end = unit.end or unit.start
+        if self.tracing and unit.is_sequence and unit.end is not None:
+            self.trace(unit.end)
         self.close_all(end, "XT" if unit.is_sequence else "the end of the stream")
         end_span = unit.end.span if unit.end is not None else self.block.span
         if self.block.terminator is not None and unit.end is not None:
@@ -353,6 +358,8 @@ class Lowering:
                            f"{skip.mnemonic} skips the next command, here {command.text}: skipping one end of a "
                            f"construct unbalances the {'sequence' if self.unit.is_sequence else 'stream'} "
                            "(L3772, L3814); put a command such as T0.001 in between, or use IF(IN...)")
+        if self.tracing and self.unit.is_sequence:
+            self.trace(command)
         if role in OPENERS:
             self.open(command, OPENERS[role])
         elif role in CLOSERS:
@@ -488,6 +495,22 @@ class Lowering:
             op = self.native(command)
             self.emit(op)
 
+    def trace(self, command: st.Command) -> None:
+        """The device's trace report of `command`, sent while the trace is on (XTR1):
+        `;SEQUENCE: 1 COMMAND: G      LOOP COUNT: 2` in an L loop, the iteration of the innermost
+        one (L5408-L5433). The loop count is the counter's: n + 1 - %Lk (it counts down from n)."""
+        span = command.span
+        # the command as stored; the end is `XT` whatever address its download gave it (L5431)
+        text = "XT" if command is self.unit.end else command.text.strip()
+        items: tuple = (ir.Text(f";SEQUENCE: {self.unit.number} COMMAND: {text}", span),)
+        loop = next((f for f in reversed(self.frames) if f.kind == "L"), None)
+        if loop is not None:
+            iteration = ir.BinOp("-", ir.BinOp("+", loop.count, ir.Const(1, ir.Unit.NONE, span), span),
+                                 ir.Var(loop.counter, span), span)
+            items += (ir.Text("      LOOP COUNT: ", span), iteration)
+        axis = "" if self.device is None else str(self.device)
+        self.emit(ir.Print(items, True, span, axis, traced=True))
+
     def settable(self, command: st.Command) -> bool:
         """A setting command whose B prefix the backend writes back by itself: none, or the one every
         B-prefixable command takes inside a sequence."""
@@ -567,7 +590,7 @@ class Lowering:
             self.module.variables[counter] = ir.Variable(counter, ir.VarType.INT32, ir.Const(0), "local", span)
             count = self.value(command.arg, command.info) if command.arg is not None else ir.Const(0, ir.Unit.NONE, span)
             self.emit(ir.Assign(ir.Var(counter, span), count, span))
-            frame.counter = counter
+            frame.counter, frame.count = counter, count
             head = self.label()
             self.terminate(ir.Jump(head, span))
             self.new_block(span, head)

@@ -286,6 +286,9 @@ class X150Device(VirtualDevice):
                 lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
             if not parse(text)[0]:
                 text = unit.address + text   # an unaddressed XR1 runs the unit's sequence 1, stored as 1XD1
+            if any(value for (name, axis, _), value in self.sim.settings.items()
+                   if name == "trace" and axis in (unit.address, "*")):
+                lines.append(f"{unit.address}XTR1")   # trace on (XTR1 earlier): the run reports its commands
 
             if any('"' in line for body in unit.sequences.values() for line in body):
                 # a quote may start another device's sequence (`1"2XR3"`): theirs are in the program too

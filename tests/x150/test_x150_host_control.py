@@ -110,3 +110,34 @@ def test_setting_reports_are_per_device():
     trace = simulate(module("FOL50\n2FOL20\n1FOL\n2FOL\nFOL70\n2FOL\n2INL_1\n1INL\n2INL\n"))
     assert [text.strip().splitlines()[-1] for _, text in trace.prints] == [
         "50", "20", "70", "*0000000_0000000000", "*0000000_1000000000"]
+
+
+TRACED = "XE1\nXD1\nA10\nV5\nD25000\nL2\nG\nN\nXT\n1XTR{on}\nXR1\n"
+
+
+def test_trace_mode_reports_each_command_with_the_loop_count():
+    """XTR1: "commands will be echoed to the host ... if you have a loop (L) ... it will display
+    the iteration count" (parker-x150.md L5400-L5433, the example's output L5421-L5431)."""
+    trace = simulate(module(TRACED.format(on=1)))
+    assert [text.rstrip("\n") for _, text in trace.prints] == [
+        ";SEQUENCE: 1 COMMAND: A10", ";SEQUENCE: 1 COMMAND: V5", ";SEQUENCE: 1 COMMAND: D25000",
+        ";SEQUENCE: 1 COMMAND: L2", ";SEQUENCE: 1 COMMAND: G      LOOP COUNT: 1",
+        ";SEQUENCE: 1 COMMAND: N      LOOP COUNT: 1", ";SEQUENCE: 1 COMMAND: G      LOOP COUNT: 2",
+        ";SEQUENCE: 1 COMMAND: N      LOOP COUNT: 2", ";SEQUENCE: 1 COMMAND: XT"]
+    assert {e.kind for e in trace.events if e.data.get("text")} == {"trace"}
+
+
+def test_without_the_trace_on_nothing_is_reported_and_no_program_carries_trace_reports():
+    """XTR0 (the default, L5384) reports nothing; a program without XTR has no trace report."""
+    assert simulate(module(TRACED.format(on=0))).prints == []
+    mod = module("XE1\nXD1\nA10\nG\nXT\nXR1\n")
+    assert not any(isinstance(op, ir.Print) for _, block in mod.blocks() for op in block.ops)
+
+
+def test_the_x150_writer_leaves_trace_reports_to_the_device_and_verify_passes():
+    """The device reports by itself (L5400): the written program is the commands alone, and a
+    rewrite that changes the commands' text still behaves like its source."""
+    lines = output(TRACED.format(on=1))
+    assert not any("SEQUENCE" in line for line in lines) and "1XTR1" in lines
+    result = driver.compile_file("p.x150", "x150", text=TRACED.format(on=1), verify=True)
+    assert not result.has_errors, [d.message for d in result.diagnostics]
