@@ -101,6 +101,9 @@ class Options:
     # Jump over the rounds of a delay-paced polling loop that cannot differ from the last one
     # (Simulator._went_round); off, every round runs (the tests compare the two)
     skip_rounds: bool = True
+    # Single step: the run stops before its (n+1)-th trace report, having run n of the program's
+    # commands (a device in single-step mode; the trace reports mark where each command starts)
+    commands: int | None = None
 
 
 @dataclass
@@ -240,6 +243,7 @@ class Simulator:
         # the settings set in this run: (name, axis, input/output number) -> value
         self.settings: dict[tuple[str, str, int | None], values.Number] = {}
         self.paused_once = False  # S015 is reported once
+        self.commands_run = 0  # trace reports reached: the commands of the program begun (Options.commands)
         self.fixed_watches: dict[str, list] = {}
         self.read_continuous = False  # the running stretch read something that changes with time
         self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
@@ -716,8 +720,13 @@ class Simulator:
         return None
 
     def _do_print(self, op) -> Wait | None:
-        if op.traced and not self._tracing(op.axis):
-            return None
+        if op.traced:
+            self.commands_run += 1
+            if self.options.commands is not None and self.commands_run > self.options.commands:
+                raise Stop("step", f"single step: {self.options.commands} commands ran; the next waits for the "
+                                   "host's step request")
+            if not self._tracing(op.axis):
+                return None
         formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
         text = "".join(self._text(item, op.signed, spec) for item, spec in zip(op.items, formats)) \
             + ("\n" if op.newline else "")

@@ -135,8 +135,9 @@ class Lowering:
         self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
-        # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them
-        self.tracing = any(c.mnemonic == "XTR" for c in self.tree.commands())
+        # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them; they
+        # also mark where each command starts, which single step (XST, L5330-L5345) counts
+        self.tracing = any(c.mnemonic in ("XTR", "XST") for c in self.tree.commands())
         self.name_units()
         self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
         kinds = self.routine_kinds()

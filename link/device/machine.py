@@ -19,6 +19,7 @@ later command starts from that state, and a stop command ends the program.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 from dataclasses import dataclass, field
 
@@ -166,7 +167,19 @@ class DeviceMachine:
         self.slewing.clear()
 
     # -- running ---------------------------------------------------------------------------------
-    def run(self, module: ir.Module, entry: tuple[str, str | None] | None = None, program: bool = True) -> Outcome:
+    def snapshot(self) -> dict:
+        """The device's state, to run a program again from it (single step: each step request
+        replays the program from where it started, up to one more command)."""
+        return copy.deepcopy({"machine": self.machine, "variables": self.variables, "settings": self.settings,
+                              "active_high": self.active_high, "clock": self.clock})
+
+    def restore(self, state: dict) -> None:
+        state = copy.deepcopy(state)
+        self.machine, self.variables, self.settings = state["machine"], state["variables"], state["settings"]
+        self.active_high, self.clock = state["active_high"], state["clock"]
+
+    def run(self, module: ir.Module, entry: tuple[str, str | None] | None = None, program: bool = True,
+            commands: int | None = None) -> Outcome:
         """Run `module` from `entry` (see `starting_at`) on the device's machine and variables.
         `program`: this run is the device's program (its end sets the program's status); an
         immediate command runs on the same machine without changing the program's status."""
@@ -178,7 +191,7 @@ class DeviceMachine:
             vtype = module.type_of(name) or module.default_type or ir.VarType.FLOAT64  # registers: the lowering's
             scope = declared.scope if declared is not None else "global"
             module.variables[name] = ir.Variable(name, vtype, ir.Const(self.variables[name]), scope)
-        options = Options(until=self.run_limit, max_steps=MAX_STEPS, samples=False)
+        options = Options(until=self.run_limit, max_steps=MAX_STEPS, samples=False, commands=commands)
         try:
             simulator = Simulator(module, Scenario(inputs=dict(self.machine.inputs)), options, self.profile)
         except ContractError as exc:
