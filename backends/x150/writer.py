@@ -147,7 +147,7 @@ def homing_waits(module: ir.Module) -> dict[int, int]:
 
 class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
-        self.module = without_trace_reports(module)
+        module = self.module = without_trace_reports(module)
         self.profile = profile
         self.cat = cat.load()
         self.out = Written()
