@@ -264,12 +264,14 @@ class Move:
 
 @dataclass(slots=True)
 class Arc:
-    """Circular (angle None: full circle) or arc interpolation around a centre."""
+    """Circular (angle None: full circle) or arc interpolation around a centre. `angle` (degrees)
+    is the end point's direction from the centre, measured clockwise from the negative first
+    axis, not a sweep (docs/IR.md, "Arcs")."""
 
     axes: tuple[str, str]
     center: tuple[Expr, Expr]
     clockwise: bool
-    angle: Expr | None = None  # millidegrees
+    angle: Expr | None = None  # degrees: the end point's direction (docs/IR.md, "Arcs")
     span: Span | None = None
 
 
@@ -356,13 +358,20 @@ class Print:
     """Send text and values to the host. `axis` names the device that sends them when the line is
     addressed to one (an MCode party address); empty for the device the program runs on. `signed`:
     every value is sent with its sign, `+` for zero and positive numbers too (the X150's position
-    report `*+4000`, L3141); a backend that cannot write the sign refuses the print."""
+    report `*+4000`, L3141); a backend that cannot write the sign refuses the print. `formats`: the
+    format of each item, by position ("" or missing: as the value prints), from
+    `ir_names.PRINT_FORMATS` (`fixed 3`, `fixed 0 magnitude`, `bits 10`, `pad 2`): data the
+    simulator applies and a backend writes or refuses (docs/IR.md, "Print formats"). `traced`: the
+    device's own report of the command it runs, sent only while its `trace` setting is on (X150
+    XTR, parker-x150.md L5384-L5433; docs/IR.md, "Trace reports")."""
 
     items: tuple[Expr, ...]
     newline: bool = True
     span: Span | None = None
     axis: str = ""
     signed: bool = False
+    formats: tuple[str, ...] = ()
+    traced: bool = False
 
 
 @dataclass(slots=True)

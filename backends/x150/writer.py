@@ -147,7 +147,7 @@ def homing_waits(module: ir.Module) -> dict[int, int]:
 
 class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
-        self.module = module
+        module = self.module = without_trace_reports(module)
         self.profile = profile
         self.cat = cat.load()
         self.out = Written()
@@ -1033,23 +1033,27 @@ class Writer:
                 raise CannotWrite(f"X150 has no {'input' if name == 'input_function' else 'output'} function "
                                   f"'{function}' for line {index} (IN/OUT letters, L2058, L2974)", "G003")
             return prefix + ("IN" if name == "input_function" else "OUT") + str(index) + letters[function]
-        if name in ("input_active_high", "output_active_high"):
-            top = neutral.USER_INPUTS if name == "input_active_high" else neutral.OUTPUTS
+        if name in LEVELS:
+            top = LEVEL_COUNTS[name]
             if not (isinstance(op.value, ir.Const) and op.value.value in (0, 1) and 1 <= index <= top):
-                raise CannotWrite(f"X150 sets the active level of inputs 1-10 and outputs 1-6 to a constant 0 or 1 "
-                                  f"(INL/OUTL); this {name.replace('_', ' ')} has no equivalent", "G003")
+                raise CannotWrite(f"X150 sets the active level of its 7 dedicated inputs, inputs 1-10 and outputs "
+                                  f"1-6 to a constant 0 or 1 (INL/OUTL); this {name.replace('_', ' ')} has no "
+                                  "equivalent", "G003")
             bits = "X" * (index - 1) + str(int(op.value.value))
-            return prefix + ("INL_" + bits if name == "input_active_high" else "OUTL" + bits)
+            return prefix + level_command(name, bits)
         raise CannotWrite(f"the setting '{name}' ({describe_setting(name)}) has no X150 command", "G003")
 
     def levels(self, group: list) -> str:
         """Active levels of several inputs (or outputs) of one device as one INL/OUTL pattern."""
-        bits = ["X"] * (neutral.USER_INPUTS if group[0].name == "input_active_high" else neutral.OUTPUTS)
+        bits = {name: ["X"] * LEVEL_COUNTS[name] for name in {op.name for op in group}}
         for op in group:
             text = self.setting(op)
-            bits[op.index - 1] = text[-1]
+            bits[op.name][op.index - 1] = text[-1] if op.name != "switch_active_high" else text[-2]
         head = self.address(group[0].axis)
-        return head + ("INL_" if group[0].name == "input_active_high" else "OUTL") + "".join(bits).rstrip("X")
+        if "switch_active_high" in bits:   # one INL: the dedicated group, `_`, the user inputs (L2136)
+            user = "".join(bits.get("input_active_high", [])).rstrip("X")
+            return head + "INL" + "".join(bits["switch_active_high"]).rstrip("X") + "_" + user
+        return head + level_command(group[0].name, "".join(bits[group[0].name]).rstrip("X"))
 
     def handler(self, op: ir.SetHandler) -> None:
         command = HANDLER_COMMANDS.get(op.event)
@@ -1144,11 +1148,19 @@ class Writer:
         item = op.items[0] if len(op.items) == 1 else None
         report = report_command(op)
         if report is not None:
-            axis = neutral.report_axis(op) if report == "PR" else item.axis
+            axis = neutral.report_axis(op) if report == "PR" else neutral.levels_report_of(op)[1] \
+                if report in ("INL", "OUTL") else neutral.identity_report_of(op) if report == "QS" else item.axis
             if report == "PR" and self.factor_of(axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
             return self.address(op.axis or axis or ir.ALL_AXES) + report
+        sent = neutral.transmit_of(op)
+        if sent is not None:
+            return self.transmit(*sent)
+        if op.formats:
+            raise CannotWrite("X150 sends a formatted value only as TX (a text, then a variable with its decimals, "
+                              "L4463-L4483) or as its reports (PR, INL, OUTL, QS); this print has no equivalent",
+                              "G003")
         if any(isinstance(i, ir.Status) and i.meaning == "position" for i in op.items):
             raise CannotWrite("X150 sends a position only as its report, the sign always written (PR: *+4000, "
                               "*-25600, L3141); this print sends it in another form, which the host would read "
@@ -1159,6 +1171,17 @@ class Writer:
             return '"' + text.replace(" ", "_") + '"'
         raise CannotWrite("X150 transmits up to 50 characters of quoted text without quotes, underscores or a "
                           "line end (\"...\", L5589); this print has no equivalent", "G003")
+
+    def transmit(self, name: str, sign: bool, decimals: int, text: str) -> str:
+        """TXn,m,p,x (L4463-L4483): x is the rest of the command, printable ASCII without a comma."""
+        n = self.var_number(name)
+        if not n:
+            raise CannotWrite(f"X150 transmits only VAR1-VAR50 (TX); {name} has no equivalent", "G003")
+        if not text or len(text) > 40 or any(not 33 <= ord(c) <= 126 or c in ',";' for c in text) or decimals > 5:
+            raise CannotWrite("X150 transmits a variable after a text of printable characters without a comma, a "
+                              "quote or a semicolon, with up to 5 decimals (TX, L4463-L4483); this print has no "
+                              "equivalent", "G003")
+        return f"TX{n},{1 if sign else 0},{decimals},{text}"
 
     def assign(self, op: ir.Assign) -> str:
         n = self.var_number(op.target.name)
@@ -1454,7 +1477,14 @@ def describe(expr) -> str:
     return f"this {type(expr).__name__.lower()}"
 
 
-LEVELS = ("input_active_high", "output_active_high")
+LEVELS = ("input_active_high", "output_active_high", "switch_active_high")
+LEVEL_COUNTS = {"input_active_high": neutral.USER_INPUTS, "output_active_high": neutral.OUTPUTS,
+                "switch_active_high": len(neutral.DEDICATED)}
+
+
+def level_command(name: str, bits: str) -> str:
+    """INL_<user inputs>, INL<dedicated inputs>_ (L2136: LMT+ ... INDEX, then I1-I10) or OUTL<outputs>."""
+    return {"input_active_high": "INL_" + bits, "switch_active_high": "INL" + bits + "_"}.get(name, "OUTL" + bits)
 
 
 def level_run(nodes: list, index: int) -> list:
@@ -1465,8 +1495,10 @@ def level_run(nodes: list, index: int) -> list:
     group = [first]
     for node in nodes[index + 1:]:
         op = node.op if isinstance(node, Simple) else None
-        if not (isinstance(op, ir.Setting) and op.name == first.name and op.axis == first.axis
-                and op.index not in {o.index for o in group}):
+        # INL's dedicated levels and its user inputs' make one INL (`INLXXXX10X_1XX1X0XX`)
+        names = (first.name, "input_active_high") if first.name == "switch_active_high" else (first.name,)
+        if not (isinstance(op, ir.Setting) and op.name in names and op.axis == first.axis
+                and (op.name, op.index) not in {(o.name, o.index) for o in group}):
             break
         group.append(op)
     return group
@@ -1475,17 +1507,36 @@ def level_run(nodes: list, index: int) -> list:
 # The readings X150 reports with a command of their own, a line each: PR (*-25600, L3141, the print
 # `neutral.position_report` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
 # 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
-REPORTS = {"following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
+REPORTS = {"following_ratio": "FOL"}
 
 
 def report_command(op: ir.Print) -> str | None:
-    """The X150 report a print is, when it is a line with one such reading alone."""
+    """The X150 report a print is, when it is a line with one such reading alone, or the shape the
+    lowering gives INL, OUTL (compiler/x150/neutral.levels_report) and QS (identity_report)."""
     if neutral.report_axis(op) is not None:
         return "PR"
+    levels = neutral.levels_report_of(op)
+    if levels is not None:
+        return levels[0]
+    if neutral.identity_report_of(op) is not None:
+        return "QS"
+    if op.formats:
+        return None
     if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline \
             and not op.signed:
         return REPORTS.get(op.items[0].meaning)
     return None
+
+
+def without_trace_reports(module: ir.Module) -> ir.Module:
+    """The module without its trace reports (`Print.traced`): an X150 in trace mode reports each
+    command it runs by itself (XTR, L5384-L5433), so they are not written. A copy when it has some."""
+    if not any(isinstance(op, ir.Print) and op.traced for _, block in module.blocks() for op in block.ops):
+        return module
+    copy = ir.copy_module(module)
+    for _, block in copy.blocks():
+        block.ops[:] = [op for op in block.ops if not (isinstance(op, ir.Print) and op.traced)]
+    return copy
 
 
 def describe_setting(name: str) -> str:
