@@ -1,7 +1,7 @@
 // The commands that run mcc on the active program: compile (always validated), simulate (the plot
 // in a panel), download and upload (in a terminal, where the device's replies and the progress
 // show as they come and a wrong port can be corrected and the command run again).
-import { execFile } from "child_process";
+import { ChildProcess, execFile, spawn } from "child_process";
 import * as fs from "fs";
 import * as path from "path";
 import * as vscode from "vscode";
@@ -152,9 +152,12 @@ async function compile(
   for (const d of report.diagnostics) {
     runner.output.appendLine(formatDiagnostic(relative, d));
   }
+  // The language server already shows what `mcc check` finds in the program's own dialect: only
+  // what compiling adds is shown again (errors that stopped it, findings about another target).
+  const added = report.diagnostics.filter((d) => d.severity === "error" || target !== dialect);
   problems.set(
     document.uri,
-    report.diagnostics.map((d) => {
+    added.map((d) => {
       const line = Math.max(0, d.line - 1);
       const range = new vscode.Range(line, Math.max(0, d.column - 1), line, Number.MAX_SAFE_INTEGER);
       const severity =
@@ -246,10 +249,29 @@ ${picture}
 </body></html>`;
 }
 
+/**
+ * Runs mcc in a terminal of its own: its output shows as it comes, and the terminal stays open after
+ * mcc exits (a terminal started on a program closes when the program ends, taking the result with it).
+ */
 function terminal(runner: Runner, name: string, args: string[], cwd: string): void {
   runner.output.appendLine(`> ${runner.command()} ${args.join(" ")}`);
-  const shown = vscode.window.createTerminal({ name, shellPath: runner.command(), shellArgs: args, cwd });
-  shown.show();
+  const write = new vscode.EventEmitter<string>();
+  let child: ChildProcess | undefined;
+  const show = (text: string) => write.fire(text.replace(/\r?\n/g, "\r\n"));
+  const pty: vscode.Pseudoterminal = {
+    onDidWrite: write.event,
+    open: () => {
+      show(`> mcc ${args.join(" ")}\n`);
+      child = spawn(runner.command(), args, { cwd });
+      child.stdout?.on("data", (data: Buffer) => show(data.toString()));
+      child.stderr?.on("data", (data: Buffer) => show(data.toString()));
+      child.on("error", (error) => show(`\ncould not run ${runner.command()}: ${error.message}\n`));
+      child.on("close", (code) => show(`\n[mcc exited with code ${code ?? "?"}]\n`));
+    },
+    close: () => child?.kill(),
+    handleInput: (data: string) => child?.stdin?.write(data === "\r" ? "\n" : data),
+  };
+  vscode.window.createTerminal({ name, pty }).show();
 }
 
 async function upload(runner: Runner): Promise<void> {
