@@ -193,7 +193,7 @@ def workbench(tmp_path_factory):
     for sample in SAMPLES:
         shutil.copy(ROOT / sample.file, workspace)
     env = {**os.environ, "XDG_CONFIG_HOME": str(base / "config"), "XDG_DATA_HOME": str(base / "data"),
-           "VIRTUAL_ENV": "", "PATH": "/usr/bin:/bin"}  # no mcc on PATH: only the workspace's venv has it
+           "VIRTUAL_ENV": "", "PATH": f"{Path(NODE).parent}:/usr/bin:/bin"}  # no mcc on PATH: only the workspace's venv has it
     processes = []
     try:
         device = subprocess.Popen([str(MCC), "device", "--dialect", "mcode"], stdout=subprocess.PIPE,
@@ -209,10 +209,11 @@ def workbench(tmp_path_factory):
             "telemetry.telemetryLevel": "off", "update.mode": "none", "extensions.autoCheckUpdates": False,
             "workbench.tips.enabled": False, "terminal.integrated.gpuAcceleration": "off",
             "workbench.editor.enablePreview": False, "editor.stickyScroll.enabled": False,
+            "mcc.trace.server": "messages",
         }), encoding="utf-8")
         options = ["--user-data-dir", str(user), "--extensions-dir", str(base / "extensions")]
         installed = subprocess.run([NODE, str(CODE_SERVER), *options, "--install-extension", str(VSIX)],
-                                   env=env, capture_output=True, text=True, timeout=120)
+                                   env=env, capture_output=True, text=True, timeout=120, check=False)
         assert "successfully installed" in installed.stdout, installed.stdout + installed.stderr
         server = subprocess.Popen(
             [NODE, str(CODE_SERVER), *options, "--auth", "none", "--bind-addr", "127.0.0.1:0",
@@ -341,3 +342,12 @@ def test_download_runs_in_a_terminal(editor):
     terminal.wait_for(timeout=WAIT)
     terminal.filter(has_text="[mcc exited with code 0]").wait_for(timeout=WAIT)  # and stays open
     assert "downloaded and verified" in terminal.inner_text()
+
+
+def test_trace_setting_logs_the_messages(editor):
+    """mcc.trace.server (set to "messages" in the user settings) logs each LSP message in the "mcc"
+    output, where a user reporting a problem finds what the editor and the server said."""
+    logs = "".join(log.read_text(encoding="utf-8", errors="replace")
+                   for log in editor.user.glob("logs/**/*mcc*.log"))
+    assert "Sending request 'textDocument/hover" in logs, logs[-2000:]
+    assert "Received notification 'textDocument/publishDiagnostics'" in logs, logs[-2000:]
