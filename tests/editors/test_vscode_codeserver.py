@@ -351,3 +351,18 @@ def test_trace_setting_logs_the_messages(editor):
                    for log in editor.user.glob("logs/**/*mcc*.log"))
     assert "Sending request 'textDocument/hover" in logs, logs[-2000:]
     assert "Received notification 'textDocument/publishDiagnostics'" in logs, logs[-2000:]
+
+
+def test_upload_asks_for_the_file_and_writes_it(editor):
+    """mcc: Upload reads the program back from the device (the virtual one, holding what Download put
+    there) into the file chosen in the save dialog, a source `mcc check` accepts."""
+    editor.open("analog_speed.mxt")
+    editor.command("mcc: Upload the program from the device")
+    box = editor.page.locator(".quick-input-widget input")  # code-server's save dialog
+    box.wait_for(state="visible", timeout=WAIT)
+    target = editor.workspace / "uploaded.mxt"
+    box.fill(str(target))
+    editor.page.keyboard.press("Enter")
+    terminal = editor.page.locator(".terminal-wrapper.active .xterm-rows")
+    terminal.filter(has_text="mcc upload").filter(has_text="[mcc exited with code 0]").wait_for(timeout=WAIT)
+    assert "LB A1" in target.read_text(encoding="utf-8")
