@@ -31,7 +31,9 @@ VSIX = EXTENSION / "mcc-motion.vsix"
 CODE_SERVER = Path(os.environ.get(
     "MCC_CODE_SERVER", EXTENSION / "tests" / "codeserver" / "node_modules" / "code-server" / "out" / "node" / "entry.js"))
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-NODE = shutil.which("node")
+# install.sh puts Node.js 20 (code-server's) in node20/ where the machine's node is another version
+NODE20 = sorted((EXTENSION / "tests" / "codeserver" / "node20" / "node_modules").glob("node-linux-*/bin/node"))
+NODE = str(NODE20[0]) if NODE20 else shutil.which("node")
 # The pictures in docs/EDITORS.md: written there with MCC_VSCODE_SCREENSHOTS=1, else beside the workspace.
 DOC_IMAGES = ROOT / "docs" / "images"
 INSTALL = ("bash editors/vscode/tests/codeserver/install.sh (code-server, Chromium, Playwright), then "

@@ -27,10 +27,21 @@ fi
 
 "$python" -m pip install --quiet "playwright>=1.40,<2"
 
-node_major="$(node -p 'process.versions.node.split(".")[0]')"
-if [ "$node_major" != 20 ]; then
-    echo "install.sh: code-server 4.100.3 needs Node.js 20; this machine has $(node --version)" >&2
-    exit 1
+# code-server 4.100.3 runs on Node.js 20 only. Where the machine has another (Debian 12's nodejs is
+# 18), Node.js 20 comes from the npm registry's node-linux-<arch> package, which ships the binary and
+# the headers the native modules are built against; the test runs code-server with it (node20/).
+node_major="$(node -p 'process.versions.node.split(".")[0]' 2>/dev/null || echo none)"
+if [ "$node_major" != 20 ] || [ -n "${MCC_NODE20_FROM_NPM:-}" ]; then
+    case "$(uname -m)" in
+        x86_64) arch=x64 ;;
+        aarch64) arch=arm64 ;;
+        *) echo "install.sh: no Node.js 20 package for $(uname -m); install Node.js 20" >&2; exit 1 ;;
+    esac
+    node20="$here/node20/node_modules/node-linux-$arch"
+    if [ ! -x "$node20/bin/node" ]; then
+        npm install --prefix "$here/node20" --no-save --no-audit --no-fund --loglevel=error "node-linux-$arch@20"
+    fi
+    export PATH="$node20/bin:$PATH" npm_config_nodedir="$node20"
 fi
 
 stamp="$here/node_modules/.mcc-installed"
