@@ -1,7 +1,8 @@
 """How strong is the oracle? Small wrong changes to the backends and the optimizer, one at a time,
 and whether validation notices them (issue 23, "Oracle strength is measured").
 
-    .venv/bin/python bench/mutants.py [--only NAME,...] [--generated N] [--jobs J] [--full] [--list]
+    .venv/bin/python bench/mutants.py [--only NAME,...] [--programs TEXT,...] [--generated N] [--jobs J]
+                                      [--full] [--list]
 
 Each mutant is one row of `MUTANTS`: a file of the package, a piece of its text that occurs exactly
 once, and the wrong text to put there (a flipped comparison, a dropped wait, an off-by-one loop
@@ -319,6 +320,8 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--only", help="comma-separated mutant names")
     parser.add_argument("--generated", type=int, default=20, help="generated programs per dialect in the corpus")
+    parser.add_argument("--programs", help="comma-separated texts: keep only the corpus programs whose name holds "
+                                           "one (while developing; the figure is the whole corpus's)")
     parser.add_argument("--jobs", type=int, default=1)
     parser.add_argument("--full", action="store_true", help="run the whole corpus for every mutant")
     parser.add_argument("--list", action="store_true", help="list the mutants and exit")
@@ -335,6 +338,9 @@ def main(argv: list[str] | None = None) -> int:
 
     start = time.monotonic()
     programs = corpus(args.generated)
+    if args.programs:
+        wanted = args.programs.split(",")
+        programs = [p for p in programs if any(w in p["name"] for w in wanted)]
     compiles = [f"{i}|{t}|{lvl}" for i in range(len(programs)) for t in TARGETS for lvl in LEVELS]
     base = run_worker({"programs": programs, "compiles": compiles}, None)["verdicts"]
     validated = [k for k in compiles if base.get(k, ["?"])[0] == "validated"]
