@@ -79,6 +79,10 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant("mcode-call-as-jump", M, 'return f"CL {target}"', 'return f"BR {target}"', "call written as a jump"),
     Mutant("mcode-print-newline", M, "{'' if op.newline else ';'}", "{';' if op.newline else ''}",
            "print line end flipped"),
+    Mutant("mcode-print-text-stripped", M, "        if isinstance(node, ir.Text):\n            return f'\"{node.value}\"'\n"
+           "        if isinstance(node, (ir.Compare,",
+           "        if isinstance(node, ir.Text):\n            return f'\"{node.value.strip()}\"'\n"
+           "        if isinstance(node, (ir.Compare,", "print text with its spaces stripped"),
     # --- X150 backend
     Mutant("x150-mpa-mpi", X, '"MPA" if op.mode is ir.MoveMode.ABSOLUTE else "MPI"',
            '"MPI" if op.mode is ir.MoveMode.ABSOLUTE else "MPA"', "move mode flipped"),
@@ -154,9 +158,14 @@ MUTANTS: tuple[Mutant, ...] = (
            "if start >= last_end.get(bi, -1) - 1:", "overlapping repeated runs outlined (-Os)"),
     Mutant("outline-eats-next-op", "compiler/opt/outline.py", "ops[start:start + length] = [ir.Call(",
            "ops[start:start + length + 1] = [ir.Call(", "outlined run replaces one operation too many (-Os)"),
+    # (in the pass, not in opt/common.reached, which the validation's fingerprint shares)
     Mutant("unreachable-first-successor", "compiler/opt/unreachable.py",
-           "stack.extend(ir.successors(by_label[label].terminator))",
-           "stack.extend(list(ir.successors(by_label[label].terminator))[:1])",
+           "        seen = reached({b.label: b for b in routine.blocks}, roots)\n",
+           "        by_label = {b.label: b for b in routine.blocks}\n        seen, todo = set(), list(roots)\n"
+           "        while todo:\n            label = todo.pop()\n"
+           "            if label in seen or label not in by_label:\n                continue\n"
+           "            seen.add(label)\n"
+           "            todo.extend(list(ir.successors(by_label[label].terminator))[:1])\n",
            "reachable blocks removed (only a branch's first target followed)"),
     Mutant("tails-different-ops", "compiler/opt/tails.py", "len({key(s.ops[-1]) for s in sources}) == 1",
            "len({key(s.ops[-1]) for s in sources}) <= 2", "different tails hoisted into the join"),
