@@ -98,6 +98,10 @@ class CannotWrite(Exception):
 
 
 State = dict  # ("pos"|"move"|"D", axis) -> the mode or D text known to be in force
+# s: how much later a move may end on X150, which starts it from standstill, than in a source that
+# starts it at its initial speed (one tick, the validation's time resolution; profile `[x150]
+# start_speed_drift`)
+START_SPEED_DRIFT = 0.001
 
 
 def meet(a: State, b: State) -> State:
@@ -172,6 +176,8 @@ class Writer:
         self.in_sequence = False
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
+        # id(value) of an initial speed setting -> why X150 cannot leave it out (X216)
+        self.start_speeds_refused: dict[int, str] = {}
         self.previous: ir.Op | None = None  # the operation written last
         self.upcoming: ir.Op | None = None  # the operation written next in the same list, if simple
         self.rest: list = []  # the nodes after the one being written, in the same list
@@ -312,6 +318,9 @@ class Writer:
             self.out.header = self.header()
         for _, _, op, state in self.each_op():
             self.forces[id(op)] = state
+            if isinstance(op, ir.Move):
+                for axis, _ in op.targets:
+                    self.check_start_speed(state, axis)
         selected = set()
         for routine in self.module.routines:
             for block in routine.blocks:
@@ -791,6 +800,8 @@ class Writer:
                                   f"keeps one CUR per device ({self.resolution_of(op.axis)} user steps/rev)", "G003")
             self.emit(prefix + ("B" if self.in_sequence else "") + "CUR" + number(op.value.value), span)
         elif param is ir.MotionParam.INITIAL_SPEED:
+            if id(op.value) in self.start_speeds_refused:
+                raise CannotWrite(self.start_speeds_refused[id(op.value)], "X216")
             self.out.diagnostics.add("X205", span or self.fallback_span(),
                                      "X150 moves start from standstill: it has no initial (start) speed, so "
                                      "this one is left out and each move ramps from 0 at A")
@@ -799,6 +810,44 @@ class Writer:
                 raise CannotWrite("X150 ramps are trapezoidal only; an S-curve profile has no equivalent", "G003")
         else:
             raise CannotWrite(f"X150 has no command for the {param.value.replace('_', ' ')}", "G003")
+
+    def check_start_speed(self, state: dict, axis: str) -> None:
+        """X150 starts every move from standstill (it has no initial speed, docs/dialects/x150.md). A
+        source move that starts at v0 > 0 and ramps at a ends later on X150, by at most 2 * v0 / a
+        (the ramp from 0 to v0 at each end; less on a short move). Where that exceeds the profile's
+        `[x150] start_speed_drift` (one tick, 1 ms, by default), the initial speed in force is refused
+        at its own line (X216) rather than written as a program the validation then refuses (S010).
+        The acceleration is the one in force, or a ramp time's with the speeds in force."""
+        start = lookup(state, ir.MotionParam.INITIAL_SPEED, axis)
+        if start is None or id(start) in self.start_speeds_refused or not isinstance(start.value, (int, float)) \
+                or start.value <= 0:
+            return
+        v0 = float(start.value)
+        accel = lookup(state, ir.MotionParam.ACCEL, axis)
+        ramp = lookup(state, ir.MotionParam.ACCEL_TIME, axis)
+        top = lookup(state, ir.MotionParam.MAX_SPEED, axis)
+        rate = None
+        if accel is not None and float(accel.value) > 0:
+            rate = float(accel.value)
+        elif ramp is not None and top is not None and float(ramp.value) > 0 and float(top.value) > v0:
+            rate = (float(top.value) - v0) / float(ramp.value)
+        limit = float(self.profile.get("x150.start_speed_drift", START_SPEED_DRIFT) if self.profile else
+                      START_SPEED_DRIFT)
+        speed = f"{number(v0)} {start.unit.value}"
+        if rate is None:
+            self.start_speeds_refused[id(start)] = (
+                f"X150 starts every move from standstill and has no initial speed; with the initial speed {speed} "
+                "and an acceleration not known here, how much later its moves would end cannot be bounded: set "
+                "the initial speed to 0 (or its lowest) or the acceleration with a constant")
+            return
+        drift = 2 * v0 / rate
+        if drift > limit:
+            self.start_speeds_refused[id(start)] = (
+                f"X150 starts every move from standstill and has no initial speed: a move starting at {speed} "
+                f"would end up to {drift * 1000:.3g} ms later (2 x initial speed / acceleration), more than the "
+                f"{limit * 1000:g} ms the profile allows ([x150] start_speed_drift); lower the initial speed to "
+                f"{number(round(rate * limit / 2, 3))} {start.unit.value} or less, or compile to a target "
+                "with a start speed")
 
     def ranged(self, mnemonic: str, text: str, what: str, unit: str) -> str:
         """`text` when the catalog's range for `mnemonic` takes it (a (VARn) is checked on the device)."""
