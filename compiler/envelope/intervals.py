@@ -94,6 +94,7 @@ class Check:
     loops: tuple[str, ...]  # notes: the loops (header line, count) the move runs in
     homed: Interval
     before: Interval = TOP  # where the axis may be when the move starts
+    anchored: Interval = TOP  # 1 on the paths where an absolute move, homing or position set came first
     branches: tuple[int, ...] = ()  # lines of the routine's branches before the move
 
 
@@ -255,6 +256,7 @@ class Analyzer:
         for axis, env in self.envelopes.items():
             state[POS + axis] = Interval(env.min if env.min is not None else -INF, env.max if env.max is not None else INF)
             state[HOMED + axis] = point(0)
+            state[ANCHOR + axis] = point(0)
         return state
 
     def run(self) -> Result:
@@ -454,8 +456,9 @@ class Analyzer:
                     if report is not None:
                         line = op.span.line if op.span else 0
                         report.checks.append(Check(op, axis, target, relative, loops, state.get(HOMED + axis, TOP),
-                                                   state.get(POS + axis, TOP),
-                                                   tuple(b for b in self.branch_lines if b < line)[-3:]))
+                                                   before=state.get(POS + axis, TOP),
+                                                   branches=tuple(b for b in self.branch_lines if b < line)[-3:],
+                                                   anchored=state.get(ANCHOR + axis, TOP)))
                     env = self.envelopes[axis]
                     travel = Interval(env.min if env.min is not None else -INF, env.max if env.max is not None else INF)
                     inside = target.meet(travel)

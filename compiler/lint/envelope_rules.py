@@ -13,7 +13,7 @@ import math
 from mcc.compiler import dialects, ir
 from mcc.compiler.diagnostics import Severity
 from mcc.compiler.envelope.axes import AxisEnvelope, envelopes
-from mcc.compiler.envelope.intervals import Analyzer, Interval, Result
+from mcc.compiler.envelope.intervals import Analyzer, Result
 from mcc.compiler.lint.rules import Context, rule
 
 ALL = tuple(dialects.names())
@@ -65,16 +65,16 @@ def travel_exceeded(ctx: Context) -> None:
                        "would run into its end of travel; change the target or the travel in [tool.mcc.axes]",
                        notes=notes)
             continue
+        if check.relative and check.anchored.lo < 1:
+            continue  # where it starts is unknown (nothing anchored the axis yet): G304's question, not a path's
         over = t.hi > high and not math.isinf(t.hi)
         under = t.lo < low and not math.isinf(t.lo)
         if over or under:
             seen.add(key)
             bound = f"above the max {env.shown(high)}" if over else f"below the min {env.shown(low)}"
-            anywhere = check.relative and check.before == Interval(low, high)
-            why = "the axis may start anywhere in its travel" if anywhere else "a branch or a loop pass decides which"
+            why = "a branch or a loop pass decides which"
             notes += feeding(result, check.op, axis_expr(check), low, high)
-            if not anywhere:
-                notes += [f"line {line}: a branch that decides the path" for line in check.branches]
+            notes += [f"line {line}: a branch that decides the path" for line in check.branches]
             ctx.diagnostics.add(ctx.code, check.op.span,
                                 f"this move may take axis {check.axis} {bound} (target {t.text()}): some paths "
                                 f"leave the travel ({why}); bound the target or home the axis first",
