@@ -948,8 +948,9 @@ class Simulator:
         """The axis reached its end of travel: the limit switch stops it, and the run (S017)."""
         op, target, end = self.travel_hit.pop(axis.name)
         span = getattr(op, "span", None)
-        message = (f"axis {axis.name} reached its end of travel at {end:g} (the move asked for {target:g}): the limit "
-                   "switch stops it here; keep the target inside [tool.mcc.axes] min/max")
+        asked = f"the move asked for {target:g}" if target != end else "it was running at a constant speed"
+        message = (f"axis {axis.name} reached its end of travel at {end:g} ({asked}): the limit "
+                   "switch stops it here; keep the axis inside its travel ([tool.mcc.axes] min/max)")
         self._event(op, "travel", axis=axis.name, position=_round(end), target=_round(target))
         self.diags.add("S017", span or _file_span(self.module.path), message)
         raise Stop("travel", f"{message} (line {_line(span)})")
@@ -1145,6 +1146,13 @@ class Simulator:
         if fixed is None:
             fixed = self.fixed_watches[name] = self._fixed_watches(name)
         out = list(fixed)
+        axis = self._axis(name)
+        if name in self.travel and axis.motion is not None and axis.motion.path.length == INF:
+            # a slew runs until something stops it: its end of travel (a move is cut to it in _move)
+            offset = axis.offset
+            for end, where in zip(("min", "max"), self.travel[name]):
+                if where is not None:
+                    out.append((("travel", end), where + offset))
         handler = self.handlers.get("position")
         if handler is not None and handler.armed and handler.args and name == self._handler_axis():
             try:
@@ -1183,6 +1191,12 @@ class Simulator:
             self._event(op, "limit", axis=name, switch=key[1], position=axis.position)
             self._fault(RuntimeFault("S004", f"axis {name} hit its {key[1]} limit switch at {where:g} steps",
                                      kind="fault"), op)
+        elif key[0] == "travel":
+            op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            self._stop_axis(axis, False, None, record=False)
+            end = where - axis.offset
+            self.travel_hit[name] = (op, end, end)
+            self._travel_stop(axis)
         elif key[0] == "handler":
             handler = self.handlers.get("position")
             if handler is not None and handler.armed:

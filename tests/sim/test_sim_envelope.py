@@ -102,3 +102,12 @@ def test_cli_sim_sweep_and_compile_print_them(tmp_path) -> None:
     out = subprocess.run([*mcc, "compile", str(cyc), "-o", str(tmp_path / "o.x150")], capture_output=True, text=True,
                          cwd=tmp_path)
     assert "cycle 1.600 s, 1 moves" in out.stderr, out.stderr
+
+
+def test_slew_stops_at_the_end_of_travel() -> None:
+    """MCode SL 20000 (lexium-mcode.txt: slew at a constant velocity) runs until something stops it:
+    with a travel of 0..10000 the limit switch does, at 10000, about half a second in."""
+    trace = run("PG 100\nSL 20000\nH 2000\nSL 0\nE\nPG\n", "a.mxt")
+    assert trace.stopped == "travel" and trace.axes["1"] == pytest.approx(10000)
+    assert [d.span.line for d in trace.diagnostics if d.code == "S017"] == [2]
+    assert 0.5 < trace.time < 1.0
