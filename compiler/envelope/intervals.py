@@ -27,7 +27,8 @@ from mcc.compiler.lint import flow
 INF = math.inf
 POS = "@pos:"
 HOMED = "@homed:"
-ANCHOR = "@anchor:"  # summaries: 1 once the callee set the position absolutely
+ANCHOR = "@anchor:"
+SET = "@set:"  # a motion setting in force on an axis: "@set:max_speed:X"  # summaries: 1 once the callee set the position absolutely
 WIDEN_AFTER = 2  # visits of a loop header before its growing values are extrapolated or widened
 NARROWING = 2
 
@@ -111,6 +112,10 @@ class Result:
     unbounded: dict[int, tuple[object, str, str]] = field(default_factory=dict)  # id(move) -> (move, axis, loop note)
     settings: list[tuple[object, Interval]] = field(default_factory=list)  # (SetMotion, value)
     assigns: dict[str, list[tuple[object, Interval]]] = field(default_factory=dict)  # name -> (Assign, value)
+    # what a motion runs at, beside the settings themselves: (operation, axis, quantity, value) with
+    # quantity "speed" (a slew's velocity, a homing's speed) or "ramp" (the acceleration a ramp time
+    # gives with the speeds in force: (max - initial) / time)
+    motion: list[tuple[object, str, str, Interval]] = field(default_factory=list)
 
 
 def loop_count(loop: flow.Loop, blocks_in: set[str], state: State, entry: State, types) -> int | None:
@@ -417,6 +422,18 @@ class Analyzer:
         self.branch_lines = caller_branches
         return exit_state
 
+    def note_ramp(self, state: State, op, axis: str, report: Result) -> None:
+        """The acceleration a ramp time in force gives a move: (max speed - initial speed) / time."""
+        time = state.get(SET + "accel_time:" + axis)
+        if time is None or time.lo <= 0 or math.isinf(time.hi):
+            return
+        top = state.get(SET + "max_speed:" + axis, TOP)
+        start = state.get(SET + "initial_speed:" + axis, point(0.0))
+        if math.isinf(top.hi) or math.isinf(start.lo):
+            return
+        report.motion.append((op, axis, "ramp", Interval(max(0.0, (top.lo - start.hi) / time.hi),
+                                                         max(0.0, (top.hi - start.lo) / time.lo))))
+
     def note_unbounded(self, result: Result, loop: flow.Loop) -> None:
         """The relative moves of a loop whose count is unbounded, on each axis the loop does not
         re-anchor (no absolute move, homing or position set) and whose distances do not cancel."""
@@ -454,6 +471,7 @@ class Analyzer:
                     relative = op.mode is ir.MoveMode.RELATIVE
                     target = arith("+", state.get(POS + axis, TOP), value) if relative else value
                     if report is not None:
+                        self.note_ramp(state, op, axis, report)
                         line = op.span.line if op.span else 0
                         report.checks.append(Check(op, axis, target, relative, loops, state.get(HOMED + axis, TOP),
                                                    before=state.get(POS + axis, TOP),
@@ -480,6 +498,14 @@ class Analyzer:
                 out[HOMED + axis] = point(1)
                 out[ANCHOR + axis] = point(1)
             return out
+        if isinstance(op, (ir.Slew, ir.Home)) and report is not None:
+            speed = op.velocity if isinstance(op, ir.Slew) else op.speed
+            if speed is not None:
+                value = evaluate(speed, state)
+                magnitude = Interval(0.0 if value.lo <= 0 <= value.hi else min(abs(value.lo), abs(value.hi)),
+                                     max(abs(value.lo), abs(value.hi)))
+                for axis in self.axes_of(op.axis):
+                    report.motion.append((op, axis, "speed", magnitude))
         if isinstance(op, (ir.Arc, ir.Slew)):
             out = dict(state)
             for axis_name in (op.axes if isinstance(op, ir.Arc) else (op.axis,)):
@@ -489,9 +515,11 @@ class Analyzer:
                                                env.max if env.max is not None else INF)
                     out[ANCHOR + axis] = TOP
             return out
-        if isinstance(op, ir.SetMotion) and report is not None:
-            report.settings.append((op, evaluate(op.value, state)))
-            return state
+        if isinstance(op, ir.SetMotion):
+            value = evaluate(op.value, state)
+            if report is not None:
+                report.settings.append((op, value))
+            return {**state, **{SET + op.param.value + ":" + a: value for a in self.axes_of(op.axis)}}
         if isinstance(op, ir.Call):
             summary = self.summary(op.routine)
             out = dict(state)

@@ -131,6 +131,21 @@ def above_mechanics(ctx: Context) -> None:
                                 + ("" if every else " (on some paths)"),
                                 severity=Severity.ERROR if every else Severity.WARNING)
             break
+    seen: set[tuple[int, str]] = set()
+    for op, axis, quantity, value in result.motion:
+        field_name, unit = ("max_speed", "steps/s") if quantity == "speed" else ("max_accel", "steps/s²")
+        limit = getattr(envs[axis], field_name)
+        if limit is None or value.hi <= limit or op.span is None or (id(op), quantity) in seen:
+            continue
+        seen.add((id(op), quantity))
+        what = f"runs axis {axis} at {value.text()} {unit}" if quantity == "speed" else \
+            f"ramps axis {axis} at {value.text():s} {unit} (the maximum speed less the initial speed over the ramp time)"
+        every = value.lo > limit
+        ctx.diagnostics.add(ctx.code, op.span,
+                            f"this motion {what}, above the mechanics' limit of {limit:g} {unit} "
+                            f"([tool.mcc.axes.{axis}]): lower the speed or lengthen the ramp"
+                            + ("" if every else " (on some paths)"),
+                            severity=Severity.ERROR if every else Severity.WARNING)
 
 
 @rule("G303", *ALL)

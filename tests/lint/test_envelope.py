@@ -221,3 +221,22 @@ def test_profile_envelope_under_the_projects(tmp_path) -> None:
     bad.write_text('extends = "lmd-c"\n[envelope.1]\nmni = 0\n', encoding="utf-8")
     with pytest.raises(profiles.ProfileError, match="mni"):
         profiles.load(str(bad))
+
+
+def test_ramp_time_and_slew_speed_above_the_mechanics() -> None:
+    """Arcus ACC is a ramp time in ms from LSPD to HSPD (arcus-pmx-4ex-sa.txt L333 is the limit that
+    stops the axis otherwise): (10001 - 1) / 0.1 s = 100000 steps/s² > 50000; with ACC=300,
+    (10001 - 1) / 0.3 = 33333 steps/s² is inside. MCode SL 200000 is above max-speed 100000."""
+    cfg = settings("""
+        [tool.mcc.axes.X]
+        max-accel = 50000
+        [tool.mcc.axes.1]
+        max-speed = 100000
+    """)
+    program = "ABS\nHSPD=10000\nLSPD=0\nACC={acc}\nX1000\nWAITX\nEND\n"
+    fast = [(d.code, d.span.line) for d in lint(program.format(acc=100), "a.prg", cfg) if d.code == "G302"]
+    assert fast == [("G302", 5)]
+    assert [d for d in lint(program.format(acc=300), "a.prg", cfg) if d.code == "G302"] == []
+    slew = [(d.code, d.span.line) for d in lint("PG 100\nSL 200000\nH 100\nSL 0\nE\nPG\n", "a.mxt", cfg)
+            if d.code == "G302"]
+    assert slew == [("G302", 2)]
