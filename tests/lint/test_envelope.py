@@ -233,7 +233,7 @@ def test_ramp_time_and_slew_speed_above_the_mechanics() -> None:
         [tool.mcc.axes.1]
         max-speed = 100000
     """)
-    program = "ABS\nHSPD=10000\nLSPD=0\nACC={acc}\nX1000\nWAITX\nEND\n"
+    program = "ABS\nHSPD=10001\nLSPD=1\nACC={acc}\nX1000\nWAITX\nEND\n"
     fast = [(d.code, d.span.line) for d in lint(program.format(acc=100), "a.prg", cfg) if d.code == "G302"]
     assert fast == [("G302", 5)]
     assert [d for d in lint(program.format(acc=300), "a.prg", cfg) if d.code == "G302"] == []
