@@ -28,6 +28,7 @@ INF = math.inf
 POS = "@pos:"
 HOMED = "@homed:"
 ANCHOR = "@anchor:"
+PEAK = "@peak:"  # summaries: how far the callee's moves go from where it was called, before it anchors
 SET = "@set:"  # a motion setting in force on an axis: "@set:max_speed:X"  # summaries: 1 once the callee set the position absolutely
 WIDEN_AFTER = 2  # visits of a loop header before its growing values are extrapolated or widened
 NARROWING = 2
@@ -104,6 +105,7 @@ class Summary:
     positions: dict[str, tuple[str, Interval]]  # axis -> ("absolute" | "relative", interval)
     writes: dict[str, Interval]
     homes: frozenset[str]
+    peaks: dict[str, Interval] = field(default_factory=dict)  # axis -> the targets of its relative moves, from the call
 
 
 @dataclass
@@ -296,7 +298,8 @@ class Analyzer:
             positions[axis] = ("absolute", pos) if anchor == point(1) else ("relative", pos) \
                 if anchor == point(0) else ("absolute", TOP)
         homes = frozenset(a for a in self.axes if exit_state.get(HOMED + a) == point(1))
-        return Summary(positions, {w: exit_state.get(w, TOP) for w in writes}, homes)
+        peaks = {a: exit_state[PEAK + a] for a in self.axes if PEAK + a in exit_state}
+        return Summary(positions, {w: exit_state.get(w, TOP) for w in writes}, homes, peaks)
 
     # the fixed point of one routine --------------------------------------------------------------
     def solve(self, routine: ir.Routine, entry: State, result: Result | None) -> State | None:
@@ -483,6 +486,9 @@ class Analyzer:
                     if inside.empty:  # the limit switch stops it at the end it ran into
                         inside = point(travel.hi if target.lo > travel.hi else travel.lo)
                     out[POS + axis] = inside
+                    if relative and state.get(ANCHOR + axis) == point(0):
+                        peak = state.get(PEAK + axis)
+                        out[PEAK + axis] = target if peak is None else peak.join(target)
                     if not relative:
                         out[ANCHOR + axis] = point(1)
             return out
@@ -523,6 +529,11 @@ class Analyzer:
         if isinstance(op, ir.Call):
             summary = self.summary(op.routine)
             out = dict(state)
+            if report is not None:  # the callee's relative moves, from where this call starts them
+                for axis, peak in summary.peaks.items():
+                    report.checks.append(Check(op, axis, arith("+", state.get(POS + axis, TOP), peak), True, loops,
+                                               state.get(HOMED + axis, TOP), before=state.get(POS + axis, TOP),
+                                               anchored=state.get(ANCHOR + axis, TOP)))
             for name, value in summary.writes.items():
                 out[name] = value if op.cond is None else value.join(state.get(name, TOP))
             for axis, (kind, value) in summary.positions.items():

@@ -56,12 +56,14 @@ def travel_exceeded(ctx: Context) -> None:
         low = env.min if env.min is not None else -math.inf
         high = env.max if env.max is not None else math.inf
         t = check.target
+        call = isinstance(check.op, ir.Call)
+        subject = f"this call of {check.op.routine} (its relative moves)" if call else "this move"
         where = f"takes axis {check.axis} to {t.text()}"
         notes = [*check.loops]
         if t.lo > high or t.hi < low:
             seen.add(key)
             side = f"above its travel's max {env.shown(high)}" if t.lo > high else f"below its travel's min {env.shown(low)}"
-            ctx.report(check.op.span, f"this move {where}, {side} on every path that reaches it: the axis "
+            ctx.report(check.op.span, f"{subject} {where}, {side} on every path that reaches it: the axis "
                        "would run into its end of travel; change the target or the travel in [tool.mcc.axes]",
                        notes=notes)
             continue
@@ -73,10 +75,11 @@ def travel_exceeded(ctx: Context) -> None:
             seen.add(key)
             bound = f"above the max {env.shown(high)}" if over else f"below the min {env.shown(low)}"
             why = "a branch or a loop pass decides which"
-            notes += feeding(result, check.op, axis_expr(check), low, high)
+            if not call:
+                notes += feeding(result, check.op, axis_expr(check), low, high)
             notes += [f"line {line}: a branch that decides the path" for line in check.branches]
             ctx.diagnostics.add(ctx.code, check.op.span,
-                                f"this move may take axis {check.axis} {bound} (target {t.text()}): some paths "
+                                f"{subject} may take axis {check.axis} {bound} (target {t.text()}): some paths "
                                 f"leave the travel ({why}); bound the target or home the axis first",
                                 notes=notes, severity=Severity.WARNING)
 

@@ -240,3 +240,12 @@ def test_ramp_time_and_slew_speed_above_the_mechanics() -> None:
     slew = [(d.code, d.span.line) for d in lint("PG 100\nSL 200000\nH 100\nSL 0\nE\nPG\n", "a.mxt", cfg)
             if d.code == "G302"]
     assert slew == [("G302", 2)]
+
+
+def test_call_summarised_callee_first() -> None:
+    """A subroutine that moves +6000 relative (MCode MR in a CL'd routine, lexium-mcode.txt L3935):
+    from MA 0 the first call ends at 6000, the second would go to 12000: the second call is an error
+    at its line; the callee alone cannot know (it runs from wherever it is called)."""
+    diags = found("PG 100\nMA 0\nH\nCL K9\nCL K9\nE\nLB K9\nMR 6000\nH\nRT\nPG\n", "a.mxt")
+    assert [(d.code, d.severity.value, d.span.line) for d in diags] == [("G301", "error", 5)]
+    assert "this call of K9" in diags[0].message
