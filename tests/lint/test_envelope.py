@@ -123,6 +123,7 @@ def test_counted_loop_to_the_end_of_travel_cannot_leave(path: str, text: str) ->
     ("a.mxt", "PG 100\nMA 0\nH\nR2=0\nLB K3\nMR 1000\nH\nR2=R2+1\nBR K3, R2<R4\nE\nPG\n", 6),
     ("a.prg", "ABS\nHSPD=1000\nLSPD=100\nACC=100\nX0\nWAITX\nV1=0\nWHILE V1<V2\nINC\nX1000\nWAITX\nV1=V1+1\n"
               "ENDWHILE\nEND\n", 10),
+    ("a.x150", "MPA\nA10\nV1\nD0\nG\nL(VAR1)\nMPI\nD1000\nG\nN\n", 8),  # L(VAR1): parker-x150.md L2340
 ])
 def test_loop_counted_to_an_unknown_variable_is_unbounded(path: str, text: str, line: int) -> None:
     """The count comes from a register nothing in the program sets (the host may): G303."""
@@ -134,6 +135,7 @@ def test_loop_counted_to_an_unknown_variable_is_unbounded(path: str, text: str, 
     ("a.mxt", "PG 100\nR4={n}\nMA 0\nH\nR2=0\nLB K3\nMR 1000\nH\nR2=R2+1\nBR K3, R2<R4\nE\nPG\n", 10),
     ("a.prg", "ABS\nHSPD=1000\nLSPD=100\nACC=100\nV2={n}\nX0\nWAITX\nV1=0\nWHILE V1<V2\nINC\nX1000\nWAITX\n"
               "V1=V1+1\nENDWHILE\nEND\n", 10),
+    ("a.x150", "MPA\nA10\nV1\nD0\nG\nVAR1={n}\nL(VAR1)\nMPI\nD1000\nG\nN\n", 10),
 ])
 def test_loop_counted_to_a_variable_the_program_sets(path: str, text: str, bound: int) -> None:
     """A count from a variable set before the loop bounds it: 10 passes stay inside, 11 may leave."""
