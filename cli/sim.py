@@ -116,7 +116,12 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
 
     if fmt == "json":
         if trace is not None:
+            from mcc.sim.cycles import timing
+
             entry = trace.to_json()
+            found = timing(trace)  # seconds: each pass of the main loop, each call (docs/SIMULATOR.md, "Envelope")
+            entry["cycles"] = found.cycles
+            entry["calls"] = found.calls
         else:  # the program could not run: the same shape, stopped with "error" before it started
             entry = {"path": result.path, "dialect": result.dialect, "stopped": "error",
                      "reason": "the program was not simulated (see diagnostics)", "time": 0, "steps": 0,

@@ -111,3 +111,15 @@ def test_slew_stops_at_the_end_of_travel() -> None:
     assert trace.stopped == "travel" and trace.axes["1"] == pytest.approx(10000)
     assert [d.span.line for d in trace.diagnostics if d.code == "S017"] == [2]
     assert 0.5 < trace.time < 1.0
+
+
+def test_cli_sim_json_has_the_cycles(tmp_path) -> None:
+    """The JSON report carries the cycle and call times (same X150 program as above: 1.6 s a cycle)."""
+    import json
+
+    cyc = tmp_path / "c.x150"
+    cyc.write_text("MPI\nA10\nV1\nL0\nD4000\nG\nT0.5\nN\n", encoding="utf-8")
+    out = subprocess.run([sys.executable, "-m", "mcc", "sim", str(cyc), "--until", "5", "--format", "json"],
+                         capture_output=True, text=True, cwd=tmp_path)
+    entry = json.loads(out.stdout)["files"][0]
+    assert entry["cycles"] and all(c == pytest.approx(1.6) for c in entry["cycles"]) and entry["calls"] == {}
