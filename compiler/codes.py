@@ -32,6 +32,7 @@ class CodeInfo:
     dialects: tuple[str, ...] = ()
     fixable: bool = False
     manual: str = ""
+    config: str = ""  # the `[tool.mcc]` configuration the examples are checked with (envelope rules)
 
     def page(self) -> str:
         """The explanation page as Markdown."""
@@ -45,6 +46,9 @@ class CodeInfo:
             parts.append(f"- manual: {self.manual}")
         if self.explanation:
             parts += ["", "## What it means", "", self.explanation.strip()]
+        if self.config:
+            parts += ["", "## Configuration", "", "The examples are checked with this pyproject.toml:", "",
+                      "```toml", self.config.strip("\n"), "```"]
         if self.bad:
             parts += ["", "## Bad", "", "```", self.bad.strip("\n"), "```"]
         if self.good:
@@ -82,6 +86,7 @@ def _load_file(path: Path) -> list[CodeInfo]:
             dialects=tuple(raw.get("dialects", ())),
             fixable=bool(raw.get("fixable", False)),
             manual=raw.get("manual", ""),
+            config=raw.get("config", ""),
         ))
     return infos
 

@@ -111,6 +111,10 @@ class Options:
     # Single step: the run stops before its (n+1)-th trace report, having run n of the program's
     # commands (a device in single-step mode; the trace reports mark where each command starts)
     commands: int | None = None
+    # The machine's envelope (issue 27): (axis, min, max) in steps, None for an open end. A move
+    # beyond it runs to the end of travel and the run stops there with S017, as the limit switch
+    # would stop the axis (docs/SIMULATOR.md, "Envelope").
+    travel: tuple[tuple[str, float | None, float | None], ...] = ()
 
 
 @dataclass
@@ -267,6 +271,9 @@ class Simulator:
         self.capture_input = self.scenario.capture  # None: the program's, else DEFAULT_CAPTURE_INPUT
         self.captured = 0  # the position at the last capture (reading captured_position)
         self.last_move: dict[str, str] = {}  # axis -> the kind of its last move command (reading last_move)
+        self.travel = {axis: (low, high) for axis, low, high in self.options.travel}
+        self.travel_hit: dict[str, tuple] = {}  # axis -> (move, requested target, the end it runs to)
+        self.cycle_headers = loop_headers(self._entry())  # where a pass of the main loop starts
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -303,6 +310,14 @@ class Simulator:
         for routine in reversed(self.module.routines):
             if routine.kind is ir.RoutineKind.IMMEDIATE and routine.entry is not None:
                 self.stack.append(Frame(routine, routine.entry))
+        if len(self.stack) == 1:
+            self._main_starts()
+
+    def _main_starts(self) -> None:
+        """The main routine starts its first block: a pass of the main loop when that is its header."""
+        frame = self.stack[-1]
+        if frame.index == 0 and frame.block.label in self.cycle_headers and not self.trace.cycle_marks:
+            self.trace.cycle_marks.append((frame.block.label, self.now))
 
     def _entry(self) -> ir.Routine | None:
         for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP, ir.RoutineKind.IMMEDIATE):
@@ -597,12 +612,18 @@ class Simulator:
         if isinstance(term, ir.Jump):
             frame.block, frame.index = self.block_of[term.target], 0
             self.went_back = self.block_index.get(term.target, 0) <= here
+            if term.target in self.cycle_headers and len(self.stack) == 1:
+                self.trace.cycle_marks.append((term.target, self.now))
         elif isinstance(term, ir.Branch):
             target = term.then if self._cond(term.cond) else term.otherwise
             frame.block, frame.index = self.block_of[target], 0
             self.went_back = self.block_index.get(target, 0) <= here
+            if target in self.cycle_headers and len(self.stack) == 1:
+                self.trace.cycle_marks.append((target, self.now))
         elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):
             self.stack.pop()
+            if frame.routine.kind is ir.RoutineKind.IMMEDIATE and len(self.stack) == 1:
+                self._main_starts()
             if frame.routine.kind is not ir.RoutineKind.IMMEDIATE:
                 self._event(term, "return", routine=frame.routine.name)
         elif isinstance(term, ir.GotoRoutine):
@@ -922,15 +943,41 @@ class Simulator:
             for axis_name in self._expand((name,)):
                 axis = self._axis(axis_name)
                 targets[axis_name] = value if op.mode is ir.MoveMode.ABSOLUTE else axis.position + value
+        hits = self._beyond_travel(op, targets)
         start = {name: self._axis(name).position for name in targets}
         deltas = {name: targets[name] - start[name] for name in targets}
         length = math.sqrt(sum(d * d for d in deltas.values()))
         self._event(op, "move", mode=op.mode.value, **{"from": dict(start)}, to=dict(targets))
+        self.travel_hit.update(hits)
         if length == 0:
+            for name in hits:
+                self._travel_stop(self._axis(name))
             return
         lead = self._axis(next(iter(targets)))
         path = Path(start, length, {name: d / length for name, d in deltas.items()})
         self._begin(op, path, lead.limits(self.machine.shared), targets=targets, plan_length=length)
+
+    def _beyond_travel(self, op, targets: dict[str, float]) -> dict[str, tuple]:
+        """The axes a move would take past their travel, each target cut to the end it reaches."""
+        hits = {}
+        for name, target in targets.items():
+            low, high = self.travel.get(name, (None, None))
+            end = high if high is not None and target > high else low if low is not None and target < low else None
+            if end is not None:
+                hits[name] = (op, target, end)
+                targets[name] = end
+        return hits
+
+    def _travel_stop(self, axis: Axis) -> None:
+        """The axis reached its end of travel: the limit switch stops it, and the run (S017)."""
+        op, target, end = self.travel_hit.pop(axis.name)
+        span = getattr(op, "span", None)
+        asked = f"the move asked for {target:g}" if target != end else "it was running at a constant speed"
+        message = (f"axis {axis.name} reached its end of travel at {end:g} ({asked}): the limit "
+                   "switch stops it here; keep the axis inside its travel ([tool.mcc.axes] min/max)")
+        self._event(op, "travel", axis=axis.name, position=_round(end), target=_round(target))
+        self.diags.add("S017", span or _file_span(self.module.path), message)
+        raise Stop("travel", f"{message} (line {_line(span)})")
 
     def _motion_value(self, expr) -> float:
         """A move target or slew speed: a float value rounded down where the product says so
@@ -1123,6 +1170,13 @@ class Simulator:
         if fixed is None:
             fixed = self.fixed_watches[name] = self._fixed_watches(name)
         out = list(fixed)
+        axis = self._axis(name)
+        if name in self.travel and axis.motion is not None and axis.motion.path.length == INF:
+            # a slew runs until something stops it: its end of travel (a move is cut to it in _move)
+            offset = axis.offset
+            for end, where in zip(("min", "max"), self.travel[name]):
+                if where is not None:
+                    out.append((("travel", end), where + offset))
         handler = self.handlers.get("position")
         if handler is not None and handler.armed and handler.args and name == self._handler_axis():
             try:
@@ -1161,6 +1215,12 @@ class Simulator:
             self._event(op, "limit", axis=name, switch=key[1], position=axis.position)
             self._fault(RuntimeFault("S004", f"axis {name} hit its {key[1]} limit switch at {where:g} steps",
                                      kind="fault"), op)
+        elif key[0] == "travel":
+            op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            self._stop_axis(axis, False, None, record=False)
+            end = where - axis.offset
+            self.travel_hit[name] = (op, end, end)
+            self._travel_stop(axis)
         elif key[0] == "handler":
             handler = self.handlers.get("position")
             if handler is not None and handler.armed:
@@ -1207,6 +1267,8 @@ class Simulator:
                         position=_round(axis.position))
         if not any(a.motion is motion for a in self.machine.axes.values()):
             self.motion_op.pop(motion.ident, None)
+        if axis.name in self.travel_hit:
+            self._travel_stop(axis)
 
     def _cut(self, axis: Axis) -> None:
         """End the axis's motion now where it is (before a new motion or a position change)."""
@@ -1593,6 +1655,23 @@ class Simulator:
         self.trace.variables = {name: values.plain(v) for name, v in self.vars.items()}
         self.trace.events.append(Event(self.now, "stopped", None, {"stopped": self.trace.stopped,
                                                                      "reason": self.trace.reason}))
+
+
+def loop_headers(routine: ir.Routine | None) -> dict[str, int]:
+    """The blocks of the main routine a later block jumps back to (loop headers), by position: a
+    pass through the outermost one is a machine cycle (sim/cycles.py)."""
+    if routine is None:
+        return {}
+    index = {block.label: n for n, block in enumerate(routine.blocks)}
+    out: dict[str, int] = {}
+    for n, block in enumerate(routine.blocks):
+        term = block.terminator
+        targets = (term.target,) if isinstance(term, ir.Jump) else (term.then, term.otherwise) \
+            if isinstance(term, ir.Branch) else ()
+        for target in targets:
+            if target in index and index[target] <= n:
+                out[target] = index[target]
+    return out
 
 
 def countdown_marks(module: ir.Module) -> frozenset[float] | None:
