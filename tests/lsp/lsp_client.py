@@ -117,3 +117,19 @@ async def open_fixture(client: LanguageClient, dialect: str) -> Doc:
     doc = Doc(client, DIALECT_FILES[dialect], fixture_text(dialect))
     await doc.settled()
     return doc
+
+
+def apply_edits(text: str, edits: list) -> str:
+    """The text edits applied as an editor applies them (LSP lines end at CRLF, CR or LF)."""
+    from mcc.lsp.edits import LINE
+
+    starts = [0]
+    for line in LINE.findall(text):
+        starts.append(starts[-1] + len(line))
+
+    def offset(position) -> int:
+        return min(starts[min(position.line, len(starts) - 1)] + position.character, len(text))
+
+    for edit in sorted(edits, key=lambda e: (e.range.start.line, e.range.start.character), reverse=True):
+        text = text[:offset(edit.range.start)] + edit.new_text + text[offset(edit.range.end):]
+    return text

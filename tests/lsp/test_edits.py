@@ -6,22 +6,12 @@ from __future__ import annotations
 import random
 import time
 
-from lsprotocol import types as t
 
-from mcc.lsp.edits import LINE, line_edits
+from lsp_client import apply_edits
+from mcc.lsp.edits import line_edits
 
 
-def apply(text: str, edits: list[t.TextEdit]) -> str:
-    starts = [0]
-    for line in LINE.findall(text):
-        starts.append(starts[-1] + len(line))
-
-    def offset(position: t.Position) -> int:
-        return min(starts[min(position.line, len(starts) - 1)] + position.character, len(text))
-
-    for edit in sorted(edits, key=lambda e: (e.range.start.line, e.range.start.character), reverse=True):
-        text = text[:offset(edit.range.start)] + edit.new_text + text[offset(edit.range.end):]
-    return text
+apply = apply_edits
 
 
 def test_random_changes_give_the_new_text():

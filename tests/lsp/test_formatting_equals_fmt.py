@@ -4,20 +4,18 @@ sample of the project and variants an editor holds (trailing blanks, no final ne
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import pytest
 from lsprotocol import types as t
 
-from lsp_client import Doc, client  # noqa: F401 (client is the fixture)
+from lsp_client import Doc, apply_edits, client  # noqa: F401 (client is the fixture)
 from mcc.compiler.config import Resolver
 from mcc.compiler.lint import formatting
 
 pytestmark = pytest.mark.asyncio(loop_scope="module")
 
 SAMPLES = sorted((Path(__file__).resolve().parents[2] / "samples").glob("*/*"))
-LINE = re.compile(r"[^\r\n]*(?:\r\n|\r|\n)|[^\r\n]+\Z")
 
 
 def variants(text: str) -> dict[str, str]:
@@ -32,18 +30,7 @@ def variants(text: str) -> dict[str, str]:
     }
 
 
-def apply(text: str, edits: list[t.TextEdit]) -> str:
-    """The edits applied as an editor applies them (LSP lines end at CRLF, CR or LF)."""
-    starts = [0]
-    for line in LINE.findall(text):
-        starts.append(starts[-1] + len(line))
-
-    def offset(position: t.Position) -> int:
-        return min(starts[min(position.line, len(starts) - 1)] + position.character, len(text))
-
-    for edit in sorted(edits, key=lambda e: (e.range.start.line, e.range.start.character), reverse=True):
-        text = text[:offset(edit.range.start)] + edit.new_text + text[offset(edit.range.end):]
-    return text
+apply = apply_edits
 
 
 def mcc_fmt(path: Path, text: str, settings_path: Path) -> str:
