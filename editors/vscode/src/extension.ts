@@ -8,6 +8,7 @@ import {
   ServerOptions,
   TransportKind,
 } from "vscode-languageclient/node";
+import { registerDebugger } from "./debug";
 
 let client: LanguageClient | undefined;
 
@@ -62,6 +63,7 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
       await start();
     }),
   );
+  registerDebugger(context, () => vscode.workspace.getConfiguration("mcc").get<string>("path", "mcc"));
   await start();
 }
 
