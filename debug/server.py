@@ -94,7 +94,8 @@ class Adapter:
         self.path = path
         self.session = Session(simulator, path, self._stopped, self._output, self._ended)
         self.session.stop_on_errors = self.pending_errors_filter
-        self.stop_on_entry = bool(args.get("stopOnEntry", False))
+        self.stop_on_entry = bool(args.get("stopOnEntry", False)) and not args.get("noDebug")
+        self.session.no_debug = bool(args.get("noDebug", False))
         self.launched = True
         self.conn.respond(request)
         # the client sends breakpoints after this event: the program's lines are known by now

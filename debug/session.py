@@ -55,6 +55,7 @@ class Session:
         self.breakpoints: dict[int, Breakpoint] = {}
         self.next_id = 0
         self.stop_on_errors = True
+        self.no_debug = False  # launch's noDebug (VS Code's Run Without Debugging): never stop
         self.mode = "continue"  # continue | in | over | out
         self.step_depth = 0
         self.pause_requested = False
@@ -130,6 +131,8 @@ class Session:
         self._flush()
         if self.terminating:
             raise Stop("terminated", "the debugger ended the run")
+        if self.no_debug:
+            return
         if kind == "fault":
             if self.stop_on_errors:
                 text = f"{fault.code}: {fault}"

@@ -170,6 +170,13 @@ def test_prints_arrive_as_output_events(client):
     assert "NO INPUT" in client.outputs("stdout")
 
 
+def test_no_debug_runs_to_the_end_without_stopping(client):
+    """VS Code's Run Without Debugging (launch with noDebug): breakpoints and errors do not stop."""
+    launch(client, "divide.mxt", [{"line": 6}], noDebug=True, stopOnEntry=True)
+    assert client.next_stop()["event"] == "terminated"
+    assert client.event("exited")["body"]["exitCode"] == 1
+
+
 def test_a_condition_stops_only_when_it_holds(client):
     """A breakpoint condition in the dialect's spelling (`=`, AND) on a program variable and an input."""
     launch(client, "loop.mxt", [{"line": 10, "condition": "Q1 = 2 AND input(1) = 0"}])
