@@ -137,7 +137,7 @@ class Adapter:
         stack = list(reversed(sim.stack))
         stopped_item = self.session.stopped_at[1] if self.session.stopped_at else None
         for n, frame in enumerate(stack):
-            item = stopped_item if n == 0 else _caller_item(frame)
+            item = (stopped_item or _current_item(frame)) if n == 0 else _caller_item(frame)
             line = getattr(getattr(item, "span", None), "line", None) or 1
             name = frame.routine.name + (f" (on {frame.handler})" if frame.handler else "")
             if n == 0:
@@ -346,6 +346,12 @@ def _number(text: str):
         return float(text)
     except ValueError:
         raise RequestError(f"'{text}' is not a number") from None
+
+
+def _current_item(frame):
+    """The operation (or terminator) a frame is at."""
+    ops = frame.block.ops
+    return ops[frame.index] if frame.index < len(ops) else frame.block.terminator
 
 
 def _caller_item(frame):

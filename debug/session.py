@@ -20,6 +20,11 @@ from mcc.debug import conditions
 from mcc.sim.interpreter import Simulator, Stop
 
 
+# How runs end that are no reason to pause: the program's end, a runtime error (paused already,
+# where it happened), the debugger's own end and the time limit (a looping program's usual end).
+QUIET_STOPS = frozenset({"end", "error", "terminated", "time-limit"})
+
+
 @dataclass
 class Breakpoint:
     ident: int
@@ -132,6 +137,12 @@ class Session:
         if self.terminating:
             raise Stop("terminated", "the debugger ended the run")
         if self.no_debug:
+            return
+        if kind == "stop":
+            # a run that ended abnormally without a runtime error (an end of travel, a wait nothing
+            # ends, a loop that never waits) pauses once more so its last state can be read
+            if self.stop_on_errors and fault.stopped not in QUIET_STOPS:
+                self._pause(Stopped("exception", fault.stopped, fault.reason), frame, item)
             return
         if kind == "fault":
             if self.stop_on_errors:

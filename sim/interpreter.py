@@ -265,7 +265,9 @@ class Simulator:
         # executes (`frame` the routine's Frame, its stack `self.stack`; `item` the ir.Op or
         # terminator about to run, whose `span` gives the source line; `self.went_back` says whether
         # the last terminator jumped back), and as `observer("fault", frame, item, fault)` when a
-        # runtime error no handler catches is about to stop the run. The observer may read the
+        # runtime error no handler catches is about to stop the run, and as `observer("stop", frame,
+        # None, stop)` once the run has stopped for any reason (`stop.stopped`), before the trace
+        # is finished. The observer may read the
         # machine and the variables, change a variable (`set_variable`) or an input (`set_input`),
         # block for as long as it likes (virtual time does not pass), or raise `Stop` to end the run
         # (`run()` then finishes the trace as usual). None (the default): `run()` is unchanged.
@@ -279,6 +281,11 @@ class Simulator:
             self._loop()
         except Stop as stop:
             self.trace.stopped, self.trace.reason = stop.stopped, stop.reason
+            if self.observer is not None:  # the state the run stopped in, before the trace is finished
+                try:
+                    self.observer("stop", self.stack[-1] if self.stack else None, None, stop)
+                except Stop:
+                    pass
         self._finish()
         return self.trace
 

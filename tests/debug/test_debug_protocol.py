@@ -266,6 +266,18 @@ def test_a_limit_switch_stops_the_program(client, tmp_path):
     client.ok("disconnect")
 
 
+def test_a_run_that_ends_waiting_pauses_on_its_last_state(client):
+    """A loop polling an input nothing sets ends the run "waiting" (docs/SIMULATOR.md "Time"); the
+    debugger pauses there once (as on an end of travel) so the state it ended in can be read."""
+    launch(client, "waits.mxt")
+    event = stop(client, "exception")
+    assert event["body"]["description"] == "waiting" and "polls in a loop" in event["body"]["text"]
+    assert frames(client)[0]["line"] in (6, 7)
+    assert variables(client, scope_refs(client)["Program variables"])["Q1"] == "1"
+    client.ok("continue", {"threadId": 1})
+    assert client.next_stop()["event"] == "terminated"
+
+
 def test_a_program_with_errors_is_not_launched(client):
     client.ok("initialize", {"adapterID": "mcc"})
     response = client.request("launch", {"program": str(FIXTURES / "broken.mxt")})

@@ -15,6 +15,7 @@ from mcc.sim.interpreter import Options, Simulator, Stop
 FIXTURES = Path(__file__).parent / "fixtures"
 SAMPLES = Path(__file__).resolve().parents[2] / "samples"
 PROGRAMS = [FIXTURES / "loop.mxt", FIXTURES / "loop.prg", FIXTURES / "loop.x150", FIXTURES / "divide.mxt",
+            FIXTURES / "waits.mxt",
             SAMPLES / "mcode" / "trip_on_input.mxt", SAMPLES / "arcus" / "drill_grid_variables.prg",
             SAMPLES / "x150" / "03_part_sorter.x150"]
 
@@ -53,11 +54,24 @@ def test_the_observer_sees_the_fault_before_the_run_stops():
     assert faults == [("S002", 7, {"Q1": 0, "Q2": 0})]
 
 
+def test_the_observer_sees_how_the_run_stopped():
+    sim = simulator(FIXTURES / "waits.mxt")
+    stops = []
+
+    def observe(kind, frame, item, stop=None):
+        if kind == "stop":
+            stops.append((stop.stopped, frame.routine.name, dict(sim.vars)))
+
+    sim.observer = observe
+    assert sim.run().stopped == "waiting"
+    assert stops == [("waiting", "A1", {"Q1": 1})]
+
+
 def test_an_observer_can_end_the_run():
     sim = simulator(FIXTURES / "loop.mxt")
 
     def observe(kind, frame, item, fault=None):
-        if item.span is not None and item.span.line == 11:
+        if kind == "step" and item.span is not None and item.span.line == 11:
             raise Stop("terminated", "the debugger ended the run")
 
     sim.observer = observe
@@ -72,7 +86,7 @@ def test_set_variable_and_set_input_while_paused():
     done = []
 
     def observe(kind, frame, item, fault=None):
-        if not done and item.span is not None and item.span.line == 12:
+        if kind == "step" and not done and item.span is not None and item.span.line == 12:
             assert sim.set_variable("Q1", 2.7) == 2
             sim.set_input(1, 0)
             done.append(True)
