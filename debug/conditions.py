@@ -74,13 +74,13 @@ def evaluate(text: str, machine: Machine):
     """The value of `text`; ExpressionError when it cannot be read or evaluated."""
     try:
         tree = ast.parse(to_python(text.strip()), mode="eval")
-    except SyntaxError:
+    except (SyntaxError, ValueError, RecursionError, MemoryError):
         raise ExpressionError(f"cannot read '{text}': write e.g. Q1 > 3 AND input(1) = 1") from None
     try:
         return _eval(tree.body, machine)
     except ZeroDivisionError:
         raise ExpressionError(f"'{text}' divides by zero") from None
-    except (TypeError, ValueError) as exc:
+    except (TypeError, ValueError, ArithmeticError, RecursionError) as exc:
         raise ExpressionError(f"cannot evaluate '{text}': {exc}") from None
 
 

@@ -14,6 +14,9 @@ import threading
 from typing import Any, BinaryIO
 
 
+MAX_MESSAGE = 64 * 1024 * 1024  # bytes: far above any request, a guard against a garbled header
+
+
 class ProtocolError(Exception):
     """A message that does not follow the base protocol (a missing header, bad JSON)."""
 
@@ -43,6 +46,8 @@ class Connection:
                     length = int(value.strip())
                 except ValueError:
                     raise ProtocolError(f"Content-Length is not a number: {value.strip()!r}") from None
+        if length < 0 or length > MAX_MESSAGE:
+            raise ProtocolError(f"Content-Length {length} is out of range")
         body = self.reader.read(length)
         if len(body) < length:
             return None

@@ -293,8 +293,9 @@ def test_requests_it_does_not_know_and_broken_messages_are_answered(client):
     response = client.request("goto", {"threadId": 1, "targetId": 1})
     assert response["success"] is False and "does not support 'goto'" in response["message"]
     client.send_raw(b"Content-Length: 5\r\n\r\n{nope")
+    client.send_raw(b"Content-Length: -1\r\n\r\n")
     assert client.ok("threads")["threads"]  # the adapter read on
-    assert "not JSON" in client.outputs("stderr")
+    assert "not JSON" in client.outputs("stderr") and "out of range" in client.outputs("stderr")
     assert client.request("stackTrace", {"threadId": 1})["success"] is False  # nothing launched
 
 
