@@ -292,7 +292,7 @@ def variables(sim, ref: int) -> list[dict]:
         top = max([sim.input_count, *sim.machine.inputs, 0]) or 8
         out = []
         for index in range(1, top + 1):
-            level = sim._level(index)
+            level = sim.input_level(index)
             logic = "active" if sim.input_logic(index) else "inactive"
             out.append({"name": f"input {index}", "value": str(level), "type": f"level ({logic})",
                         "variablesReference": 0})
@@ -307,8 +307,9 @@ def variables(sim, ref: int) -> list[dict]:
                 _ro("waiting", wait), _ro("call depth", str(len(sim.stack)))]
     if AXIS_BASE <= ref < AXIS_BASE + len(names):
         axis = sim.machine.axes[names[ref - AXIS_BASE]]
-        out = [_ro("position (steps)", _show(axis.at(sim.now))), _ro("speed (steps/s)", _show(axis.speed(sim.now))),
-               _ro("moving", str(int(axis.moving(sim.now)))), _ro("machine position", _show(axis.at(sim.now) + axis.offset)),
+        here = axis.at(sim.now)
+        out = [_ro("position (steps)", _show(here)), _ro("speed (steps/s)", _show(axis.speed(sim.now))),
+               _ro("moving", str(int(axis.moving(sim.now)))), _ro("machine position", _show(here + axis.offset)),
                _ro("fault", str(axis.fault)), _ro("enabled", str(axis.enabled))]
         if axis.motion is not None and axis.moving(sim.now):
             out.append(_ro("move ends at (s)", f"{axis.motion.t_end:.6f}"))
@@ -319,7 +320,8 @@ def variables(sim, ref: int) -> list[dict]:
 
 
 def _var(name: str, value, vtype) -> dict:
-    return {"name": name, "value": _show(value), "type": vtype.value if vtype is not None else "", "variablesReference": 0}
+    return {"name": name, "value": _show(value), "type": vtype.value if vtype is not None else "",
+            "variablesReference": 0}
 
 
 def _ro(name: str, value: str) -> dict:

@@ -308,6 +308,10 @@ class Simulator:
         self._set_input(index, 1 if level else 0, by="debugger")
         self._check_when()
 
+    def input_level(self, index: int) -> int:
+        """Input `index`'s electrical level (the scenario's, the debugger's, else inactive)."""
+        return self._level(index)
+
     def input_logic(self, index: int) -> int:
         """Input `index`'s logic state (1 active) through the polarity in force."""
         return self._logic(index)
