@@ -278,6 +278,24 @@ def test_a_run_that_ends_waiting_pauses_on_its_last_state(client):
     assert client.next_stop()["event"] == "terminated"
 
 
+def test_a_handler_shows_in_the_call_stack_on_top_of_what_it_interrupted(client, tmp_path):
+    """An input trip (MCode TI/TE, lexium-mcode.txt L5667) runs its handler X1 over the G2 loop:
+    the stack shows `X1 (on input)` above the main routine."""
+    scenario = tmp_path / "trip.toml"
+    scenario.write_text("until = 5.0\n[[events]]\nat = 0.5\ninput = 1\nvalue = 0\n")
+    sample = Path(__file__).resolve().parents[2] / "samples" / "mcode" / "trip_on_input.mxt"
+    client.ok("initialize", {"adapterID": "mcc"})
+    client.ok("launch", {"program": str(sample), "scenario": str(scenario)})
+    client.event("initialized")
+    client.ok("setBreakpoints", {"source": {"path": str(sample)}, "breakpoints": [{"line": 17}]})
+    client.ok("configurationDone")
+    stop(client, "breakpoint")
+    stack = frames(client)
+    assert stack[0]["name"].startswith("X1 (on input) @ 0.500 s") and stack[0]["line"] == 17
+    assert len(stack) == 2
+    client.ok("disconnect")
+
+
 def test_a_program_with_errors_is_not_launched(client):
     client.ok("initialize", {"adapterID": "mcc"})
     response = client.request("launch", {"program": str(FIXTURES / "broken.mxt")})
