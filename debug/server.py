@@ -85,6 +85,9 @@ class Adapter:
     def on_launch(self, request, args) -> None:
         from mcc.debug.launch import LaunchError, prepare
 
+        if self.launched:
+            raise RequestError("a program is launched already: one program per session")
+
         try:
             simulator, path = prepare(args)
         except LaunchError as exc:
@@ -374,7 +377,9 @@ def _same_file(a: str, b: str) -> bool:
 
 
 def serve_stdio() -> None:
-    Adapter(Connection(sys.stdin.buffer, sys.stdout.buffer)).serve()
+    protocol_out = sys.stdout.buffer
+    sys.stdout = sys.stderr  # stdout carries the protocol: a stray print must not break a message
+    Adapter(Connection(sys.stdin.buffer, protocol_out)).serve()
 
 
 def serve_tcp(host: str, port: int, ready=None) -> None:

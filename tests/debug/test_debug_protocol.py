@@ -304,6 +304,9 @@ def test_a_program_with_errors_is_not_launched(client):
     assert response["success"] is False and "no program file" in response["message"]
     response = client.request("launch", {})
     assert response["success"] is False and "program" in response["message"]
+    client.ok("launch", {"program": str(FIXTURES / "loop.mxt")})
+    response = client.request("launch", {"program": str(FIXTURES / "loop.mxt")})
+    assert response["success"] is False and "launched already" in response["message"]
 
 
 def test_requests_it_does_not_know_and_broken_messages_are_answered(client):
