@@ -60,7 +60,7 @@ UNCAUSED = frozenset({"position_error", "output_fault", "part_number", "firmware
 
 # Readings that report a setting: the setting they read and its value before the program sets it.
 SETTING_READINGS = {"following_ratio": ("following_ratio", 100), "input_levels": ("input_active_high", 0),
-                    "output_levels": ("output_active_high", 0)}
+                    "output_levels": ("output_active_high", 0), "switch_levels": ("switch_active_high", 0)}
 
 
 @dataclass
@@ -108,6 +108,9 @@ class Options:
     # Jump over the rounds of a delay-paced polling loop that cannot differ from the last one
     # (Simulator._went_round); off, every round runs (the tests compare the two)
     skip_rounds: bool = True
+    # Single step: the run stops before its (n+1)-th trace report, having run n of the program's
+    # commands (a device in single-step mode; the trace reports mark where each command starts)
+    commands: int | None = None
 
 
 @dataclass
@@ -213,6 +216,9 @@ class Simulator:
         # polarity the program set (IS, INL) or the product's default (docs/SIMULATOR.md, "Inputs")
         inputs = machine_table(self.product, "inputs")
         self.active_high_default = bool(inputs.get("active_high", True))
+        # the level of an input nothing drives; without one, the inactive level of its polarity
+        idle = inputs.get("idle_level")
+        self.idle_level = idle if idle in (0, 1) and not isinstance(idle, bool) else None
         count = inputs.get("count", 0)
         self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
@@ -244,6 +250,7 @@ class Simulator:
         # the settings set in this run: (name, axis, input/output number) -> value
         self.settings: dict[tuple[str, str, int | None], values.Number] = {}
         self.paused_once = False  # S015 is reported once
+        self.commands_run = 0  # trace reports reached: the commands of the program begun (Options.commands)
         self.fixed_watches: dict[str, list] = {}
         self.read_continuous = False  # the running stretch read something that changes with time
         self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
@@ -784,11 +791,28 @@ class Simulator:
         return None
 
     def _do_print(self, op) -> Wait | None:
-        text = "".join(self._text(item, op.signed) for item in op.items) + ("\n" if op.newline else "")
+        if op.traced:
+            self.commands_run += 1
+            if self.options.commands is not None and self.commands_run > self.options.commands:
+                raise Stop("step", f"single step: {self.options.commands} commands ran; the next waits for the "
+                                   "host's step request")
+            if not self._tracing(op.axis):
+                return None
+        formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
+        text = "".join(self._text(item, op.signed, spec) for item, spec in zip(op.items, formats)) \
+            + ("\n" if op.newline else "")
         self.trace.prints.append((self.now, text))
         self.changes += 1
-        self._event(op, "print", text=text)
+        # a trace report names the program's own commands, which a translation rewrites: its own
+        # event kind, which the behaviour oracle does not compare (docs/SIMULATOR.md, "Trace reports")
+        self._event(op, "trace" if op.traced else "print", text=text)
         return None
+
+    def _tracing(self, axis: str) -> bool:
+        """Whether the `trace` setting is on for the device `axis` names, or for any device when the
+        print names none (an unaddressed program: the device that runs it is not known statically)."""
+        return any(value for (name, where, _), value in self.settings.items()
+                   if name == "trace" and (not axis or where in (axis, ir.ALL_AXES)))
 
     def _do_driveenable(self, op) -> Wait | None:
         on = 1 if self._eval(op.on) else 0
@@ -970,9 +994,9 @@ class Simulator:
         cx, cy = float(self._eval(op.center[0])), float(self._eval(op.center[1]))
         x0, y0 = self._axis(ax).position, self._axis(ay).position
         radius = math.hypot(x0 - cx, y0 - cy)
-        degrees = float(self._eval(op.angle)) if op.angle is not None else 360.0
-        sweep = math.radians(abs(degrees)) * (-1 if op.clockwise else 1)
+        degrees = float(self._eval(op.angle)) if op.angle is not None else None
         angle0 = math.atan2(y0 - cy, x0 - cx)
+        sweep = _sweep(angle0, degrees, op.clockwise)
         length = radius * abs(sweep)
         end = (cx + radius * math.cos(angle0 + sweep), cy + radius * math.sin(angle0 + sweep))
         self._event(op, "arc", axes=[ax, ay], center=[cx, cy], degrees=degrees, clockwise=op.clockwise)
@@ -1284,6 +1308,8 @@ class Simulator:
         in force (an input nothing drives is not active, whichever way it is wired)."""
         level = self.machine.inputs.get(index)
         if level is None:
+            if self.idle_level is not None:  # the product's inputs rest at a level (pulled up)
+                return self.idle_level
             return 0 if self.active_high.get(index, self.active_high_default) else 1
         return level
 
@@ -1508,6 +1534,8 @@ class Simulator:
             self.round_reads.add((meaning, axis.name))
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
+        if meaning == "device_address":  # a numbered device's address; 0 for an axis with a letter
+            return int(axis.name) if axis.name.isdigit() else 0
         if meaning in ("velocity", "measured_velocity"):  # no slip: the encoder measures the velocity
             return axis.speed(self.now)
         if meaning == "moving":
@@ -1563,9 +1591,11 @@ class Simulator:
             return not self._cond(cond.cond)
         return self._eval(cond) != 0
 
-    def _text(self, item, signed: bool = False) -> str:
+    def _text(self, item, signed: bool = False, spec: str = "") -> str:
         if isinstance(item, ir.Text):
             return item.value
+        if spec:  # a print format (docs/IR.md, "Print formats")
+            return values.formatted(self._eval(item), spec, signed)
         texts = self.module.print_texts.get(item.meaning) if isinstance(item, ir.Status) else None
         if texts is not None:  # a reading printed as the device writes its values (MCode PR MD)
             value = self._eval(item)
@@ -1688,6 +1718,23 @@ def _severity(name: str):
     from mcc.compiler.diagnostics import Severity
 
     return Severity(name)
+
+
+def _sweep(start: float, degrees: float | None, clockwise: bool) -> float:
+    """The signed angle (radians, counter-clockwise positive) an arc turns through from the
+    direction `start` (radians, from the centre) to its end: `degrees` is the end point's
+    direction from the centre, measured clockwise from the negative first axis (docs/IR.md,
+    "Arcs"); the arc runs in its direction for less than a turn, a full turn when the end is the
+    start or when it has no end angle (a circle)."""
+    turn = 2 * math.pi
+    if degrees is None:
+        return -turn if clockwise else turn
+    theta = math.radians(degrees)
+    end = math.atan2(math.sin(theta), -math.cos(theta))  # clockwise from (-1, 0): (-cos, sin)
+    sweep = ((start - end) if clockwise else (end - start)) % turn
+    if sweep < 1e-9 or turn - sweep < 1e-9:
+        sweep = turn
+    return -sweep if clockwise else sweep
 
 
 def machine_table(profile, name: str) -> dict:

@@ -28,6 +28,11 @@ SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "mcc", "lsp"])
 @pytest_lsp.fixture(config=SERVER, scope="module")
 async def client(lsp_client: LanguageClient):
     lsp_client.refreshed = []  # the lens and hint refreshes the server asked for, in order
+    lsp_client.registrations = []  # what the server registered dynamically (file watchers)
+
+    @lsp_client.feature(t.CLIENT_REGISTER_CAPABILITY)
+    def register_capability(params: t.RegistrationParams) -> None:
+        lsp_client.registrations.extend(params.registrations)
 
     @lsp_client.feature(t.WORKSPACE_CODE_LENS_REFRESH)
     def code_lens_refresh(params) -> None:
