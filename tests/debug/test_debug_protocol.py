@@ -25,7 +25,8 @@ FIXTURES = Path(__file__).parent / "fixtures"
 @dataclass
 class Program:
     """A fixture and its lines: the loop's line, the call, the subroutine's first line, the two
-    branches input 1 chooses (taken when it is flipped, taken by default), the loop variable."""
+    branches input 1 chooses between, the loop variable and an axis. Which branch an untouched input
+    takes is the product's input polarity (docs/SIMULATOR.md "Inputs"); flipped, it takes the other."""
 
     file: str
     loop_line: int
@@ -137,9 +138,8 @@ def test_a_session_breaks_in_the_loop_steps_into_the_subroutine_and_changes_an_i
                                  "breakpoints": [{"line": p.branches[0]}, {"line": p.branches[1]}]})
     client.ok("continue", {"threadId": 1})
     stop(client, "breakpoint")
-    # by default (every fixture's run without the debugger) input 1 is inactive, which takes
-    # the second branch: the changed input takes the first
-    assert frames(client)[0]["line"] == p.branches[0]
+    # the changed input takes the branch the run without the debugger does not take
+    assert frames(client)[0]["line"] == other_branch(p)
     assert variables(client, refs["Program variables"])[p.counter] == "3"  # 2, then one more round
 
     client.ok("continue", {"threadId": 1})
@@ -149,18 +149,32 @@ def test_a_session_breaks_in_the_loop_steps_into_the_subroutine_and_changes_an_i
     client.ok("disconnect")
 
 
-def test_the_default_run_takes_the_second_branch():
-    """What the session test relies on: with input 1 untouched each fixture ends in the second
-    branch (the MCode one prints NO INPUT; Arcus and X150 set the variable to 2)."""
-    from mcc.sim.files import simulate_file
+def default_branch(p: Program) -> int:
+    """The branch line a run without the debugger (input 1 untouched) executes."""
+    from mcc.compiler import driver
+    from mcc.sim.interpreter import Options, Simulator
 
-    for dialect, p in PROGRAMS.items():
-        trace = simulate_file(str(FIXTURES / p.file)).trace
-        assert trace is not None and trace.stopped == "end", dialect
-        if dialect == "mcode":
-            assert [text.strip() for _, text in trace.prints] == ["NO INPUT"]
-        else:
-            assert trace.variables[{"arcus": "V3", "x150": "VAR3"}[dialect]] == 2
+    result = driver.check_file(str(FIXTURES / p.file))
+    sim = Simulator(result.analysis.module, None, Options(), result.profile)
+    lines: set[int] = set()
+    sim.observer = lambda kind, frame, item, *rest: lines.add(item.span.line) if (
+        kind == "step" and getattr(item, "span", None) is not None) else None
+    assert sim.run().stopped == "end"
+    taken = [line for line in p.branches if line in lines]
+    assert len(taken) == 1, (p.file, taken)
+    return taken[0]
+
+
+def other_branch(p: Program) -> int:
+    first, second = p.branches
+    return second if default_branch(p) == first else first
+
+
+@pytest.mark.parametrize("dialect", sorted(PROGRAMS))
+def test_a_run_without_the_debugger_takes_exactly_one_branch(dialect):
+    """What the session test relies on: an untouched input 1 takes one of the two branches, so
+    the flipped input must take the other."""
+    assert default_branch(PROGRAMS[dialect]) in PROGRAMS[dialect].branches
 
 
 def test_prints_arrive_as_output_events(client):

@@ -12,6 +12,7 @@ tests/debug/e2e); on a machine without it, this test is skipped, except under CI
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
@@ -32,7 +33,10 @@ pytestmark = pytest.mark.skipif(MISSING is not None and not os.environ.get("CI")
 def test_vscode_debug_client_runs_the_session_in_each_dialect():
     assert MISSING is None, MISSING
     mcc = Path(sys.executable).with_name("mcc")
-    env = {**os.environ, "MCC": str(mcc)}
+    from test_debug_protocol import PROGRAMS, other_branch
+
+    flipped = {p.file: other_branch(p) for p in PROGRAMS.values()}
+    env = {**os.environ, "MCC": str(mcc), "MCC_FLIPPED_BRANCH": json.dumps(flipped)}
     done = subprocess.run([NODE, "--test", "session.test.mjs"], cwd=E2E, env=env, capture_output=True,
                           text=True, timeout=300)
     assert done.returncode == 0, done.stdout[-4000:] + done.stderr[-2000:]
