@@ -392,3 +392,4 @@ from mcc.cli import ir as _ir  # noqa: E402,F401
 from mcc.cli import lsp as _lsp  # noqa: E402,F401
 from mcc.cli import sim as _sim  # noqa: E402,F401
 from mcc.cli import link as _link  # noqa: E402,F401  (download, upload, send, terminal, device)
+from mcc.cli import debug as _debug  # noqa: E402,F401  (the debug adapter)

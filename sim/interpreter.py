@@ -274,6 +274,18 @@ class Simulator:
         self.travel = {axis: (low, high) for axis, low, high in self.options.travel}
         self.travel_hit: dict[str, tuple] = {}  # axis -> (move, requested target, the end it runs to)
         self.cycle_headers = loop_headers(self._entry())  # where a pass of the main loop starts
+        # The stepping interface (a debugger: mcc.debug). When set, it is called in the running
+        # thread as `observer("step", frame, item)` before each operation or terminator the program
+        # executes (`frame` the routine's Frame, its stack `self.stack`; `item` the ir.Op or
+        # terminator about to run, whose `span` gives the source line; `self.went_back` says whether
+        # the last terminator jumped back), and as `observer("fault", frame, item, fault)` when a
+        # runtime error no handler catches is about to stop the run, and as `observer("stop", frame,
+        # None, stop)` once the run has stopped for any reason (`stop.stopped`), before the trace
+        # is finished. The observer may read the
+        # machine and the variables, change a variable (`set_variable`) or an input (`set_input`),
+        # block for as long as it likes (virtual time does not pass), or raise `Stop` to end the run
+        # (`run()` then finishes the trace as usual). None (the default): `run()` is unchanged.
+        self.observer = None
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -283,8 +295,40 @@ class Simulator:
             self._loop()
         except Stop as stop:
             self.trace.stopped, self.trace.reason = stop.stopped, stop.reason
+            if self.observer is not None:  # the state the run stopped in, before the trace is finished
+                try:
+                    self.observer("stop", self.stack[-1] if self.stack else None, None, stop)
+                except Stop:
+                    pass
         self._finish()
         return self.trace
+
+    def set_variable(self, name: str, value) -> values.Number:
+        """Give variable `name` a value while the run is paused (a debugger's setVariable): stored
+        with the variable's type, as an assignment would, and counted as a change so a polling loop
+        sees it. Returns the value stored."""
+        try:
+            stored = values.store(value, self._type(name))
+        except values.ArithmeticFault as exc:
+            raise ValueError(str(exc)) from None
+        self.vars[name] = stored
+        self.changes += 1
+        self.var_changes += 1
+        return stored
+
+    def set_input(self, index: int, level: int) -> None:
+        """Drive input `index` to an electrical level while the run is paused (a debugger): as a
+        scenario change at the current time; the scenario's later changes still happen."""
+        self._set_input(index, 1 if level else 0, by="debugger")
+        self._check_when()
+
+    def input_level(self, index: int) -> int:
+        """Input `index`'s electrical level (the scenario's, the debugger's, else inactive)."""
+        return self._level(index)
+
+    def input_logic(self, index: int) -> int:
+        """Input `index`'s logic state (1 active) through the polarity in force."""
+        return self._logic(index)
 
     # -- the main loop ---------------------------------------------------------------------------
 
@@ -464,6 +508,9 @@ class Simulator:
                 frame.wait = None
                 if not retry:
                     continue
+            if self.observer is not None:  # a debugger (mcc.debug) may pause here: see `observer`
+                ops = frame.block.ops
+                self.observer("step", frame, ops[frame.index] if frame.index < len(ops) else frame.block.terminator)
             self.went_back = False
             self.trace.steps += 1
             if polling:
@@ -665,6 +712,8 @@ class Simulator:
                 self.pending = [p for p in self.pending if p[0] != "fault"]
             self._trigger(handler.event, handler)
             return
+        if self.observer is not None:  # before the run stops: the state is still the error's
+            self.observer("fault", self.stack[-1] if self.stack else None, item, fault)
         self.diags.add(fault.code, span or _file_span(self.module.path), str(fault))
         raise Stop("error", f"{fault} (line {_line(span)})")
 

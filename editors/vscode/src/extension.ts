@@ -5,6 +5,7 @@
 import * as vscode from "vscode";
 import { LanguageClient, LanguageClientOptions, ServerOptions } from "vscode-languageclient/node";
 import { registerCommands } from "./commands";
+import { registerDebugger } from "./debug";
 import { locateMcc } from "./locate";
 
 let client: LanguageClient | undefined;
@@ -89,6 +90,7 @@ export async function activate(context: vscode.ExtensionContext): Promise<void> 
     vscode.commands.registerCommand("mcc.restart", restart),
   );
   registerCommands(context, { command: mcc, output, storage: context.globalStorageUri });
+  registerDebugger(context, mcc);
   await start();
 }
 
