@@ -76,6 +76,13 @@ def deselectable(code: str) -> bool:
     return info is None or info.kind not in (Kind.SYNTAX, Kind.INTERNAL)
 
 
+@lru_cache(maxsize=None)
+def opt_in(code: str) -> bool:
+    """An opt-in rule (compiler/codes/*.toml `opt_in = true`) is enabled only by its own code."""
+    info = registry().get(code)
+    return info is not None and info.opt_in
+
+
 @dataclass(frozen=True)
 class Selection:
     layers: tuple[Layer, ...] = (DEFAULT_LAYER,)
@@ -85,11 +92,12 @@ class Selection:
         if not deselectable(code):
             return True
         state = False
+        exact = opt_in(code)
         for layer in self.layers:
             if layer.select is not None:
                 state = False
             chosen = [(specificity(p), True) for p in (*(layer.select or ()), *layer.extend_select)
-                      if prefix_matches(p, code)]
+                      if (p == code if exact else prefix_matches(p, code))]
             chosen += [(specificity(p), False) for p in layer.ignore if prefix_matches(p, code)]
             if chosen:
                 best = max(s for s, _ in chosen)

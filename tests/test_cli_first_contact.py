@@ -40,3 +40,21 @@ def test_a_label_the_host_starts_after_rt_is_an_entry_point(tmp_path: Path) -> N
     assert "M302" not in linted.stdout and "M305" not in linted.stdout
     diff = run_mcc("lint", "--diff", "--unsafe-fixes", str(path))
     assert "-LB K9" not in diff.stdout
+
+
+# The manual's own Arcus examples put comments after statements (arcus-pmx-4ex-sa.txt L1864
+# "CIRP1000:1000 ;***Using X 1000 ...", L2230 "HSPD=10000 ;***Sets the high speed ...").
+ARCUS_COMMENTED = "HSPD=10000 ;***Sets the high speed\nLSPD=100 ;***and the low speed\nX1000 ;***move X\nEND\n"
+
+
+def test_arcus_trailing_comments_are_left_alone_unless_a315_is_selected(tmp_path: Path) -> None:
+    """A315 (comments on their own line, L1725) is opt-in: `lint --fix` leaves the manual's layout
+    (L1864, L2230) as it is; `--extend-select A315` reports and moves them."""
+    path = tmp_path / "cell.prg"
+    path.write_text(ARCUS_COMMENTED)
+    plain = run_mcc("lint", "--fix", str(path))
+    assert "A315" not in plain.stdout and path.read_text() == ARCUS_COMMENTED, plain.stdout
+    chosen = run_mcc("lint", "--extend-select", "A315", str(path))
+    assert chosen.stdout.count("[A315]") == 3, chosen.stdout
+    widened = run_mcc("lint", "--select", "ALL", str(path))
+    assert "A315" not in widened.stdout
