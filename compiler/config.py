@@ -36,7 +36,7 @@ ALWAYS_ON = ("G001", "G102", "G103")  # internal errors and configuration errors
 SEVERITIES = tuple(s.value for s in Severity)
 LIST_KEYS = ("select", "extend-select", "ignore", "exclude")
 DEFAULT_FAIL_ON = "warning"  # `mcc lint` exits 1 on a warning, as ruff on any finding (docs/LINT.md)
-KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles")
+KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles", "extensions")
 
 
 class ConfigError(Exception):
@@ -125,6 +125,17 @@ class Settings:
     # file and names a profile of its dialect chooses it (compiler/selection.py)
     per_file_profiles: tuple[tuple[str, str], ...] = ()
     cli_profile: str | None = None  # --profile: wins over everything (compiler/selection.py)
+    # extension (lower case, no dot) -> dialect: `extensions = {lxt = "mcode"}`; wins over the
+    # built-in extensions, loses to --dialect (docs/CONFIGURATION.md)
+    extensions: tuple[tuple[str, str], ...] = ()
+
+    def dialect_for(self, path: str) -> str | None:
+        """The dialect `extensions` gives `path` by its extension, or None."""
+        suffix = os.path.splitext(path)[1].lower().lstrip(".")
+        for ext, dialect in self.extensions:
+            if ext == suffix:
+                return dialect
+        return None
 
     def profile_for_path(self, path: str, dialect: str) -> tuple[str, str] | None:
         """(glob, profile) of the first `per-file-profiles` entry that matches `path` for `dialect`."""
@@ -198,7 +209,7 @@ class Settings:
         # the command line's profile wins for its own dialect, over a directive and the file's keys
         return Settings(self.root, self.path, self.targets, Selection(layers), self.severity, self.per_file_ignores,
                         overrides.fail_on or self.fail_on, self.exclude, self.per_file_profiles,
-                        overrides.profile or self.cli_profile)
+                        overrides.profile or self.cli_profile, self.extensions)
 
 
 def relative_to(path: str, root: str) -> str:
@@ -372,7 +383,8 @@ class Reader:
                         selection=Selection(layers), severity=self.severities(table.get("severity")),
                         per_file_ignores=self.per_file(table.get("per-file-ignores")),
                         fail_on=self.fail_on(table.get("fail-on")), exclude=self.strings(table, "exclude"),
-                        per_file_profiles=self.per_file_profiles(table.get("per-file-profiles")))
+                        per_file_profiles=self.per_file_profiles(table.get("per-file-profiles")),
+                        extensions=self.extensions(table.get("extensions")))
 
     def strings(self, table: dict, key: str) -> tuple[str, ...]:
         value = table.get(key)
@@ -481,6 +493,32 @@ class Reader:
                 self.error("G103", keys, str(exc), needle=spec)
                 continue
             out.append((pattern, resolved))
+        return tuple(out)
+
+    def extensions(self, value: Any) -> tuple[tuple[str, str], ...]:
+        """`extensions = {lxt = "mcode", txt = "mcode"}`: a file extension (with or without its dot)
+        -> the dialect its files are written in."""
+        if value is None:
+            return ()
+        if not isinstance(value, dict):
+            self.error("G103", ("extensions",), "'extensions' must be a table: extension = \"dialect\", "
+                                                "e.g. extensions = {lxt = \"mcode\"}")
+            return ()
+        known = dialects.names()
+        out = []
+        for ext, dialect in value.items():
+            keys = ("extensions", ext)
+            name = ext.strip().lstrip(".").lower()
+            if not name or not re.fullmatch(r"[a-z0-9_.+-]+", name):
+                self.error("G103", keys, f"'{ext}' is not a file extension (write it without the dot: lxt = \"mcode\")")
+                continue
+            if not isinstance(dialect, str) or dialect not in known:
+                near = difflib.get_close_matches(str(dialect).lower(), known, n=1, cutoff=0.5)
+                hint = f"; did you mean '{near[0]}'?" if near else ""
+                self.error("G103", keys, f"'{dialect}' is not a dialect ({', '.join(known)}){hint}",
+                           needle=dialect if isinstance(dialect, str) else None)
+                continue
+            out.append((name, dialect))
         return tuple(out)
 
     def fail_on(self, value: Any) -> str:

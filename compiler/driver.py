@@ -7,6 +7,7 @@ processing one file becomes a G001 internal diagnostic on that file, and the run
 from __future__ import annotations
 
 import gc
+import os
 import traceback
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -63,9 +64,13 @@ def internal_error(diags: Diagnostics, path: str, exc: BaseException, stage: str
               "This is a bug in mcc, not in your program; please report it with this file.")
 
 
-def resolve_dialect(path: str, dialect: str | None) -> dialects.Dialect | None:
+def resolve_dialect(path: str, dialect: str | None, settings=None) -> dialects.Dialect | None:
+    """--dialect, else the configuration's `extensions` (config.Settings), else the built-in extensions."""
     if dialect:
         return dialects.get(dialect)
+    mapped = settings.dialect_for(path) if settings is not None else None
+    if mapped is not None:
+        return dialects.get(mapped)
     return dialects.from_path(path)
 
 
@@ -234,11 +239,13 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
     `settings` (per-file-profiles, target), else the dialect's default; with the default, a file
     that fails and fits another profile gets that profile named (G021)."""
     diags = Diagnostics()
-    found = resolve_dialect(path, dialect)
+    found = resolve_dialect(path, dialect, settings)
     if found is None:
+        ext = os.path.splitext(path)[1].lstrip(".").lower() or "lxt"
         diags.add("G004", file_span(path),
                   f"cannot tell the dialect of '{path}' from its extension "
-                  f"(known: {', '.join(dialects.all_extensions())}); pass --dialect")
+                  f"(known: {', '.join(dialects.all_extensions())}); pass --dialect, or map the extension in "
+                  f"[tool.mcc]: extensions = {{{ext} = \"mcode\"}}")
         return FileResult(path, dialect or "unknown", diags.items)
     source = SourceFile(path, text) if text is not None else read_source(path, diags)
     result = FileResult(path, found.name, source=source)

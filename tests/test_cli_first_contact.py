@@ -58,3 +58,71 @@ def test_arcus_trailing_comments_are_left_alone_unless_a315_is_selected(tmp_path
     assert chosen.stdout.count("[A315]") == 3, chosen.stdout
     widened = run_mcc("lint", "--select", "ALL", str(path))
     assert "A315" not in widened.stdout
+
+
+# A clean MCode program (lexium-mcode.txt L533: PG/LB/E; "S" saves it, L5269, and a comment line
+# after it sends its line end).
+CLEAN_MCODE = "PG 1\nLB G1\n  MA 10\n  H\n  E\nPG\nS\n' end\n"
+
+
+def folder_of_other_extensions(tmp_path: Path) -> Path:
+    """The folder a new user points mcc at: programs saved as .lxt, .txt and a 6K file."""
+    folder = tmp_path / "programs"
+    folder.mkdir()
+    (folder / "a.lxt").write_text(CLEAN_MCODE)
+    (folder / "b.txt").write_text(CLEAN_MCODE)
+    (folder / "c.6k").write_text("DEF main\nDRIVE1\nGO1\nEND\n")
+    return folder
+
+
+def test_lint_and_check_on_a_folder_of_unknown_extensions_is_a_usage_error(tmp_path: Path) -> None:
+    """Nothing checked is not "No problems found in 0 files": each skipped file is named with the
+    reason, and the exit code is 2 (usage), for lint, check and fmt alike."""
+    folder = folder_of_other_extensions(tmp_path)
+    for command in ("lint", "check", "fmt"):
+        result = run_mcc(command, str(folder))
+        assert result.returncode == 2, (command, result.stdout, result.stderr)
+        assert "in 0 files" not in result.stdout
+        for name in ("a.lxt", "b.txt", "c.6k"):
+            assert f"{name}: unknown extension" in result.stderr, (command, result.stderr)
+        assert 'extensions = {' in result.stderr and "no program to" in result.stderr
+
+
+def test_extensions_in_the_configuration_map_files_to_a_dialect(tmp_path: Path) -> None:
+    """`[tool.mcc] extensions = {lxt = "mcode", txt = "mcode"}`: lint and check find and read those
+    files; the one left (.6k) is reported as skipped in one note."""
+    folder = folder_of_other_extensions(tmp_path)
+    (tmp_path / "pyproject.toml").write_text('[tool.mcc]\nextensions = {lxt = "mcode", txt = "mcode"}\n')
+    linted = run_mcc("lint", str(folder))
+    assert linted.returncode == 0 and "No problems found in 2 files." in linted.stdout, linted.stdout
+    assert "skipped 1 file of unknown extension (.6k 1)" in linted.stderr
+    checked = run_mcc("check", str(folder))
+    assert checked.returncode == 0 and "No problems found in 2 files." in checked.stdout, checked.stdout
+    one = run_mcc("check", str(folder / "a.lxt"))
+    assert one.returncode == 0, one.stdout
+
+
+def test_a_misspelt_dialect_in_extensions_is_reported(tmp_path: Path) -> None:
+    """The key is validated like the others (G103 on the TOML file, with the close name)."""
+    folder = folder_of_other_extensions(tmp_path)
+    (tmp_path / "mcc.toml").write_text('extensions = {lxt = "mcod"}\n')
+    result = run_mcc("lint", str(folder / "a.lxt"))
+    assert result.returncode == 1
+    assert "G103" in result.stdout and "'mcod' is not a dialect" in result.stdout and "did you mean 'mcode'" \
+        in result.stdout, result.stdout
+
+
+def test_check_takes_directories_with_lints_discovery(tmp_path: Path) -> None:
+    """`mcc check DIR` finds what `mcc lint DIR` finds: .gitignore (in a git work tree) and `exclude`
+    leave files out, --force-exclude applies them to the files named too."""
+    (tmp_path / ".git").mkdir()
+    (tmp_path / ".gitignore").write_text("build/\n")
+    (tmp_path / "mcc.toml").write_text('exclude = ["vendor"]\n')
+    for rel in ("src/a.mxt", "build/b.mxt", "vendor/c.mxt"):
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text("MX 1\n")  # an unknown command: an error wherever it is read
+    checked = run_mcc("check", ".", cwd=tmp_path)
+    assert checked.returncode == 1
+    assert "src/a.mxt" in checked.stdout and "build" not in checked.stdout and "vendor" not in checked.stdout
+    forced = run_mcc("check", "--force-exclude", "vendor/c.mxt", cwd=tmp_path)
+    assert forced.returncode == 0 and "vendor" not in forced.stdout, forced.stdout
