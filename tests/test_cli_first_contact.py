@@ -126,3 +126,21 @@ def test_check_takes_directories_with_lints_discovery(tmp_path: Path) -> None:
     assert "src/a.mxt" in checked.stdout and "build" not in checked.stdout and "vendor" not in checked.stdout
     forced = run_mcc("check", "--force-exclude", "vendor/c.mxt", cwd=tmp_path)
     assert forced.returncode == 0 and "vendor" not in forced.stdout, forced.stdout
+
+
+MICROLYNX = Path(__file__).parent / "data" / "first_contact" / "microlynx_stage.lxt"
+
+
+def test_a_microlynx_program_is_recognised_once_in_every_reader(tmp_path: Path) -> None:
+    """An IMS MicroLYNX program (MUNIT, ACCL, MOVA, PGM ... LBL ... END ... PGM; written for this
+    test after public MODS instrument programs) gets one G020 naming the language, not an error per
+    line, whichever dialect's extension it carries. lexium-mcode.txt L615-L616 ("PG 100", "LB G1")
+    are the MCode forms the advice names."""
+    text = MICROLYNX.read_text(encoding="utf-8")
+    for ext in (".mxt", ".prg", ".x150"):
+        path = tmp_path / f"stage{ext}"
+        path.write_text(text)
+        result = run_mcc("check", str(path))
+        assert result.returncode == 1
+        assert result.stdout.count("error[") == 1 and "error[G020]" in result.stdout, (ext, result.stdout)
+        assert "IMS MicroLYNX" in result.stdout
