@@ -144,3 +144,18 @@ def test_a_microlynx_program_is_recognised_once_in_every_reader(tmp_path: Path) 
         assert result.returncode == 1
         assert result.stdout.count("error[") == 1 and "error[G020]" in result.stdout, (ext, result.stdout)
         assert "IMS MicroLYNX" in result.stdout
+
+
+def test_messages_name_what_the_user_wrote(tmp_path: Path) -> None:
+    """`Pos=0` is read as OS addressed to the party-mode device P (a one-character device name before
+    a command, lexium-mcode.txt L1067 table of commands): the message starts with what was written
+    and how it was read, and says how to make Pos a variable (VA, L537). `END` alone is a misspelt
+    command (E ends a program), not a label to write with LB."""
+    path = tmp_path / "first.mxt"
+    path.write_text("PG 1\nLB G1\n  Pos=0\n  END\n  E\nPG\n")
+    result = run_mcc("check", str(path))
+    lines = [line for line in result.stdout.splitlines() if "error[" in line]
+    pos = next(line for line in lines if ":3:" in line)
+    assert "'Pos' reads as OS addressed to the party-mode device P" in pos and "cannot be a variable" in pos, pos
+    end = next(line for line in lines if ":4:" in line)
+    assert "'END'" in end and "LB END" not in end and "did you mean E" in end, end

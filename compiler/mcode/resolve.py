@@ -107,8 +107,13 @@ class Resolver:
         if res.party and not res.stmt.party and res.command is not None:
             word = res.stmt.head.text
             lead = f"'{word}' reads as {res.command.name} addressed to the party-mode device {res.party}"
-            if USER_NAME.match(word):
+            rule = str(self.profile.get("limits.label_rule", "strict"))
+            pattern = {"relaxed": USER_NAME, "short": SHORT_USER_NAME}.get(rule, STRICT_USER_NAME)
+            if pattern.match(word):
                 lead += f" (if {word} is a variable of yours, declare it first: `VA {word}`)"
+            else:
+                lead += f" ({word} cannot be a variable: a name of this product has at most "\
+                        f"{2 if rule != 'relaxed' else 3} characters, L550)"
             for diag in self.diags.items[before:]:
                 if not diag.message.startswith(f"'{word}'"):
                     diag.message = f"{lead}: {diag.message}"
