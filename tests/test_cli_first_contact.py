@@ -159,3 +159,24 @@ def test_messages_name_what_the_user_wrote(tmp_path: Path) -> None:
     assert "'Pos' reads as OS addressed to the party-mode device P" in pos and "cannot be a variable" in pos, pos
     end = next(line for line in lines if ":4:" in line)
     assert "'END'" in end and "LB END" not in end and "did you mean E" in end, end
+
+
+MCONTROL = Path(__file__).parent / "data" / "first_contact" / "mcontrol_preprocessed.mxt"
+
+
+def test_mcontrol_preprocessor_source_gets_one_diagnostic_naming_it(tmp_path: Path) -> None:
+    """A program written for mcontrol's preprocessor (`#include "../brake.mxt"`, `#if` ... `#endif`,
+    laid out after public mcontrol modules) gets one M142 naming the preprocessor, with its
+    directive lines as notes, and no "unexpected character '#'"; lint says the same and fmt leaves
+    the file alone. MCode has no `#` (comments are ' or the backquote, lexium-mcode.txt L615)."""
+    path = tmp_path / "zaxis.mxt"
+    path.write_text(MCONTROL.read_text(encoding="utf-8"))
+    for command in ("check", "lint"):
+        result = run_mcc(command, str(path))
+        assert result.returncode == 1
+        assert result.stdout.count("error[") == 1 and "error[M142]" in result.stdout, (command, result.stdout)
+        assert "mcontrol's MCode preprocessor" in result.stdout and "unexpected character" not in result.stdout
+        assert result.stdout.count("= note:") == 4  # #include, #if, #else, #endif
+    before = path.read_text()
+    formatted = run_mcc("fmt", str(path))
+    assert formatted.returncode == 1 and "M142" in formatted.stderr and path.read_text() == before
