@@ -23,7 +23,7 @@ def cli() -> None:
     """mcc: check, lint, format and compile motion-controller programs.
 
     \b
-    Dialects (chosen from the file extension unless --dialect is given):
+    Dialects (chosen from the file extension, or `extensions` in [tool.mcc], unless --dialect is given):
       mcode  Lexium MCode (Schneider/Novanta Lexium MDrive, Motion Module)  .mxt .ixt .mcode
       x150   Parker/Digiplan X150 and X150E indexers                        .x150
       arcus  Arcus Performax PMX-4EX-SA standalone language                 .prg
@@ -90,13 +90,22 @@ def read_stdin(paths, stdin_filename: str | None, dialect: str | None) -> tuple[
     from mcc.compiler import dialects
 
     name = stdin_filename or STDIN
-    if dialect is None and dialects.from_path(name) is None:
+    if dialect is None and dialects.from_path(name) is None and not mapped_extension(name):
         raise click.UsageError("cannot tell the dialect of standard input: pass --dialect, or --stdin-filename "
                                f"with the program's name ({', '.join(dialects.all_extensions())})")
     from mcc.compiler import files
 
     # the bytes decoded as a file's are (compiler/files.py: UTF-8, else Latin-1), never a traceback
     return name, files.decode(click.get_binary_stream("stdin").read()).text
+
+
+def mapped_extension(name: str) -> bool:
+    """Whether the configuration nearest to `name` maps its extension to a dialect (`extensions`)."""
+    if name == STDIN:
+        return False
+    from mcc.compiler import config
+
+    return config.Resolver().for_path(name).dialect_for(name) is not None
 
 
 def use_color(fmt: str) -> bool:

@@ -65,13 +65,21 @@ def internal_error(diags: Diagnostics, path: str, exc: BaseException, stage: str
 
 
 def resolve_dialect(path: str, dialect: str | None, settings=None) -> dialects.Dialect | None:
-    """--dialect, else the configuration's `extensions` (config.Settings), else the built-in extensions."""
+    """--dialect, else the configuration's `extensions` (config.Settings), else the built-in extensions.
+    A caller without settings (mcc sim, the validation) gets the nearest configuration's `extensions`
+    for an extension that is no dialect's, so a mapped file is read the same by every command."""
     if dialect:
         return dialects.get(dialect)
     mapped = settings.dialect_for(path) if settings is not None else None
     if mapped is not None:
         return dialects.get(mapped)
-    return dialects.from_path(path)
+    found = dialects.from_path(path)
+    if found is None and settings is None and os.path.isfile(path):
+        from mcc.compiler import config
+
+        mapped = config.Resolver().for_path(path).dialect_for(path)
+        return dialects.get(mapped) if mapped is not None else None
+    return found
 
 
 def profile_for(dialect: dialects.Dialect, profile: Profile | None) -> Profile:

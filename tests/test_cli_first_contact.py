@@ -100,6 +100,10 @@ def test_extensions_in_the_configuration_map_files_to_a_dialect(tmp_path: Path) 
     assert checked.returncode == 0 and "No problems found in 2 files." in checked.stdout, checked.stdout
     one = run_mcc("check", str(folder / "a.lxt"))
     assert one.returncode == 0, one.stdout
+    piped = run_mcc("check", "-", "--stdin-filename", str(folder / "b.txt"), input=CLEAN_MCODE)
+    assert piped.returncode == 0, piped.stderr
+    simulated = run_mcc("sim", str(folder / "a.lxt"))
+    assert simulated.returncode == 0 and "G004" not in simulated.stdout + simulated.stderr, simulated.stdout
 
 
 def test_a_misspelt_dialect_in_extensions_is_reported(tmp_path: Path) -> None:
