@@ -713,6 +713,13 @@ class Writer:
             if op.signed:
                 raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
                                   "MCode prints positive numbers unsigned),")
+            if op.traced:
+                raise Unsupported("a trace report of the command the device runs (a trace mode, X150 XTR, "
+                                  "parker-x150.md L5384),")
+            formatted = [spec for spec in op.formats if spec]
+            if formatted:
+                raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "
+                                  "MCode's PR prints a number as it is, floats in the PF format),")
             table = table_listing(op)
             if table is not None:  # one line of PR OS / PR LS: the statement is written at its first line
                 return f"PR {table[0]}" if table[1] else None

@@ -163,6 +163,40 @@ def growth_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
                   f"{lint * 1e6 / lines:>16.1f}")
 
 
+ENVELOPE = """
+[tool.mcc.axes.1]
+min = -1000000
+max = 1000000
+max-speed = 1000000
+must-home = true
+""" + "".join(f"[tool.mcc.axes.{axis}]\nmin = -1000000\nmax = 1000000\n" for axis in "XYZU")
+
+
+def envelope_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
+    """The envelope rules' analysis (G301-G304, issue 27) on one growing program: the interval
+    analysis visits each block a bounded number of times, so ms per 1,000 lines should stay flat.
+    Timed on the checked module itself (lint minus check is too noisy for a few milliseconds)."""
+    from mcc.compiler import config
+    from mcc.compiler.envelope.axes import envelopes
+    from mcc.compiler.envelope.intervals import Analyzer
+
+    configured = config.parse(ENVELOPE, "pyproject.toml").settings.axes
+    print("envelope analysis behind G301-G304 (CPU time, best of %d runs)" % repeat)
+    print(f"  {'dialect':8} {'lines':>6} {'analysis s':>10} {'ms/1k lines':>12} {'moves checked':>14}")
+    for dialect in dialects:
+        path = f"bench{EXTENSION[dialect]}"
+        for size in sizes:
+            text = program(dialect, size)
+            lines = text.count("\n")
+            result = driver.check_file(path, dialect, text=text)
+            module = result.analysis.module
+            envs = envelopes(result.profile, configured)
+            found: list = []
+            seconds = timed(repeat, lambda: found.append(Analyzer(module, envs, result.profile.axes).run()))
+            print(f"  {dialect:8} {lines:>6} {seconds:>10.3f} {seconds * 1e6 / lines:>12.1f} "
+                  f"{len(found[-1].checks):>14}")
+
+
 def nesting_table(repeat: int, dialects: list[str]) -> None:
     """Check, lint and compile to every target: a lookup or a walk that is not linear in the
     program shows here first (an Arcus 500-deep nest took about 70 s to MCode through a block
@@ -194,9 +228,15 @@ def main() -> None:
     args.add_argument("--sizes", default="1000,2000,4000,8000,16000", help="program sizes in lines, comma-separated")
     args.add_argument("--dialects", default="arcus,mcode,x150", help="dialects of the one-program tables")
     args.add_argument("--skip-tree", action="store_true", help="only the one-program tables")
+    args.add_argument("--envelope-only", action="store_true", help="only the envelope rules' table (issue 27)")
     options = args.parse_args()
     dialects = [d for d in options.dialects.split(",") if d]
-    growth_table([int(n) for n in options.sizes.split(",") if n], options.repeat, dialects)
+    args_sizes = [int(n) for n in options.sizes.split(",") if n]
+    if options.envelope_only:
+        envelope_table(args_sizes, options.repeat, dialects)
+        return
+    growth_table(args_sizes, options.repeat, dialects)
+    envelope_table(args_sizes, options.repeat, dialects)
     nesting_table(options.repeat, dialects)
     if options.skip_tree:
         return

@@ -317,12 +317,27 @@ def compile_cmd(file: str, target: str | None, dialect: str | None, output: str 
         if produced:
             stats = ", ".join(f"{k} {v}" for k, v in result.listing.stats.items())
             where = f" -> {output}" if output else ""
-            writer.line(f"compiled {file} ({result.dialect} -> {result.target}){where}: {stats}", "bold")
+            writer.line(f"compiled {file} ({result.dialect} -> {result.target}){where}: {stats}{cycle_text(result)}",
+                        "bold")
             if result.optimization is not None and result.optimization.passes:
                 writer.line(f"optimized {result.optimization.summary()}")
         else:
             writer.line(render.summary_line(diags, 1), "bold")
     sys.exit(EXIT_USAGE if write_failed else EXIT_ERRORS if result.has_errors else EXIT_OK)
+
+
+def cycle_text(result) -> str:
+    """", cycle 1.600 s, 1 moves": the main loop's pass in a bounded simulation of the source
+    (sim/cycles.py), or nothing when the program has no main loop or cannot be simulated."""
+    module = result.analysis.module if result.analysis is not None else None
+    if module is None:
+        return ""
+    from mcc.sim.cycles import bounded_timing
+
+    found = bounded_timing(module, result.profile)
+    if found is None or not found.cycles:
+        return ""
+    return f", cycle {found.cycles[0]:.3f} s, {found.moves_per_cycle} moves"
 
 
 def check_outputs(file: str, profile: str | None, output: str | None, listing: str | None,

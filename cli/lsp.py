@@ -16,7 +16,9 @@ ADDRESS = re.compile(r"(?:(?P<host>[^:]*):)?(?P<port>\d{1,5})\Z")
 @click.option("--tcp", metavar="HOST:PORT", help="Listen on a TCP socket instead of stdio (for debugging).")
 @click.option("--log-file", type=click.Path(dir_okay=False), help="Write the server's log here (default: stderr).")
 @click.option("-v", "--verbose", is_flag=True, help="Log every request (debug level).")
-def lsp(tcp: str | None, log_file: str | None, verbose: bool) -> None:
+@click.option("--stdio", is_flag=True, help="Talk over stdin/stdout (the default; accepted because many editor "
+                                             "clients pass it).")
+def lsp(tcp: str | None, log_file: str | None, verbose: bool, stdio: bool) -> None:
     """Run the language server for editors (stdio by default).
 
     \b
@@ -25,6 +27,8 @@ def lsp(tcp: str | None, log_file: str | None, verbose: bool) -> None:
     (fixes, noqa, explanations), formatting and program memory, for the three dialects.
     Needs the optional extra: pip install "mcc[lsp]". Editor set-up: docs/EDITORS.md.
     """
+    if tcp is not None and stdio:
+        raise click.BadParameter("--stdio and --tcp choose different channels: give one", param_hint="--stdio")
     if tcp is not None:
         match = ADDRESS.match(tcp)
         if match is None or not 0 < int(match.group("port")) < 65536:

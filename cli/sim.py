@@ -45,8 +45,11 @@ def load_scenario(path: str | None):
               help="Draw the run: position and speed per moving axis, input and output changes with a legend, the "
                    "XY path. .html is an interactive page (zoom, hover); .svg .pdf .png images need "
                    "`pip install 'mcc[plot]'`.")
+@click.option("--sweep", is_flag=True,
+              help="Run the program over generated input scenarios (every input it reads low, high, and toggling at "
+                   "the times its waits need) and report the worst position each axis reaches, and the scenario.")
 def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, dialect: str | None,
-            profile: str | None, fmt: str, trace_out: str | None, plot_out: str | None) -> None:
+            profile: str | None, fmt: str, trace_out: str | None, plot_out: str | None, sweep: bool) -> None:
     """Run FILE on a virtual machine and report what it does.
 
     The simulator interprets the program's IR in virtual time: moves follow trapezoidal or S-curve
@@ -80,7 +83,9 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
         except PlotError as exc:
             raise click.BadParameter(str(exc), param_hint="--plot") from None
     limit = until if until is not None else (scen.until if scen is not None and scen.until is not None else 60.0)
-    options = Options(until=limit, max_steps=max_steps)
+    options = Options(until=limit, max_steps=max_steps, travel=travel_of(file, dialect, prof))
+    if sweep:
+        _sweep(file, dialect, prof, options, fmt)
     done = simulate_file(file, dialect, prof, scen, options)
     check_profile_dialect(prof, {done.result.dialect})
     result, trace = done.result, done.trace
@@ -111,7 +116,12 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
 
     if fmt == "json":
         if trace is not None:
+            from mcc.sim.cycles import timing
+
             entry = trace.to_json()
+            found = timing(trace)  # seconds: each pass of the main loop, each call (docs/SIMULATOR.md, "Envelope")
+            entry["cycles"] = found.cycles
+            entry["calls"] = found.calls
         else:  # the program could not run: the same shape, stopped with "error" before it started
             entry = {"path": result.path, "dialect": result.dialect, "stopped": "error",
                      "reason": "the program was not simulated (see diagnostics)", "time": 0, "steps": 0,
@@ -130,6 +140,52 @@ def sim_cmd(file: str, inputs: str | None, until: float | None, max_steps: int, 
             for line, style in summary_lines(trace):
                 writer.line(line, style)
     sys.exit(EXIT_ERRORS if failed else EXIT_OK)
+
+
+def travel_of(file: str, dialect: str | None, prof) -> tuple:
+    """The envelope's travel of each axis, in steps, for the simulator's limit switches: the
+    project's `[tool.mcc.axes]` over the profile's `[envelope]` (docs/CONFIGURATION.md)."""
+    from mcc.compiler import config, dialects
+    from mcc.compiler.envelope.axes import envelopes
+
+    settings = config.Resolver().for_path(file)
+    if prof is None:
+        found = dialects.get(dialect) if dialect else dialects.from_path(file)
+        spec = settings.profile_spec(found.name) if found is not None else None
+        try:
+            prof = config.load_profile(spec or found.default_profile) if found is not None else None
+        except Exception:  # noqa: BLE001 - a broken profile is reported by the check itself
+            prof = None
+    return tuple((axis, env.min, env.max) for axis, env in sorted(envelopes(prof, settings.axes).items())
+                 if env.min is not None or env.max is not None)
+
+
+def _sweep(file: str, dialect: str | None, prof, options, fmt: str) -> None:
+    """`--sweep`: the worst position per axis over the generated scenarios."""
+    from mcc.cli import render
+    from mcc.sim.cycles import worst_positions
+    from mcc.sim.files import sweep_file
+
+    result, runs = sweep_file(file, dialect, prof, options)
+    worst = worst_positions(runs)
+    stops = [(name, trace) for name, trace in runs if trace.stopped == "travel"]
+    if fmt == "json":
+        click.echo(render.dump_json({"files": [{
+            "path": result.path, "scenarios": [{"name": n, "stopped": t.stopped, "reason": t.reason} for n, t in runs],
+            "worst": [{"axis": w.axis, "low": w.low, "low_scenario": w.low_scenario, "high": w.high,
+                       "high_scenario": w.high_scenario} for w in worst],
+            "diagnostics": [d.to_json() for d in sorted(result.diagnostics, key=lambda d: d.sort_key())]}]}))
+    else:
+        _diagnostics(result, sys.stdout)
+        click.echo(f"{result.path}: {len(runs)} scenarios")
+        for name, trace in runs:
+            click.echo(f"  {name}: stopped: {trace.stopped} at {trace.time:.3f} s")
+        for w in worst:
+            click.echo(f"  axis {w.axis}: lowest {_n(w.low)} ({w.low_scenario}), highest {_n(w.high)} "
+                       f"({w.high_scenario})")
+        if stops:
+            click.echo(f"  end of travel reached in {len(stops)} scenario(s): {', '.join(n for n, _ in stops)}")
+    sys.exit(EXIT_ERRORS if result.has_errors else EXIT_OK)
 
 
 def _has_matplotlib() -> bool:
@@ -163,6 +219,10 @@ def summary_lines(trace) -> list[tuple[str, str]]:
     out.append((f"  positions (steps): {axes}", ""))
     on = ", ".join(f"{n}={v}" for n, v in sorted(trace.outputs.items())) or "none written"
     out.append((f"  outputs: {on}", ""))
+    from mcc.sim.cycles import timing
+
+    for line in timing(trace).summary():
+        out.append((f"  {line}", ""))
     if trace.prints:
         out.append(("  prints:", ""))
         for t, text in trace.prints:

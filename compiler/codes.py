@@ -35,6 +35,7 @@ class CodeInfo:
     # an opt-in rule runs only when its own code is selected (`extend-select = ["A315"]`), never
     # through `ALL` or a shorter prefix: a style some projects want and most do not (docs/LINT.md)
     opt_in: bool = False
+    config: str = ""  # the `[tool.mcc]` configuration the examples are checked with (envelope rules)
 
     def page(self) -> str:
         """The explanation page as Markdown."""
@@ -50,6 +51,9 @@ class CodeInfo:
             parts.append(f"- manual: {self.manual}")
         if self.explanation:
             parts += ["", "## What it means", "", self.explanation.strip()]
+        if self.config:
+            parts += ["", "## Configuration", "", "The examples are checked with this pyproject.toml:", "",
+                      "```toml", self.config.strip("\n"), "```"]
         if self.bad:
             parts += ["", "## Bad", "", "```", self.bad.strip("\n"), "```"]
         if self.good:
@@ -88,6 +92,7 @@ def _load_file(path: Path) -> list[CodeInfo]:
             fixable=bool(raw.get("fixable", False)),
             manual=raw.get("manual", ""),
             opt_in=bool(raw.get("opt_in", False)),
+            config=raw.get("config", ""),
         ))
     return infos
 

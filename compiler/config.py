@@ -36,7 +36,9 @@ ALWAYS_ON = ("G001", "G102", "G103")  # internal errors and configuration errors
 SEVERITIES = tuple(s.value for s in Severity)
 LIST_KEYS = ("select", "extend-select", "ignore", "exclude")
 DEFAULT_FAIL_ON = "warning"  # `mcc lint` exits 1 on a warning, as ruff on any finding (docs/LINT.md)
-KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles", "extensions")
+KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles",
+              "axes",  # axes: the machine's envelope (compiler/envelope/axes.py)
+              "extensions")
 
 
 class ConfigError(Exception):
@@ -125,6 +127,7 @@ class Settings:
     # file and names a profile of its dialect chooses it (compiler/selection.py)
     per_file_profiles: tuple[tuple[str, str], ...] = ()
     cli_profile: str | None = None  # --profile: wins over everything (compiler/selection.py)
+    axes: tuple = ()  # (axis, envelope.axes.AxisEnvelope): `[tool.mcc.axes.<axis>]`, in steps
     # extension (lower case, no dot) -> dialect: `extensions = {lxt = "mcode"}`; wins over the
     # built-in extensions, loses to --dialect (docs/CONFIGURATION.md)
     extensions: tuple[tuple[str, str], ...] = ()
@@ -209,7 +212,7 @@ class Settings:
         # the command line's profile wins for its own dialect, over a directive and the file's keys
         return Settings(self.root, self.path, self.targets, Selection(layers), self.severity, self.per_file_ignores,
                         overrides.fail_on or self.fail_on, self.exclude, self.per_file_profiles,
-                        overrides.profile or self.cli_profile, self.extensions)
+                        overrides.profile or self.cli_profile, self.axes, extensions=self.extensions)
 
 
 def relative_to(path: str, root: str) -> str:
@@ -384,6 +387,7 @@ class Reader:
                         per_file_ignores=self.per_file(table.get("per-file-ignores")),
                         fail_on=self.fail_on(table.get("fail-on")), exclude=self.strings(table, "exclude"),
                         per_file_profiles=self.per_file_profiles(table.get("per-file-profiles")),
+                        axes=self.axes(table.get("axes")),
                         extensions=self.extensions(table.get("extensions")))
 
     def strings(self, table: dict, key: str) -> tuple[str, ...]:
@@ -520,6 +524,16 @@ class Reader:
                 continue
             out.append((name, dialect))
         return tuple(out)
+    def axes(self, value: Any) -> tuple:
+        """`[tool.mcc.axes.<axis>]`: the envelope of each axis (compiler/envelope/axes.py)."""
+        if value is None:
+            return ()
+        from mcc.compiler.envelope import axes
+
+        found, problems = axes.parse(value)
+        for keys, code, message in problems:
+            self.error(code, keys, message)
+        return tuple(sorted(found.items()))
 
     def fail_on(self, value: Any) -> str:
         if value is None:

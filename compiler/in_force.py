@@ -24,8 +24,9 @@ setting and the setting for every axis (`axis == "*"`) combine is the module's f
   value when it is incomplete on every path, and nothing otherwise. Every state carries the
   module's rule as `(SETS, param)` keys, so `lookup` needs nothing else.
 
-Across routines the analysis is context-insensitive: a subroutine starts with what holds at every
-one of its calls, a call removes whatever the subroutine (or anything it calls) may set, and an
+Across routines the analysis is context-insensitive: the commands sent outside any program run
+first, in order, and the program's entry routine starts with what they leave (the simulator's
+order); a subroutine starts with what holds at every one of its calls, a call removes whatever the subroutine (or anything it calls) may set, and an
 event handler starts knowing nothing, since it can run at any time. Each block is visited a
 bounded number of times (the lattice only loses keys), so the cost is linear in the program for
 the graphs programs have.
@@ -365,6 +366,9 @@ def transfer(state: State, op: ir.Op, clobbers: dict[str, frozenset[Key]], sets:
         if other is not None and axis == ALL:  # whichever of accel / accel_time is set last applies
             for key in [k for k in state if len(k) == 2 and k[0] is other]:
                 del state[key]
+        elif other is not None and other not in sets:  # on this axis: its own of the other is replaced,
+            state.pop((other, axis), None)  # and the `*` one, which it would otherwise be read as
+            state.pop((other, ALL), None)
     elif isinstance(op, ir.Native):
         state.clear()  # a command only its own dialect knows may change any setting
     elif isinstance(op, ir.Call):
@@ -436,6 +440,7 @@ class InForce:
                 starts[routine.name] = dict(self.fixed)
             else:
                 starts[routine.name] = None  # met from its calls
+        starts.update(self._after_immediate())
         # Iterate: routine entries depend on call sites, call sites on routine entries.
         for _ in range(len(self.module.routines) + 2):
             calls: dict[str, State | None] = {}
@@ -454,7 +459,43 @@ class InForce:
             if not changed:
                 break
 
-    def _solve_routine(self, routine: ir.Routine, start: State, calls: dict[str, State | None]) -> None:
+    def _after_immediate(self) -> dict[str, State]:
+        """The starts of the routines that run after the commands sent outside any program.
+
+        The immediate stretches run first, in the order they were sent, then the program's entry
+        routine (the first main program, else the power-up routine), as the simulator runs a module
+        (sim/interpreter.py; MCode settings before `PG` are in force when the program runs,
+        lexium-mcode.txt L510-L512; X150 buffered commands run in sequential order, L177). So each
+        stretch starts with what the one before it leaves, and the entry routine with what the last
+        one leaves: an MCode `VI=500` or an Arcus `HSPDX=...` sent before the program is in force in
+        it (issue 23: MCode -> Arcus refused, G003, for want of them). What a stretch leaves does
+        not depend on what its subroutines start with (a call removes what they may set), so one pass
+        in order is exact. A stretch that never reaches its end (an End, a loop) leaves nothing known."""
+        immediate = [r for r in self.module.routines if r.kind is ir.RoutineKind.IMMEDIATE and r.blocks]
+        if not immediate:
+            return {}
+        starts: dict[str, State] = {}
+        state: State = dict(self.defaults)
+        for routine in immediate:
+            starts[routine.name] = state
+            exits: list[State] = []
+            self._solve_routine(routine, state, {}, exits)
+            left: State | None = None
+            for found in exits:
+                left = meet(left, found, self.sets)
+            state = {**(left or {}), **self.fixed}
+        entry = next((r for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP) for r in self.module.routines
+                      if r.kind is kind and r.blocks), None)
+        if entry is not None:
+            starts[entry.name] = state
+        self.entry = {}
+        self.reached = set()
+        return starts
+
+    def _solve_routine(self, routine: ir.Routine, start: State, calls: dict[str, State | None],
+                       exits: list[State] | None = None) -> None:
+        """The state at each block's entry (`self.entry`); with `exits`, the states the routine
+        ends with where it runs off its end or returns are appended to it."""
         if not routine.blocks:
             return
         blocks = {b.label: b for b in routine.blocks}
@@ -471,6 +512,8 @@ class InForce:
                 if isinstance(op, ir.Call):
                     calls[op.routine] = meet(calls.get(op.routine), state, self.sets)
                 transfer(state, op, self.clobbers, self.sets)
+            if exits is not None and isinstance(block.terminator, (ir.FallOff, ir.Return, type(None))):
+                exits.append(dict(state))
             for succ in ir.successors(block.terminator):
                 if succ not in blocks:
                     continue

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from enum import Enum
-from typing import Union
+from typing import Callable, Union
 
 from mcc.compiler.span import Span
 
@@ -264,12 +264,14 @@ class Move:
 
 @dataclass(slots=True)
 class Arc:
-    """Circular (angle None: full circle) or arc interpolation around a centre."""
+    """Circular (angle None: full circle) or arc interpolation around a centre. `angle` (degrees)
+    is the end point's direction from the centre, measured clockwise from the negative first
+    axis, not a sweep (docs/IR.md, "Arcs")."""
 
     axes: tuple[str, str]
     center: tuple[Expr, Expr]
     clockwise: bool
-    angle: Expr | None = None  # millidegrees
+    angle: Expr | None = None  # degrees: the end point's direction (docs/IR.md, "Arcs")
     span: Span | None = None
 
 
@@ -356,13 +358,20 @@ class Print:
     """Send text and values to the host. `axis` names the device that sends them when the line is
     addressed to one (an MCode party address); empty for the device the program runs on. `signed`:
     every value is sent with its sign, `+` for zero and positive numbers too (the X150's position
-    report `*+4000`, L3141); a backend that cannot write the sign refuses the print."""
+    report `*+4000`, L3141); a backend that cannot write the sign refuses the print. `formats`: the
+    format of each item, by position ("" or missing: as the value prints), from
+    `ir_names.PRINT_FORMATS` (`fixed 3`, `fixed 0 magnitude`, `bits 10`, `pad 2`): data the
+    simulator applies and a backend writes or refuses (docs/IR.md, "Print formats"). `traced`: the
+    device's own report of the command it runs, sent only while its `trace` setting is on (X150
+    XTR, parker-x150.md L5384-L5433; docs/IR.md, "Trace reports")."""
 
     items: tuple[Expr, ...]
     newline: bool = True
     span: Span | None = None
     axis: str = ""
     signed: bool = False
+    formats: tuple[str, ...] = ()
+    traced: bool = False
 
 
 @dataclass(slots=True)
@@ -707,56 +716,70 @@ def retarget(term: Terminator | None, old: str, new: str) -> None:
 def walk_expr(expr):
     """Yield an expression or condition and all of its sub-expressions, depth first."""
     stack = [expr]
+    pop, extend, children = stack.pop, stack.extend, _EXPR_CHILDREN.get
     while stack:
-        node = stack.pop()
+        node = pop()
         if node is None:
             continue
         yield node
-        if isinstance(node, (BinOp, Compare, Logic)):
-            stack.extend((node.right, node.left))
-        elif isinstance(node, UnOp):
-            stack.append(node.operand)
-        elif isinstance(node, Func):
-            stack.extend(reversed(node.args))
-        elif isinstance(node, (Truth,)):
-            stack.append(node.expr)
-        elif isinstance(node, InputMatch):
-            stack.append(node.pattern)
-        elif isinstance(node, Not):
-            stack.append(node.cond)
+        get = children(type(node))
+        if get is None:
+            get = _EXPR_CHILDREN[type(node)] = _first_rule(type(node), _EXPR_RULES)
+        if get is not _NOTHING:
+            extend(get(node))
+
+
+def _nothing(_node) -> tuple:
+    return ()
+
+
+_NOTHING = _nothing
+
+
+def _first_rule(cls: type, rules: tuple) -> Callable:
+    """The function of the first rule whose types `cls` is (isinstance order), or _NOTHING."""
+    return next((get for types, get in rules if issubclass(cls, types)), _NOTHING)
+
+
+# The sub-expressions of a node, pushed so that they come out left first. Dispatched on the node's
+# type through a dictionary filled from these rules (walking expressions is most of what the lint
+# rules' data flow does: a chain of isinstance tests per node cost a tenth of an editor's analysis).
+_EXPR_RULES: tuple = (
+    ((BinOp, Compare, Logic), lambda n: (n.right, n.left)),
+    (UnOp, lambda n: (n.operand,)),
+    (Func, lambda n: reversed(n.args)),
+    (Truth, lambda n: (n.expr,)),
+    (InputMatch, lambda n: (n.pattern,)),
+    (Not, lambda n: (n.cond,)),
+)
+_EXPR_CHILDREN: dict[type, Callable] = {}
 
 
 def op_exprs(op: Op) -> tuple:
     """The expressions and conditions an operation reads."""
-    if isinstance(op, Assign):
-        return (op.value,)
-    if isinstance(op, (SetMotion, SetPosition, Setting)):
-        return (op.value,)
-    if isinstance(op, Move):
-        return tuple(e for _, e in op.targets) + tuple(e for _, e in op.options)
-    if isinstance(op, Arc):
-        return op.center + ((op.angle,) if op.angle is not None else ())
-    if isinstance(op, Slew):
-        return (op.velocity,) if op.velocity is not None else ()
-    if isinstance(op, Home):
-        return tuple(e for e in (op.mode, op.speed, op.creep_speed, op.accel) if e is not None)
-    if isinstance(op, Delay):
-        return (op.duration,)
-    if isinstance(op, SetOutput):
-        return (op.value,)
-    if isinstance(op, WaitInput):
-        return (op.cond,)
-    if isinstance(op, Print):
-        return op.items
-    if isinstance(op, DriveEnable):
-        return (op.on,)
-    if isinstance(op, Step):
-        return (op.count,)
-    if isinstance(op, Call):
-        return (op.cond,) if op.cond is not None else ()
-    if isinstance(op, (SetHandler, Native)):
-        return op.args
-    return ()
+    get = _OP_EXPRS.get(type(op))
+    if get is None:
+        get = _OP_EXPRS[type(op)] = _first_rule(type(op), _OP_RULES)
+    return get(op)
+
+
+_OP_RULES: tuple = (
+    (Assign, lambda op: (op.value,)),
+    ((SetMotion, SetPosition, Setting), lambda op: (op.value,)),
+    (Move, lambda op: tuple(e for _, e in op.targets) + tuple(e for _, e in op.options)),
+    (Arc, lambda op: op.center + ((op.angle,) if op.angle is not None else ())),
+    (Slew, lambda op: (op.velocity,) if op.velocity is not None else ()),
+    (Home, lambda op: tuple(e for e in (op.mode, op.speed, op.creep_speed, op.accel) if e is not None)),
+    (Delay, lambda op: (op.duration,)),
+    (SetOutput, lambda op: (op.value,)),
+    (WaitInput, lambda op: (op.cond,)),
+    (Print, lambda op: op.items),
+    (DriveEnable, lambda op: (op.on,)),
+    (Step, lambda op: (op.count,)),
+    (Call, lambda op: (op.cond,) if op.cond is not None else ()),
+    ((SetHandler, Native), lambda op: op.args),
+)
+_OP_EXPRS: dict[type, Callable] = {}
 
 
 def term_exprs(term: Terminator | None) -> tuple:

@@ -126,7 +126,37 @@ STATUS: dict[str, Reading] = {r.meaning: r for r in (
     Reading("part_number"),  # the device's part number (text, from the product profile)
     Reading("firmware_version"),  # the device's firmware and hardware version (text, from the product profile)
     Reading("resolution"),  # steps per motor revolution in force (the resolution setting)
+    Reading("switch_levels"),  # the active level of every switch input (1 active high), SWITCH_INPUTS order from bit 0
+    Reading("device_address"),  # the address (axis number) of the device that runs the operation
 )}
+
+# The dedicated switch inputs a device may have beside its numbered inputs, in the order of the
+# `switch_active_high` setting's index (1 first) and of the `switch_levels` reading's bits: each is
+# also a reading of its own (STATUS).
+SWITCH_INPUTS = ("limit_plus", "limit_minus", "home_switch", "aux_input", "stop_input", "enable_input",
+                 "index_input")
+
+# Print formats (`Print.formats`, one per item; docs/IR.md, "Print formats"): a word and a number,
+# then options.
+PRINT_FORMATS: dict[str, str] = {
+    "fixed": "`fixed p`: the number with p digits after the decimal point, the further digits dropped "
+             "(truncated toward zero), no point when p is 0; option `magnitude`: without its sign",
+    "bits": "`bits n`: n binary digits of an integer, bit 0 first (leftmost)",
+    "pad": "`pad n`: an integer with leading zeros to n digits",
+}
+
+
+def print_format_error(spec: str) -> str | None:
+    """Why `spec` is not a print format (PRINT_FORMATS), or None when it is one ("" included)."""
+    if spec == "":
+        return None
+    words = spec.split()
+    if len(words) < 2 or words[0] not in PRINT_FORMATS or not words[1].isdigit() or int(words[1]) > 64:
+        return f"'{spec}' is not a print format (a word of {sorted(PRINT_FORMATS)} and a number up to 64)"
+    extra = words[2:]
+    if extra and (words[0] != "fixed" or extra != ["magnitude"]):
+        return f"'{spec}' has an option its format does not take"
+    return None
 
 # SetHandler events: what makes the handler run.
 EVENTS: dict[str, str] = {
@@ -184,6 +214,8 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode", "x150")),
     SettingInfo("io_sourcing", Unit.NONE, "1: I/O point `index` sources current, 0: it sinks (MDrivePlus S1-S4; "
                 "wiring on Lexium drives)", ("mcode",)),
+    SettingInfo("switch_active_high", Unit.NONE, "1: switch input `index` (SWITCH_INPUTS, 1 first) is active at a "
+                "high level, 0: low", ("x150",)),
     SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis", ("arcus",)),
     SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again",
                 ("arcus",)),

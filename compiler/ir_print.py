@@ -89,9 +89,11 @@ def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat
     if isinstance(op, ir.WaitInput):
         return f"wait until {cond_text(op.cond)}"
     if isinstance(op, ir.Print):
-        items = ", ".join(expr_text(item) for item in op.items)
+        formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
+        items = ", ".join(expr_text(item) + (f" as {spec}" if spec else "") for item, spec in zip(op.items, formats))
         device = f" on {op.axis}" if op.axis else ""
-        return f"print{device} {items}{'' if op.newline else ' no-newline'}{' signed' if op.signed else ''}"
+        traced = " if tracing" if op.traced else ""
+        return f"print{device} {items}{'' if op.newline else ' no-newline'}{' signed' if op.signed else ''}{traced}"
     if isinstance(op, ir.DriveEnable):
         return f"enable {op.axis} = {expr_text(op.on)}"
     if isinstance(op, ir.Call):

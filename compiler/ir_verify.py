@@ -132,6 +132,13 @@ class _Checker:
                 self._unit(op.angle, ANGLE, where, "arc angle", op.span)
         elif isinstance(op, ir.Home):
             self._home(op, where)
+        elif isinstance(op, ir.Print) and op.formats:
+            if len(op.formats) > len(op.items):
+                self.add("meaning", where, "a print has more formats than items", op.span)
+            for spec in op.formats:
+                problem = ir_names.print_format_error(spec)
+                if problem is not None:
+                    self.add("meaning", where, problem, op.span)
         elif isinstance(op, ir.Step):
             self._unit(op.count, frozenset({ir.Unit.NONE}), where, "step count", op.span)
         elif isinstance(op, ir.Slew) and op.velocity is not None:

@@ -137,6 +137,11 @@ def _load(name_or_path: str) -> Profile:
     for key in ("dialect", "product"):
         if key not in data:
             raise ProfileError(f"profile {name_or_path}: missing key '{key}'")
+    from mcc.compiler.envelope.axes import profile_problems
+
+    problems = profile_problems(data)
+    if problems:
+        raise ProfileError(f"profile {name_or_path}: {problems[0]}")
     return Profile(
         name=data.get("name", default_name),
         dialect=data["dialect"],

@@ -1,5 +1,6 @@
 """Code actions: every fix a diagnostic carries, "silence with noqa" in the dialect's own comment
-syntax, and the explanation of the rule (the `mcc.explain` command)."""
+syntax, the explanation of the rule (the `mcc.explain` command), and "fix all" (`source.fixAll.mcc`,
+what `mcc lint --fix` writes: the safe fixes, round after round, validated in the simulator)."""
 
 from __future__ import annotations
 
@@ -7,9 +8,47 @@ from lsprotocol import types as t
 
 from mcc.compiler.diagnostics import Diagnostic, Kind
 from mcc.compiler.lint import suppress
+from mcc.compiler.span import normalise_newlines
 from mcc.lsp.convert import range_of
+from mcc.lsp.edits import line_edits, with_newlines_of
 
 EXPLAIN = "mcc.explain"
+FIX_ALL = "source.fixAll.mcc"
+FIX_ALL_TITLE = "Fix all auto-fixable problems (mcc)"
+
+
+def kind_text(kind) -> str:
+    return str(getattr(kind, "value", kind))
+
+
+def fix_all_wanted(only) -> bool:
+    """Whether a request's `only` kinds take in `source.fixAll.mcc` (no `only`: every kind)."""
+    return not only or any(FIX_ALL == kind_text(w) or FIX_ALL.startswith(kind_text(w) + ".") for w in only)
+
+
+def has_safe_fixes(snap) -> bool:
+    return any(d.fix is not None and d.fix.edits and d.fix.safe for d in snap.diagnostics)
+
+
+def fix_all_action(snap, edits: list[t.TextEdit] | None = None, data=None) -> t.CodeAction:
+    """The "fix all" action: with its edits, or with `data` for codeAction/resolve to fill them in."""
+    edit = t.WorkspaceEdit(changes={snap.uri: edits}) if edits is not None else None
+    return t.CodeAction(title=FIX_ALL_TITLE, kind=FIX_ALL, edit=edit, data=data)
+
+
+def fix_all_edits(snap, document: str) -> list[t.TextEdit]:
+    """The edits that turn the editor's `document` into what `mcc lint --fix` writes for it: the safe
+    fixes applied until the text settles (engine.lint_source), nothing when the simulator finds that
+    the fixed program behaves differently (the command's default validation), the file's own line
+    ends kept; positions in characters."""
+    from mcc.compiler.lint import engine
+
+    text = normalise_newlines(document)
+    options = engine.Options(fix=True, dialect=snap.dialect, verify=True, verify_required=False)
+    outcome = engine.lint_source(snap.path, text, snap.settings, options)
+    if outcome.text is None or outcome.text == text or engine._diverges(outcome, text, options):
+        return []
+    return line_edits(document, with_newlines_of(document, outcome.text))
 
 
 def overlaps(diag: Diagnostic, first: int, last: int) -> bool:
@@ -38,7 +77,8 @@ def code_actions(snap, rng: t.Range, context: t.CodeActionContext) -> list[t.Cod
         # a bare Command (allowed in the answer): clients run it without a code-action round trip
         out.append(t.Command(title=f"Explain {diag.code}", command=EXPLAIN, arguments=[diag.code]))
     if wanted:
-        out = [a for a in out if isinstance(a, t.CodeAction) and any(str(a.kind).startswith(str(w)) for w in wanted)]
+        out = [a for a in out if isinstance(a, t.CodeAction)
+               and any(kind_text(a.kind).startswith(kind_text(w)) for w in wanted)]
     return dedupe(out)
 
 

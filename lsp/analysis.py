@@ -45,6 +45,10 @@ class Snapshot:
     check_errors: bool = False  # the frontend's checks found errors (no program memory then)
     memory: object | None = None  # memory.Usage
     config_diagnostics: list[tuple[str, list[Diagnostic]]] = field(default_factory=list)
+    # milliseconds the analysis took: wall clock from the edit's arrival to the diagnostics, and the
+    # analysis thread's CPU time in the checks and the rules (mcc/status reports them: on a loaded
+    # machine the wall clock is mostly waiting for a CPU)
+    timings: dict[str, float] = field(default_factory=dict)
 
     @property
     def known(self) -> bool:
@@ -126,7 +130,8 @@ def complete(snap: Snapshot) -> Snapshot:
     """The snapshot with its program memory (last step): every feature has what it needs."""
     from mcc.lsp import memory
 
-    return Snapshot(**{**snap.__dict__, "complete": True, "memory": memory.usage(snap)})
+    usage = memory.usage(snap)  # None when it cannot be priced: the figures carried stay (documents.py)
+    return Snapshot(**{**snap.__dict__, "complete": True, "memory": usage if usage is not None else snap.memory})
 
 
 def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resolver | None = None,

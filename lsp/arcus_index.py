@@ -10,6 +10,7 @@ from __future__ import annotations
 from mcc.compiler import cancel
 from mcc.compiler.arcus import catalog as acat
 from mcc.compiler.arcus import syntax as st
+from mcc.compiler.arcus.resolve import VARIABLE, sub_span
 from mcc.compiler.span import SourceFile
 from mcc.lsp import model as m
 from mcc.lsp.mcode_index import comment_folds, span_lines
@@ -58,6 +59,14 @@ def add_part(index: m.Index, cat, part: st.Part, head: bool, written: bool = Fal
     if found is None:
         return None
     keyword = found.keyword
+    if head and keyword.form == "glued" and VARIABLE.match(part.key[found.end:]):
+        # a variable as a move target: `XV21` moves X to the value of V21 (arcus-pmx-4ex-sa.txt L2759)
+        token = index.add(sub_span(part, 0, found.end), m.COMMAND, entry=keyword.entry)
+        number = int(part.key[found.end + 1:])
+        key = f"variable:V{number}"
+        index.symbol(key, m.SYMBOL_VARIABLE, f"V{number}")
+        index.add(sub_span(part, found.end, len(part.key)), m.VARIABLE, entry=keyword.entry, symbol=key)
+        return token
     if keyword.name == "V" and part.number:
         key = f"variable:V{int(part.number)}"
         index.symbol(key, m.SYMBOL_VARIABLE, f"V{int(part.number)}")

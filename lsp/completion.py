@@ -1,10 +1,16 @@
 """Completion and signature help.
 
 What is offered depends on where the cursor is, read from the text of the current line: a label
-after `BR`/`CL` (MCode), a subroutine number after `GOSUB` (Arcus), a sequence number after
-`XR`/`XG`/... (X150), a command at the start of a statement (as a snippet from the catalog's
-syntax, only what the target product has, and only what the program region allows), variables
-and readable registers elsewhere.
+where an MCode command takes one (`BR x`, `CL x`, `TI 1,x`, `TT=0.5,x`, `OE=x`, ...), a condition
+after `BR x,`/`CL x,` (variables, flags and inputs, lexium-mcode.txt L1807, L2124), a subroutine
+number after `GOSUB` (Arcus), a sequence number after `XR`/`XG`/... (X150), a command at the start
+of a statement (as a snippet from the catalog's syntax, only what the target product has, and only
+what the program region allows), variables and readable registers elsewhere.
+
+Every item carries the range it replaces (a `textEdit`): the word being typed as the dialect reads
+it, not as the editor's word pattern does. An X150 device address (`1D`, `2G`) and an Arcus axis
+letter before a variable (`XV2`) are not part of it, nor what stands before `,` or `=`; without the
+range an editor filters the items by `1D` or `XV2` and shows none.
 """
 
 from __future__ import annotations
@@ -15,14 +21,19 @@ from lsprotocol import types as t
 
 from mcc.lsp import catalog_info, model
 
-MCODE_LABEL = re.compile(r"^\s*[!*^]?[A-Za-z]?(?:BR|CL|BP|EX|OE|TI|TP|TT|TR|TA|TM|TC)\s+(?:[^,\s]*,\s*)?([A-Za-z0-9]*)$",
-                         re.IGNORECASE)
+MCODE_PREFIX = r"^\s*[!*^]?(?:[A-Za-z0-9]\s*)??"  # an optional party-mode device name
+MCODE_LABEL = re.compile(  # the label/address of L1764 BP, L1807 BR, L2124 CL, L2156 CP, L2787 EX,
+    # L4551 OE=, L5583 TA=, L5609 TC=, L5744 TM=, and after the first argument of L5711 TI,
+    # L5776 TP=, L5848 TR=, L5908 TT=
+    MCODE_PREFIX + r"(?:(?:BR|CL|BP|EX|CP)\s+|(?:OE|TA|TC|TM)\s*=\s*|(?:TI\s+|(?:TP|TR|TT)\s*=\s*)[^,]*,\s*)"
+    r"[A-Za-z0-9]*$", re.IGNORECASE)
+MCODE_CONDITION = re.compile(MCODE_PREFIX + r"(?:BR|CL)\s+[^,\s]+\s*,[^,]*$", re.IGNORECASE)  # L1807, L2124
 ARCUS_GOSUB = re.compile(r"^\s*GOSUB\s*(\d*)$", re.IGNORECASE)
 X150_SEQUENCE = re.compile(r"(?:^|\s)\d*(?:XRP|XR|XG|XE|XU|GOSUB|GOTO)\s*(\d*)$", re.IGNORECASE)
 STATEMENT_START = {
     "mcode": re.compile(r"^\s*[!*^]?[A-Za-z]{0,3}$"),
     "arcus": re.compile(r"^\s*[A-Za-z]*$"),
-    "x150": re.compile(r"(?:^|\s)\d*B?[A-Za-z]*$"),
+    "x150": re.compile(r"(?:^|\s)\d*(B?[A-Za-z]*)$"),  # the command after its device address
 }
 WORD = re.compile(r"[A-Za-z0-9_]*$")
 COMMAND_KINDS = {"mcode": ("instruction", "variable", "flag"),
@@ -34,17 +45,57 @@ def complete(snap, line_text: str, character: int, line: int) -> t.CompletionLis
     before = line_text[:character]
     dialect = snap.dialect
     items: list[t.CompletionItem] = []
+    start = word_start(dialect, before)
     if dialect == "mcode" and MCODE_LABEL.match(before):
         items = symbols(snap, model.SYMBOL_LABEL)
+    elif dialect == "mcode" and MCODE_CONDITION.match(before) and not in_comment(snap, before):
+        items = symbols(snap, model.SYMBOL_VARIABLE) + values(snap)
+    elif dialect == "arcus" and ARCUS_MOVE_VARIABLE.match(before):
+        items = symbols(snap, model.SYMBOL_VARIABLE)
     elif dialect == "arcus" and ARCUS_GOSUB.match(before):
         items = symbols(snap, model.SYMBOL_SUBROUTINE)
-    elif dialect == "x150" and X150_SEQUENCE.search(before):
+    elif dialect == "x150" and (found := X150_SEQUENCE.search(before)):
         items = symbols(snap, model.SYMBOL_SEQUENCE)
-    elif dialect in STATEMENT_START and STATEMENT_START[dialect].search(before) and not in_comment(snap, before):
+        start = found.start(1)  # the number after `1XR`
+    elif dialect in STATEMENT_START and (found := STATEMENT_START[dialect].search(before)) \
+            and not in_comment(snap, before):
         items = commands(snap, line) + (symbols(snap, model.SYMBOL_VARIABLE) if dialect != "x150" else [])
+        if dialect == "x150":
+            start = found.start(1)  # after the device address (`1` typed alone: nothing to replace)
     elif not in_comment(snap, before):
         items = symbols(snap, model.SYMBOL_VARIABLE) + values(snap)
-    return t.CompletionList(is_incomplete=False, items=items)
+    replaced = t.Range(t.Position(line, start), t.Position(line, character))
+    return t.CompletionList(is_incomplete=False, items=[with_range(item, replaced) for item in items])
+
+
+TRAILING_WORD = re.compile(r"[A-Za-z0-9_]*$")
+X150_ADDRESSED = re.compile(r"^\d+(?=[A-Za-z])")  # `1D`, `12XR`: the device address before a command
+# `XV2`, `X1000YV2`: a variable as a move target (arcus-pmx-4ex-sa.txt L2759 `XV10`, L2665 `UV10`)
+ARCUS_MOVE_VARIABLE = re.compile(r"^\s*(?:[XYZU](?:[+-]?\d+|V\d+))*[XYZU](V\d*)$", re.IGNORECASE)
+
+
+def word_start(dialect: str, before: str) -> int:
+    """The column where the word being typed starts: the items replace from there to the cursor."""
+    start = len(before) - len(TRAILING_WORD.search(before).group(0))
+    word = before[start:]
+    if dialect == "x150":
+        found = X150_ADDRESSED.match(word)
+        if found is not None:
+            start += found.end()
+    elif dialect == "arcus":
+        found = ARCUS_MOVE_VARIABLE.match(before)
+        if found is not None:
+            start = found.start(1)
+    return start
+
+
+def with_range(item: t.CompletionItem, replaced: t.Range) -> t.CompletionItem:
+    """A copy of `item` that replaces `replaced` (the word being typed) with its text."""
+    return t.CompletionItem(**{**{f: getattr(item, f) for f in FIELDS}, "filter_text": item.label,
+                               "text_edit": t.TextEdit(range=replaced, new_text=item.insert_text or item.label)})
+
+
+FIELDS = ("label", "kind", "detail", "documentation", "insert_text", "insert_text_format", "sort_text")
 
 
 def in_comment(snap, before: str) -> bool:

@@ -52,6 +52,7 @@ class Documents:
         self.checking: dict[str, int] = {}  # documents whose checks are queued or being computed
         self.caches: dict[str, incremental.LineCache] = {}  # uri -> parsed lines (worker thread only)
         self.loop: asyncio.AbstractEventLoop | None = None
+        self.arrived: dict[str, float] = {}  # uri -> when its newest edit arrived (for the timings)
 
     # -- scheduling (protocol thread) --------------------------------------------------------------
     def changed(self, uri: str, path: str, read: Callable[[], tuple[str, int | None]], delay: float | None = None) -> None:
@@ -61,6 +62,7 @@ class Documents:
         with self.lock:
             generation = self.generation.get(uri, 0) + 1
             self.generation[uri] = generation
+        self.arrived[uri] = time.perf_counter()
         timer = self.timers.pop(uri, None)
         if timer is not None:
             timer.cancel()
@@ -133,6 +135,7 @@ class Documents:
         if stop():  # a newer edit arrived while this one waited for the worker
             return
         started = time.perf_counter()
+        cpu = time.thread_time()
         snap, checked, cache = analysis.check(uri, path, version, text, self.resolver, self.dialects.get(uri),
                                               self.caches.get(uri), stop)
         if cache is not None:  # right for its text even when stale: the next version starts from it
@@ -153,15 +156,20 @@ class Documents:
                 published = True
             return False
 
+        checked_cpu = time.thread_time()
         linted = analysis.lint(snap, checked, stop_or_publish_checks)
         if linted is None or stop():
             return
+        arrived = self.arrived.get(uri, started)
+        linted.timings = {"check_cpu_ms": (checked_cpu - cpu) * 1000, "lint_cpu_ms": (time.thread_time() - checked_cpu) * 1000,
+                          "queued_ms": (started - arrived) * 1000, "edit_to_rules_done_ms": (time.perf_counter() - arrived) * 1000}
         self.deliver(linted, generation, queries=False)
         indexed = analysis.with_index(linted)
         if stop():
             return
         deferred = memory.priced(indexed) and self.memory_delay > 0
-        if deferred:  # until this version is priced, the lenses show the previous figures
+        if deferred or not memory.priced(indexed):
+            # until this version is priced (or, with errors, cannot be), the lenses show the last figures
             previous = self.latest.get(uri)
             indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
         # the editor model's own failure (G001) is one more diagnostic: published again then

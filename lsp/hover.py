@@ -42,13 +42,23 @@ def symbol_markdown(snap, symbol: model.Symbol | None) -> str:
     else:
         lines.append("- not defined in this file")
     uses = len(symbol.references)
-    lines.append(f"- used {uses} time{'s' if uses != 1 else ''}")
-    if symbol.kind == model.SYMBOL_VARIABLE:
-        lines += data_flow(snap, symbol.name)
+    # one count, of the occurrences find-references lists (the data flow counts operations, which
+    # differ from the text: `IC Q1` both reads and writes it); the data flow adds its verdict only
+    if symbol.kind != model.SYMBOL_VARIABLE or snap.dialect == "mcode":  # MCode: defined by its VA
+        lines.append(f"- used {times(uses)}")
+        if symbol.kind != model.SYMBOL_VARIABLE:
+            return "\n".join(lines)
+    else:  # Arcus and X150: every assignment is a definition
+        lines.append(f"- written {times(len(symbol.definitions))}, read {times(uses)}")
+    lines += data_flow(snap, symbol.name, uses)
     return "\n".join(lines)
 
 
-def data_flow(snap, name: str) -> list[str]:
+def times(count: int) -> str:
+    return f"{count} time{'s' if count != 1 else ''}"
+
+
+def data_flow(snap, name: str, read_in_text: int) -> list[str]:
     """What the program's data flow says of a variable: the def-use chains the check's analysis
     keeps (`compiler/symbols.py`), so the editor does not walk the program again."""
     analysis = snap.analysis
@@ -59,13 +69,14 @@ def data_flow(snap, name: str) -> list[str]:
     if key is None:
         return []
     writes = len(defuse.defs.get(key, ()))
-    reads = sum(not use.self_update for use in defuse.uses.get(key, ()))
-    line = f"- data flow: {writes} write{'s' if writes != 1 else ''}, {reads} read{'s' if reads != 1 else ''}"
+    uses = defuse.uses.get(key, ())
+    reads = sum(not use.self_update for use in uses)
     if writes and not reads:
-        line += " (its value is never read)"
-    elif reads and not writes:
-        line += " (never written in this file)"
-    return [line]
+        own = " (read only to update itself)" if read_in_text else ""
+        return [f"- data flow: its value is never read{own}"]
+    if reads and not writes:
+        return ["- data flow: never written in this file"]
+    return []
 
 
 def steps_per_rev(snap) -> float:

@@ -41,8 +41,9 @@ def priced(snap) -> bool:
 
 def carried(previous: Usage | None, snap) -> Usage | None:
     """The previous version's figures placed on this version's routines (matched by name), shown
-    until this version is priced, so that the code lenses do not vanish while the user types."""
-    if previous is None or not priced(snap):
+    until this version is priced, and while it has errors (a program with errors cannot be
+    priced), so that the code lenses and inlay hints do not vanish while the user types."""
+    if previous is None or snap.dialect not in ("arcus", "x150"):
         return None
     lines = {routine.name: routine.span.line for routine in snap.index.routines}
     return Usage(previous.unit, previous.total, previous.budget,

@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import functools
 import gc
+import importlib
 import logging
 import os
 import sys
+import threading
 
 import attrs
 from lsprotocol import types as t
@@ -21,26 +23,102 @@ from pygls.lsp.server import LanguageServer
 from pygls.uris import to_fs_path
 
 from mcc import __version__
-from mcc.compiler import dialects
-from mcc.compiler.codes import registry
-from mcc.compiler.span import SourceFile
-from mcc.lsp import actions, completion, convert, formatting, hover, lenses, navigation, outline, semantic
-from mcc.lsp.documents import Documents
+from mcc.lsp import semantic
 from mcc.lsp.units import LineText, Units
 
 log = logging.getLogger("mcc.lsp")
 CONFIG_NAMES = ("mcc.toml", "pyproject.toml")
 REQUEST_FAILED = -32803  # LSP's RequestFailed: the request was valid but cannot be done (a refused rename)
+FIX_ALL = "source.fixAll.mcc"  # actions.FIX_ALL, named here so that the capabilities need no import
+
+
+class Lazy:
+    """A module imported when one of its names is first used. The compiler (Lark, the catalogs, the
+    IR, the lint rules) takes longer to import than pygls itself: imported when the server starts,
+    it held up the answer to `initialize` by a second or more. So `initialize` is answered with only
+    pygls loaded, and a thread imports the rest at once after it (`warm_up`), while the editor
+    sends its first documents."""
+
+    def __init__(self, name: str, attribute: str | None = None) -> None:
+        self._name, self._attribute, self._value = name, attribute, None
+
+    def load(self):
+        if self._value is None:
+            imported()
+            module = importlib.import_module(self._name)
+            self._value = getattr(module, self._attribute) if self._attribute else module
+        return self._value
+
+    def __getattr__(self, name: str):
+        return getattr(self.load(), name)
+
+    def __call__(self, *args, **kwargs):
+        return self.load()(*args, **kwargs)
+
+
+dialects = Lazy("mcc.compiler.dialects")
+registry = Lazy("mcc.compiler.codes", "registry")
+actions, completion, convert, formatting, hover, lenses, navigation, outline = (
+    Lazy(f"mcc.lsp.{name}") for name in
+    ("actions", "completion", "convert", "formatting", "hover", "lenses", "navigation", "outline"))
+WARM = ("mcc.lsp.documents", "mcc.lsp.analysis", "mcc.lsp.incremental", "mcc.lsp.mcode_index", "mcc.lsp.arcus_index",
+        "mcc.lsp.x150_index", "mcc.lsp.memory", "mcc.compiler.lint.rules", "mcc.lsp.actions", "mcc.lsp.completion",
+        "mcc.lsp.convert", "mcc.lsp.formatting", "mcc.lsp.hover", "mcc.lsp.lenses", "mcc.lsp.navigation",
+        "mcc.lsp.outline")
+
+
+WARMING: list[threading.Thread] = []  # the thread of warm_up, once started
+
+
+def imported() -> None:
+    """Wait for warm_up's imports to finish. Two threads importing the same modules at once can
+    meet in a circular import, which Python breaks by failing one of them (_DeadlockError); so the
+    protocol thread does not import the compiler itself while warm_up does."""
+    for thread in WARMING:
+        if thread is not threading.current_thread():
+            thread.join()
+
+
+def warm_up() -> None:
+    """Import the compiler and the features (in a thread, after `initialize` was answered)."""
+    try:
+        for name in WARM:
+            importlib.import_module(name)
+        from mcc.compiler import dialects as found
+
+        for dialect in found.DIALECTS.values():  # the frontends and their parsers
+            package = dialect.frontend.rsplit(".", 1)[0]
+            dialect.load_frontend()
+            importlib.import_module(package + ".parser")
+    except Exception:  # noqa: BLE001 - what fails here fails again, and is reported, where it is used
+        log.exception("importing the compiler failed")
 
 
 class MccServer(LanguageServer):
     def __init__(self) -> None:
         super().__init__("mcc", __version__, text_document_sync_kind=t.TextDocumentSyncKind.Incremental)
-        self.documents = Documents(self.publish, priced=self.refresh_lenses)
+        self._documents = None
+        self.debounce: float | None = None  # initializationOptions, applied when the documents are made
+        self.memory_delay: float | None = None
         self.rules_url: str | None = None
         # documents whose colours or folds were asked for before their first analysis finished:
         # answered empty, so the editor is asked to ask again when it has finished
         self.unanswered: set[str] = set()
+
+    @property
+    def documents(self):
+        """The open documents and their analyses (made, importing the compiler, at first use)."""
+        if self._documents is None:
+            imported()
+            from mcc.lsp.documents import Documents
+
+            documents = Documents(self.publish, priced=self.refresh_lenses)
+            if self.debounce is not None:
+                documents.debounce = self.debounce
+            if self.memory_delay is not None:
+                documents.memory_delay = self.memory_delay
+            self._documents = documents
+        return self._documents
 
     def publish(self, snap) -> None:
         diagnostics = [convert.diagnostic(d, snap.source, snap.uri, self.rules_url) for d in snap.diagnostics
@@ -96,7 +174,11 @@ def document_lines(uri: str) -> LineText:
 
 
 def out(snap, result):
-    """An answer computed from a snapshot, with its positions in the client's units."""
+    """An answer computed from a snapshot, with its positions in the client's units. In an ASCII
+    text every unit counts the same, and nothing is converted (walking the answer for its
+    positions cost a third of the time to publish a few hundred diagnostics)."""
+    if snap.text.isascii():
+        return result
     return server.units().out(result, snapshot_lines(snap))
 
 
@@ -112,11 +194,11 @@ def guarded(func):
     def wrapper(*args, **kwargs):
         try:
             return func(*args, **kwargs)
-        except navigation.RenameError as exc:
-            raise JsonRpcException(str(exc), code=REQUEST_FAILED) from None
         except JsonRpcException:
             raise
-        except Exception:
+        except Exception as exc:
+            if isinstance(exc, navigation.RenameError):
+                raise JsonRpcException(str(exc), code=REQUEST_FAILED) from None
             log.exception("%s failed", func.__name__)
             raise
 
@@ -158,11 +240,34 @@ def reader(uri: str):
 def initialize(params: t.InitializeParams) -> None:
     options = params.initialization_options if isinstance(params.initialization_options, dict) else {}
     if isinstance(options.get("debounce"), (int, float)):
-        server.documents.debounce = max(0.0, float(options["debounce"]) / 1000.0)
+        server.debounce = max(0.0, float(options["debounce"]) / 1000.0)
     if isinstance(options.get("memoryDelay"), (int, float)):
-        server.documents.memory_delay = max(0.0, float(options["memoryDelay"]) / 1000.0)
+        server.memory_delay = max(0.0, float(options["memoryDelay"]) / 1000.0)
     if isinstance(options.get("rulesUrl"), str):
         server.rules_url = options["rulesUrl"]
+    # the answer goes out now; the compiler is imported meanwhile
+    if not WARMING:
+        WARMING.append(threading.Thread(target=warm_up, name="mcc-import", daemon=True))
+        WARMING[0].start()
+
+
+WATCHERS = "mcc-configuration"  # the id of the file-watcher registration
+
+
+@server.feature(t.INITIALIZED)
+@quiet
+def initialized(params: t.InitializedParams) -> None:
+    """Ask the editor to tell when a configuration file changes on disk (LSP file watchers,
+    registered dynamically where the client supports it; VS Code does, Neovim 0.10+ too). Without
+    them the configuration is read again when the editor saves one (did_save)."""
+    workspace = getattr(server.client_capabilities, "workspace", None)
+    watched = getattr(workspace, "did_change_watched_files", None)
+    if not getattr(watched, "dynamic_registration", False):
+        return
+    watchers = [t.FileSystemWatcher(glob_pattern=f"**/{name}") for name in CONFIG_NAMES]
+    server.client_register_capability(t.RegistrationParams(registrations=[t.Registration(
+        id=WATCHERS, method=t.WORKSPACE_DID_CHANGE_WATCHED_FILES,
+        register_options=t.DidChangeWatchedFilesRegistrationOptions(watchers=watchers))]))
 
 
 @server.feature(t.TEXT_DOCUMENT_DID_OPEN)
@@ -171,6 +276,7 @@ def did_open(params: t.DidOpenTextDocumentParams) -> None:
     uri = params.text_document.uri
     if params.text_document.language_id in dialects.DIALECTS:
         server.documents.dialects[uri] = params.text_document.language_id
+    configuration_moved(path_of(uri))  # its configuration files, as they are now
     server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
 
 
@@ -178,7 +284,42 @@ def did_open(params: t.DidOpenTextDocumentParams) -> None:
 @quiet
 def did_change(params: t.DidChangeTextDocumentParams) -> None:
     uri = params.text_document.uri
+    if configuration_moved(path_of(uri)):
+        reanalyse_all()
+        return
     server.documents.changed(uri, path_of(uri), reader(uri))
+
+
+STAMPS: dict[str, tuple] = {}  # directory of an open document -> configuration_stamp when last seen
+
+
+def configuration_stamp(directory: str) -> tuple:
+    """(folder, name, modification time, size) of every configuration file at or above `directory`
+    (a few stat calls: cheap enough for every keystroke)."""
+    out = []
+    folder = os.path.abspath(directory)
+    while True:
+        for name in CONFIG_NAMES:
+            try:
+                found = os.stat(os.path.join(folder, name))
+            except OSError:
+                continue
+            out.append((folder, name, found.st_mtime_ns, found.st_size))
+        parent = os.path.dirname(folder)
+        if parent == folder:
+            return tuple(out)
+        folder = parent
+
+
+def configuration_moved(path: str) -> bool:
+    """Whether a configuration file that may apply to `path` was created, changed or deleted since
+    the last edit of a document there. Editors without file watchers (Neovim before 0.10, Helix,
+    ...) never say so: the next keystroke then re-reads the configuration."""
+    directory = os.path.dirname(os.path.abspath(path))
+    stamp = configuration_stamp(directory)
+    before = STAMPS.get(directory)
+    STAMPS[directory] = stamp
+    return before is not None and before != stamp
 
 
 @server.feature(t.TEXT_DOCUMENT_DID_SAVE)
@@ -209,6 +350,8 @@ def watched_files(params: t.DidChangeWatchedFilesParams) -> None:
 
 def reanalyse_all() -> None:
     server.documents.configuration_changed()
+    for directory in list(STAMPS):
+        STAMPS[directory] = configuration_stamp(directory)
     for uri in list(server.workspace.text_documents):
         server.documents.changed(uri, path_of(uri), reader(uri), delay=0)
 
@@ -245,7 +388,7 @@ def on_completion(params: t.CompletionParams):
     uri = params.text_document.uri
     text = current_line(uri, params.position.line)
     answer = completion.complete(snap, text, character(uri, params.position).character, params.position.line)
-    return server.units().out(answer, document_lines(uri))
+    return answer if text.isascii() else server.units().out(answer, document_lines(uri))  # only that line's ranges
 
 
 @server.feature(t.TEXT_DOCUMENT_SIGNATURE_HELP, t.SignatureHelpOptions(trigger_characters=[" ", ",", "="]))
@@ -341,7 +484,10 @@ def on_semantic_range(params: t.SemanticTokensRangeParams):
 
 
 @server.feature(t.TEXT_DOCUMENT_CODE_ACTION,
-                t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty]))
+                t.CodeActionOptions(code_action_kinds=[t.CodeActionKind.QuickFix, t.CodeActionKind.Empty,
+                                                       t.CodeActionKind.SourceFixAll, FIX_ALL],
+                                    resolve_provider=True))
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_code_action(params: t.CodeActionParams):
     uri = params.text_document.uri
@@ -351,11 +497,48 @@ def on_code_action(params: t.CodeActionParams):
     selected = server.units().range_from_client(params.range, document_lines(uri))
     found = actions.code_actions(snap, selected, params.context)
     # the diagnostics an action names are the client's own, already in its units
-    return [attrs.evolve(new, diagnostics=old.diagnostics) if isinstance(new, t.CodeAction) else new
-            for old, new in zip(found, out(snap, found))]
+    answer = [attrs.evolve(new, diagnostics=old.diagnostics) if isinstance(new, t.CodeAction) else new
+              for old, new in zip(found, out(snap, found))]
+    only = params.context.only
+    if only and actions.fix_all_wanted(only):
+        # asked for by kind (fix on save): computed now, from the editor's text (the latest analysis
+        # may be a version behind, or have published the checks before the lint rules' fixes)
+        action = fix_all(snap, uri)
+        if action.edit.changes[uri]:
+            answer.append(action)
+    elif not only and actions.has_safe_fixes(snap):
+        # the light bulb: the edits are computed only if it is chosen, where the editor can ask later
+        answer.append(actions.fix_all_action(snap, data={"uri": uri}) if resolves_edits() else fix_all(snap, uri))
+    return answer
 
 
-@server.command(actions.EXPLAIN)
+def resolves_edits() -> bool:
+    """Whether the client can ask for an action's edit later (codeAction/resolve)."""
+    document = getattr(server.client_capabilities, "text_document", None)
+    support = getattr(getattr(document, "code_action", None), "resolve_support", None)
+    return "edit" in (getattr(support, "properties", None) or ())
+
+
+def fix_all(snap, uri: str) -> t.CodeAction:
+    """"Fix all" with its edits against the editor's current text, in the client's units."""
+    document = server.workspace.get_text_document(uri).source
+    edits = server.units().out(actions.fix_all_edits(snap, document), document_lines(uri))
+    return actions.fix_all_action(snap, edits)
+
+
+@server.feature(t.CODE_ACTION_RESOLVE)
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
+@guarded
+def on_code_action_resolve(action: t.CodeAction):
+    data = action.data if isinstance(action.data, dict) else {}
+    uri = data.get("uri")
+    snap = server.snapshot(str(uri)) if uri else None
+    if snap is None or actions.kind_text(action.kind) != actions.FIX_ALL:
+        return action
+    return attrs.evolve(action, edit=fix_all(snap, str(uri)).edit)
+
+
+@server.command("mcc.explain")  # actions.EXPLAIN
 @guarded
 def explain(*arguments):
     """The rule's explanation page: shown in the editor when it can show documents, and returned."""
@@ -375,20 +558,19 @@ def formatted(uri: str, first: int | None = None, last: int | None = None):
     snap = server.snapshot(uri)
     if snap is None:
         return []
-    document = server.workspace.get_text_document(uri)
-    text = SourceFile(snap.path, document.source).text
-    lines = text.split("\n")
-    return server.units().out(formatting.edits(snap, text, first, last),
-                              lambda line: lines[line] if 0 <= line < len(lines) else "")
+    document = server.workspace.get_text_document(uri).source
+    return server.units().out(formatting.edits(snap, document, first, last), document_lines(uri))
 
 
 @server.feature(t.TEXT_DOCUMENT_FORMATTING)
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_formatting(params: t.DocumentFormattingParams):
     return formatted(params.text_document.uri)
 
 
 @server.feature(t.TEXT_DOCUMENT_RANGE_FORMATTING)
+@server.thread()  # runs the compiler (fmt, lint --fix): off the protocol thread
 @guarded
 def on_range_formatting(params: t.DocumentRangeFormattingParams):
     return formatted(params.text_document.uri, params.range.start.line, params.range.end.line)
@@ -421,13 +603,14 @@ def on_status(params):
     if snap is None:
         return {"uri": uri, "version": None, "complete": False, "dialect": None}
     return {"uri": uri, "version": snap.version, "complete": snap.complete, "dialect": snap.dialect,
-            "diagnostics": len(snap.diagnostics)}
+            "diagnostics": len(snap.diagnostics), "timings": snap.timings}
 
 
 @server.feature(t.SHUTDOWN)
 @quiet
 def on_shutdown(*_):
-    server.documents.shutdown()
+    if server._documents is not None:
+        server._documents.shutdown()
 
 
 def start(tcp: str | None = None, log_file: str | None = None, verbose: bool = False) -> None:

@@ -33,10 +33,10 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
     return index.finish()
 
 
-def variable(index: m.Index, ref: st.VarRef, written: bool, entry=None) -> None:
+def variable(index: m.Index, ref: st.VarRef, written: bool, entry=None, span=None) -> None:
     key = f"variable:VAR{ref.number}"
     index.symbol(key, m.SYMBOL_VARIABLE, f"VAR{ref.number}")
-    index.add(ref.span, m.VARIABLE, symbol=key, definition=written, entry=entry)
+    index.add(span or ref.span, m.VARIABLE, symbol=key, definition=written, entry=entry)
 
 
 def add_command(index: m.Index, command: st.Command) -> None:
@@ -53,10 +53,14 @@ def add_command(index: m.Index, command: st.Command) -> None:
         index.symbol(key, m.SYMBOL_SEQUENCE, str(number))
         index.add(arg.span, m.SUBROUTINE, symbol=key, definition=command.mnemonic == "XD")
         return
-    operands(index, arg, entry)
+    name = None
+    if isinstance(arg, st.VarStatement) and command.mnemonic_span is not None:
+        # `VAR1=5`, `VAR1`: the whole name is the variable (the parser's span is its number)
+        name = command.mnemonic_span.to(arg.var.span)
+    operands(index, arg, entry, name)
 
 
-def operands(index: m.Index, arg, entry) -> None:
+def operands(index: m.Index, arg, entry, statement_name=None) -> None:
     if arg is None:
         return
     if isinstance(arg, st.Number):
@@ -68,7 +72,7 @@ def operands(index: m.Index, arg, entry) -> None:
     elif isinstance(arg, st.Text):
         index.add(arg.span, m.STRING)
     elif isinstance(arg, st.VarStatement):
-        variable(index, arg.var, arg.value is not None, entry)
+        variable(index, arg.var, arg.value is not None, entry, span=statement_name)
         if arg.value is not None:
             operands(index, arg.value, None)
     elif isinstance(arg, st.Chain):

@@ -63,3 +63,27 @@ def _default_profile(result: driver.FileResult):
         return driver.profile_for(dialects.get(result.dialect), None)
     except Exception:  # noqa: BLE001 - a profile is a refinement; the simulator runs without one
         return None
+
+
+def sweep_file(path: str, dialect: str | None = None, profile=None, options: Options | None = None,
+               text: str | None = None) -> tuple[driver.FileResult, list[tuple[str, Trace]]]:
+    """Run a file over the scenarios `verify.default_scenarios` generates from it (every input it
+    reads low, high, and toggling at the times its waits need): (the checked file, (scenario, trace)
+    of each run). `mcc sim --sweep` reports the worst position of each axis (sim/cycles.py)."""
+    import dataclasses
+
+    from mcc.sim import verify
+
+    result = driver.check_file(path, dialect, profile, text)
+    module = result.analysis.module if result.analysis is not None else None
+    if module is None or result.has_errors:
+        return result, []
+    prof = profile if profile is not None and profile.dialect == result.dialect else _default_profile(result)
+    base = options or Options()
+    runs = []
+    for scenario in verify.default_scenarios(module, prof, options=dataclasses.replace(base, samples=False)):
+        trace, diags = simulate_module(module, path, scenario, dataclasses.replace(base), prof)
+        result.diagnostics = result.diagnostics + diags.items
+        if trace is not None:
+            runs.append((scenario.name or "scenario", trace))
+    return result, runs

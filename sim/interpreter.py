@@ -60,7 +60,7 @@ UNCAUSED = frozenset({"position_error", "output_fault", "part_number", "firmware
 
 # Readings that report a setting: the setting they read and its value before the program sets it.
 SETTING_READINGS = {"following_ratio": ("following_ratio", 100), "input_levels": ("input_active_high", 0),
-                    "output_levels": ("output_active_high", 0)}
+                    "output_levels": ("output_active_high", 0), "switch_levels": ("switch_active_high", 0)}
 
 
 @dataclass
@@ -108,6 +108,13 @@ class Options:
     # Jump over the rounds of a delay-paced polling loop that cannot differ from the last one
     # (Simulator._went_round); off, every round runs (the tests compare the two)
     skip_rounds: bool = True
+    # Single step: the run stops before its (n+1)-th trace report, having run n of the program's
+    # commands (a device in single-step mode; the trace reports mark where each command starts)
+    commands: int | None = None
+    # The machine's envelope (issue 27): (axis, min, max) in steps, None for an open end. A move
+    # beyond it runs to the end of travel and the run stops there with S017, as the limit switch
+    # would stop the axis (docs/SIMULATOR.md, "Envelope").
+    travel: tuple[tuple[str, float | None, float | None], ...] = ()
 
 
 @dataclass
@@ -213,6 +220,9 @@ class Simulator:
         # polarity the program set (IS, INL) or the product's default (docs/SIMULATOR.md, "Inputs")
         inputs = machine_table(self.product, "inputs")
         self.active_high_default = bool(inputs.get("active_high", True))
+        # the level of an input nothing drives; without one, the inactive level of its polarity
+        idle = inputs.get("idle_level")
+        self.idle_level = idle if idle in (0, 1) and not isinstance(idle, bool) else None
         count = inputs.get("count", 0)
         self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
@@ -244,6 +254,7 @@ class Simulator:
         # the settings set in this run: (name, axis, input/output number) -> value
         self.settings: dict[tuple[str, str, int | None], values.Number] = {}
         self.paused_once = False  # S015 is reported once
+        self.commands_run = 0  # trace reports reached: the commands of the program begun (Options.commands)
         self.fixed_watches: dict[str, list] = {}
         self.read_continuous = False  # the running stretch read something that changes with time
         self.slewing: dict[str, float] = {}  # axis -> the velocity it slews at (or ramps to)
@@ -260,6 +271,9 @@ class Simulator:
         self.capture_input = self.scenario.capture  # None: the program's, else DEFAULT_CAPTURE_INPUT
         self.captured = 0  # the position at the last capture (reading captured_position)
         self.last_move: dict[str, str] = {}  # axis -> the kind of its last move command (reading last_move)
+        self.travel = {axis: (low, high) for axis, low, high in self.options.travel}
+        self.travel_hit: dict[str, tuple] = {}  # axis -> (move, requested target, the end it runs to)
+        self.cycle_headers = loop_headers(self._entry())  # where a pass of the main loop starts
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -296,6 +310,14 @@ class Simulator:
         for routine in reversed(self.module.routines):
             if routine.kind is ir.RoutineKind.IMMEDIATE and routine.entry is not None:
                 self.stack.append(Frame(routine, routine.entry))
+        if len(self.stack) == 1:
+            self._main_starts()
+
+    def _main_starts(self) -> None:
+        """The main routine starts its first block: a pass of the main loop when that is its header."""
+        frame = self.stack[-1]
+        if frame.index == 0 and frame.block.label in self.cycle_headers and not self.trace.cycle_marks:
+            self.trace.cycle_marks.append((frame.block.label, self.now))
 
     def _entry(self) -> ir.Routine | None:
         for kind in (ir.RoutineKind.MAIN, ir.RoutineKind.POWERUP, ir.RoutineKind.IMMEDIATE):
@@ -590,12 +612,18 @@ class Simulator:
         if isinstance(term, ir.Jump):
             frame.block, frame.index = self.block_of[term.target], 0
             self.went_back = self.block_index.get(term.target, 0) <= here
+            if term.target in self.cycle_headers and len(self.stack) == 1:
+                self.trace.cycle_marks.append((term.target, self.now))
         elif isinstance(term, ir.Branch):
             target = term.then if self._cond(term.cond) else term.otherwise
             frame.block, frame.index = self.block_of[target], 0
             self.went_back = self.block_index.get(target, 0) <= here
+            if target in self.cycle_headers and len(self.stack) == 1:
+                self.trace.cycle_marks.append((target, self.now))
         elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):
             self.stack.pop()
+            if frame.routine.kind is ir.RoutineKind.IMMEDIATE and len(self.stack) == 1:
+                self._main_starts()
             if frame.routine.kind is not ir.RoutineKind.IMMEDIATE:
                 self._event(term, "return", routine=frame.routine.name)
         elif isinstance(term, ir.GotoRoutine):
@@ -735,11 +763,28 @@ class Simulator:
         return None
 
     def _do_print(self, op) -> Wait | None:
-        text = "".join(self._text(item, op.signed) for item in op.items) + ("\n" if op.newline else "")
+        if op.traced:
+            self.commands_run += 1
+            if self.options.commands is not None and self.commands_run > self.options.commands:
+                raise Stop("step", f"single step: {self.options.commands} commands ran; the next waits for the "
+                                   "host's step request")
+            if not self._tracing(op.axis):
+                return None
+        formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
+        text = "".join(self._text(item, op.signed, spec) for item, spec in zip(op.items, formats)) \
+            + ("\n" if op.newline else "")
         self.trace.prints.append((self.now, text))
         self.changes += 1
-        self._event(op, "print", text=text)
+        # a trace report names the program's own commands, which a translation rewrites: its own
+        # event kind, which the behaviour oracle does not compare (docs/SIMULATOR.md, "Trace reports")
+        self._event(op, "trace" if op.traced else "print", text=text)
         return None
+
+    def _tracing(self, axis: str) -> bool:
+        """Whether the `trace` setting is on for the device `axis` names, or for any device when the
+        print names none (an unaddressed program: the device that runs it is not known statically)."""
+        return any(value for (name, where, _), value in self.settings.items()
+                   if name == "trace" and (not axis or where in (axis, ir.ALL_AXES)))
 
     def _do_driveenable(self, op) -> Wait | None:
         on = 1 if self._eval(op.on) else 0
@@ -898,15 +943,41 @@ class Simulator:
             for axis_name in self._expand((name,)):
                 axis = self._axis(axis_name)
                 targets[axis_name] = value if op.mode is ir.MoveMode.ABSOLUTE else axis.position + value
+        hits = self._beyond_travel(op, targets)
         start = {name: self._axis(name).position for name in targets}
         deltas = {name: targets[name] - start[name] for name in targets}
         length = math.sqrt(sum(d * d for d in deltas.values()))
         self._event(op, "move", mode=op.mode.value, **{"from": dict(start)}, to=dict(targets))
+        self.travel_hit.update(hits)
         if length == 0:
+            for name in hits:
+                self._travel_stop(self._axis(name))
             return
         lead = self._axis(next(iter(targets)))
         path = Path(start, length, {name: d / length for name, d in deltas.items()})
         self._begin(op, path, lead.limits(self.machine.shared), targets=targets, plan_length=length)
+
+    def _beyond_travel(self, op, targets: dict[str, float]) -> dict[str, tuple]:
+        """The axes a move would take past their travel, each target cut to the end it reaches."""
+        hits = {}
+        for name, target in targets.items():
+            low, high = self.travel.get(name, (None, None))
+            end = high if high is not None and target > high else low if low is not None and target < low else None
+            if end is not None:
+                hits[name] = (op, target, end)
+                targets[name] = end
+        return hits
+
+    def _travel_stop(self, axis: Axis) -> None:
+        """The axis reached its end of travel: the limit switch stops it, and the run (S017)."""
+        op, target, end = self.travel_hit.pop(axis.name)
+        span = getattr(op, "span", None)
+        asked = f"the move asked for {target:g}" if target != end else "it was running at a constant speed"
+        message = (f"axis {axis.name} reached its end of travel at {end:g} ({asked}): the limit "
+                   "switch stops it here; keep the axis inside its travel ([tool.mcc.axes] min/max)")
+        self._event(op, "travel", axis=axis.name, position=_round(end), target=_round(target))
+        self.diags.add("S017", span or _file_span(self.module.path), message)
+        raise Stop("travel", f"{message} (line {_line(span)})")
 
     def _motion_value(self, expr) -> float:
         """A move target or slew speed: a float value rounded down where the product says so
@@ -921,9 +992,9 @@ class Simulator:
         cx, cy = float(self._eval(op.center[0])), float(self._eval(op.center[1]))
         x0, y0 = self._axis(ax).position, self._axis(ay).position
         radius = math.hypot(x0 - cx, y0 - cy)
-        degrees = float(self._eval(op.angle)) if op.angle is not None else 360.0
-        sweep = math.radians(abs(degrees)) * (-1 if op.clockwise else 1)
+        degrees = float(self._eval(op.angle)) if op.angle is not None else None
         angle0 = math.atan2(y0 - cy, x0 - cx)
+        sweep = _sweep(angle0, degrees, op.clockwise)
         length = radius * abs(sweep)
         end = (cx + radius * math.cos(angle0 + sweep), cy + radius * math.sin(angle0 + sweep))
         self._event(op, "arc", axes=[ax, ay], center=[cx, cy], degrees=degrees, clockwise=op.clockwise)
@@ -1099,6 +1170,13 @@ class Simulator:
         if fixed is None:
             fixed = self.fixed_watches[name] = self._fixed_watches(name)
         out = list(fixed)
+        axis = self._axis(name)
+        if name in self.travel and axis.motion is not None and axis.motion.path.length == INF:
+            # a slew runs until something stops it: its end of travel (a move is cut to it in _move)
+            offset = axis.offset
+            for end, where in zip(("min", "max"), self.travel[name]):
+                if where is not None:
+                    out.append((("travel", end), where + offset))
         handler = self.handlers.get("position")
         if handler is not None and handler.armed and handler.args and name == self._handler_axis():
             try:
@@ -1137,6 +1215,12 @@ class Simulator:
             self._event(op, "limit", axis=name, switch=key[1], position=axis.position)
             self._fault(RuntimeFault("S004", f"axis {name} hit its {key[1]} limit switch at {where:g} steps",
                                      kind="fault"), op)
+        elif key[0] == "travel":
+            op = self.motion_op.get(axis.motion.ident) if axis.motion else None
+            self._stop_axis(axis, False, None, record=False)
+            end = where - axis.offset
+            self.travel_hit[name] = (op, end, end)
+            self._travel_stop(axis)
         elif key[0] == "handler":
             handler = self.handlers.get("position")
             if handler is not None and handler.armed:
@@ -1183,6 +1267,8 @@ class Simulator:
                         position=_round(axis.position))
         if not any(a.motion is motion for a in self.machine.axes.values()):
             self.motion_op.pop(motion.ident, None)
+        if axis.name in self.travel_hit:
+            self._travel_stop(axis)
 
     def _cut(self, axis: Axis) -> None:
         """End the axis's motion now where it is (before a new motion or a position change)."""
@@ -1235,6 +1321,8 @@ class Simulator:
         in force (an input nothing drives is not active, whichever way it is wired)."""
         level = self.machine.inputs.get(index)
         if level is None:
+            if self.idle_level is not None:  # the product's inputs rest at a level (pulled up)
+                return self.idle_level
             return 0 if self.active_high.get(index, self.active_high_default) else 1
         return level
 
@@ -1459,6 +1547,8 @@ class Simulator:
             self.round_reads.add((meaning, axis.name))
         if meaning in ("position", "encoder"):
             return _round(axis.at(self.now))
+        if meaning == "device_address":  # a numbered device's address; 0 for an axis with a letter
+            return int(axis.name) if axis.name.isdigit() else 0
         if meaning in ("velocity", "measured_velocity"):  # no slip: the encoder measures the velocity
             return axis.speed(self.now)
         if meaning == "moving":
@@ -1514,9 +1604,11 @@ class Simulator:
             return not self._cond(cond.cond)
         return self._eval(cond) != 0
 
-    def _text(self, item, signed: bool = False) -> str:
+    def _text(self, item, signed: bool = False, spec: str = "") -> str:
         if isinstance(item, ir.Text):
             return item.value
+        if spec:  # a print format (docs/IR.md, "Print formats")
+            return values.formatted(self._eval(item), spec, signed)
         texts = self.module.print_texts.get(item.meaning) if isinstance(item, ir.Status) else None
         if texts is not None:  # a reading printed as the device writes its values (MCode PR MD)
             value = self._eval(item)
@@ -1563,6 +1655,23 @@ class Simulator:
         self.trace.variables = {name: values.plain(v) for name, v in self.vars.items()}
         self.trace.events.append(Event(self.now, "stopped", None, {"stopped": self.trace.stopped,
                                                                      "reason": self.trace.reason}))
+
+
+def loop_headers(routine: ir.Routine | None) -> dict[str, int]:
+    """The blocks of the main routine a later block jumps back to (loop headers), by position: a
+    pass through the outermost one is a machine cycle (sim/cycles.py)."""
+    if routine is None:
+        return {}
+    index = {block.label: n for n, block in enumerate(routine.blocks)}
+    out: dict[str, int] = {}
+    for n, block in enumerate(routine.blocks):
+        term = block.terminator
+        targets = (term.target,) if isinstance(term, ir.Jump) else (term.then, term.otherwise) \
+            if isinstance(term, ir.Branch) else ()
+        for target in targets:
+            if target in index and index[target] <= n:
+                out[target] = index[target]
+    return out
 
 
 def countdown_marks(module: ir.Module) -> frozenset[float] | None:
@@ -1639,6 +1748,23 @@ def _severity(name: str):
     from mcc.compiler.diagnostics import Severity
 
     return Severity(name)
+
+
+def _sweep(start: float, degrees: float | None, clockwise: bool) -> float:
+    """The signed angle (radians, counter-clockwise positive) an arc turns through from the
+    direction `start` (radians, from the centre) to its end: `degrees` is the end point's
+    direction from the centre, measured clockwise from the negative first axis (docs/IR.md,
+    "Arcs"); the arc runs in its direction for less than a turn, a full turn when the end is the
+    start or when it has no end angle (a circle)."""
+    turn = 2 * math.pi
+    if degrees is None:
+        return -turn if clockwise else turn
+    theta = math.radians(degrees)
+    end = math.atan2(math.sin(theta), -math.cos(theta))  # clockwise from (-1, 0): (-cos, sin)
+    sweep = ((start - end) if clockwise else (end - start)) % turn
+    if sweep < 1e-9 or turn - sweep < 1e-9:
+        sweep = turn
+    return -sweep if clockwise else sweep
 
 
 def machine_table(profile, name: str) -> dict:

@@ -5,7 +5,7 @@ A scenario is a small TOML file:
 ```toml
 until = 20.0                 # optional: the time limit (seconds), unless --until is given
 
-[inputs]                     # input levels at t = 0 (inputs not listed start at 0)
+[inputs]                     # input levels at t = 0 (an input not listed rests at its idle level: docs/SIMULATOR.md, "Inputs")
 1 = 1
 
 [analog]                     # analog input values (the device's counts)

@@ -60,6 +60,8 @@ class Trace:
     # what the axes did, recorded cheaply while running: (axis, motion, until) and (axis, t, position)
     motion_log: list[tuple[str, Any, float]] = field(default_factory=list)
     points: list[tuple[str, float, float]] = field(default_factory=list)
+    # (loop header, time) each time the main routine enters a loop header: sim/cycles.py
+    cycle_marks: list[tuple[str, float]] = field(default_factory=list)
     _samples: dict | None = None
 
     @property

@@ -190,3 +190,26 @@ def plain(value: Number) -> int | float:
     if isinstance(value, Decimal):
         return int(value) if value == value.to_integral_value() else float(value)
     return value
+
+
+def formatted(value: Number, spec: str, signed: bool = False) -> str:
+    """`value` printed in the print format `spec` (ir_names.PRINT_FORMATS; docs/IR.md, "Print
+    formats"): `fixed p` keeps p digits after the point and drops the others (toward zero),
+    `magnitude` leaves the sign out, `signed` writes it always (`+` for zero and positive
+    numbers); `bits n` is n binary digits, bit 0 first; `pad n` an integer with leading zeros."""
+    words = spec.split()
+    kind, size = words[0], int(words[1])
+    if kind == "bits":
+        mask = int(value)
+        return "".join("1" if mask >> bit & 1 else "0" for bit in range(size))
+    if kind == "pad":
+        number = int(value)
+        text = str(abs(number)).rjust(size, "0")
+        return ("-" if number < 0 else "+" if signed else "") + text
+    exact = Decimal(str(value)) if isinstance(value, float) else Decimal(value)
+    kept = exact.quantize(Decimal(1).scaleb(-size), rounding="ROUND_DOWN")
+    text = f"{abs(kept):f}"
+    if "magnitude" in words[2:]:
+        return text
+    negative = kept < 0
+    return ("-" if negative else "+" if signed else "") + text

@@ -588,7 +588,11 @@ def _differ(x: Event, y: Event, axis_map: dict[str, str], scale: float, slack: f
                    f"{dy['velocity']:g} in the output"
         return ""
     if x.kind == "print":
-        if dx["text"].strip() != dy["text"].strip():
+        # exactly: the characters and whether the line ends. The trace's "\n" is the IR's line end,
+        # which each device sends in its own convention (MCode CR/LF, lexium-mcode.txt L4895, L4906;
+        # X150 CR, parker-x150.md L3141): that convention is the only thing not compared
+        # (docs/CROSS.md, "Prints")
+        if dx["text"] != dy["text"]:
             return f"the source prints {dx['text']!r}, the output {dy['text']!r}"
         return ""
     if x.kind == "native":

@@ -52,3 +52,15 @@ def sample_files(dialect: str) -> list[Path]:
 @pytest.fixture
 def mcc():
     return run_mcc
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_makereport(item, call):
+    """Keep each test's outcome on its item, so that a failing editor test can leave a screenshot
+    and the extension's log behind (tests/editors/test_vscode_codeserver.py's `editor` fixture).
+    It lives here, not in a tests/editors/conftest.py: a second module named `conftest` would
+    shadow this one for the tests that import from it."""
+    outcome = yield
+    report = outcome.get_result()
+    if report.when == "call":
+        item.call_report = report

@@ -19,9 +19,7 @@ from codegen_programs import (DIALECTS, FEATURES, KNOWN_DEFECT_FEATURES, KNOWN_D
 SEEDS = range(30)  # per dialect: a few seconds in all on the development machine
 # Programs of the enabled features that still show a known defect, with the defect; delete an entry
 # when its fix is merged (the test then compiles that seed again).
-KNOWN_FAILING_SEEDS: dict[tuple[str, int], str] = {
-    ("arcus", 4): "X150 drops LSPD (X205) and ramps from 0: the moves of a loop end more than 1 % late",
-}
+KNOWN_FAILING_SEEDS: dict[tuple[str, int], str] = {}
 
 
 def enabled(dialect: str) -> tuple[str, ...]:

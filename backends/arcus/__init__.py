@@ -133,7 +133,7 @@ def compile_routine(ctx: Context, routine: ir.Routine) -> tuple[list, Span | Non
     """Passes 1-2 for one routine: its structured tree, where it ends, and whether it is a dispatch loop."""
     legal = Legalizer(ctx, routine).run()
     temps = ctx.temps
-    temps.start_routine()
+    temps.start_routine(routine.span)
 
     def dispatch_var() -> ir.Var:
         var = temps.top(0)

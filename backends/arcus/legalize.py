@@ -477,7 +477,7 @@ class Legalizer:
         raise Skip
 
     def materialize(self, value: ir.Expr, span: Span | None) -> ir.Var:
-        temp = self.ctx.temps.alloc()
+        temp = self.ctx.temps.alloc(span)
         self.assign(temp, value, span)
         return temp
 
@@ -573,7 +573,7 @@ class Legalizer:
             right = self.cond_operand(cond.right, span)
             self.block.terminator = ir.Branch(ir.Compare(cond.op, left, right, cond.span), then, otherwise, span)
             return
-        flag = self.ctx.temps.alloc()
+        flag = self.ctx.temps.alloc(span)
         self.flag(cond, flag, span)
         self.block.terminator = ir.Branch(ir.Compare("=", flag, ir.Const(1)), then, otherwise, span)
 

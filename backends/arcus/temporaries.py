@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from mcc.compiler import ir
+from mcc.compiler.span import Span
 
 if TYPE_CHECKING:
     from mcc.backends.arcus.context import Context
@@ -27,20 +28,28 @@ class Temps:
         self.high = 0  # variables taken from the top
         self.base = 0  # the first of them the current routine may use
         self.exhausted = False
+        # where the refusal (A205) points: the construct that found the pool used up, else the
+        # expression that needed the most temporaries at once; the routine a loop flag is taken for
+        self.exhausted_at: Span | None = None
+        self.peak_at: Span | None = None
+        self.routine_at: Span | None = None
 
     @property
     def last(self) -> ir.Var:
         """The variable written when the pool is used up (the program is then an error, A205)."""
         return ir.Var(f"V{self.pool[-1] if self.pool else 63}")
 
-    def alloc(self) -> ir.Var:
+    def alloc(self, span: Span | None = None) -> ir.Var:
+        """An expression temporary for the statement at `span`."""
         if self.live >= len(self.pool):
             self.exhausted = True
+            self.exhausted_at = self.exhausted_at or span
             var = self.last
         else:
             var = ir.Var(f"V{self.pool[self.live]}")
         self.live += 1
-        self.peak = max(self.peak, self.live)
+        if self.live > self.peak:
+            self.peak, self.peak_at = self.live, span or self.peak_at
         return var
 
     def release(self, count: int = 1) -> None:
@@ -55,11 +64,13 @@ class Temps:
         self.high = max(self.high, index + 1)
         if index >= len(self.pool):
             self.exhausted = True
+            self.exhausted_at = self.exhausted_at or self.routine_at
             return None
         return ir.Var(f"V{self.pool[-1 - index]}")
 
-    def start_routine(self) -> None:
+    def start_routine(self, span: Span | None = None) -> None:
         self.base = self.high
+        self.routine_at = span
 
     @property
     def conflict(self) -> bool:
@@ -75,7 +86,9 @@ def check(ctx: "Context") -> None:
     """Too many temporaries at once (A205), and program variables that are temporaries (A203)."""
     temps = ctx.temps
     if temps.conflict:
-        ctx.diags.add("A205", ctx.file_span(),
+        span = (temps.exhausted_at if temps.exhausted else None) or temps.peak_at or temps.exhausted_at \
+            or temps.routine_at or ctx.file_span()
+        ctx.diags.add("A205", span,
                       f"compiling this program needs {temps.used} temporary variables at once; "
                       f"the profile reserves {len(temps.pool)} ([arcus] temporaries = {temps.pool}): reserve "
                       "more or simplify the expressions")

@@ -98,6 +98,10 @@ class CannotWrite(Exception):
 
 
 State = dict  # ("pos"|"move"|"D", axis) -> the mode or D text known to be in force
+# s: how much later a move may end on X150, which starts it from standstill, than in a source that
+# starts it at its initial speed (one tick, the validation's time resolution; profile `[x150]
+# start_speed_drift`)
+START_SPEED_DRIFT = 0.001
 
 
 def meet(a: State, b: State) -> State:
@@ -147,7 +151,7 @@ def homing_waits(module: ir.Module) -> dict[int, int]:
 
 class Writer:
     def __init__(self, module: ir.Module, profile: Profile):
-        self.module = module
+        module = self.module = without_trace_reports(module)
         self.profile = profile
         self.cat = cat.load()
         self.out = Written()
@@ -172,6 +176,8 @@ class Writer:
         self.in_sequence = False
         self.state: State = {}
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
+        # id(value) of an initial speed setting -> why X150 cannot leave it out (X216)
+        self.start_speeds_refused: dict[int, str] = {}
         self.previous: ir.Op | None = None  # the operation written last
         self.upcoming: ir.Op | None = None  # the operation written next in the same list, if simple
         self.rest: list = []  # the nodes after the one being written, in the same list
@@ -312,6 +318,9 @@ class Writer:
             self.out.header = self.header()
         for _, _, op, state in self.each_op():
             self.forces[id(op)] = state
+            if isinstance(op, ir.Move):
+                for axis, _ in op.targets:
+                    self.check_start_speed(state, axis)
         selected = set()
         for routine in self.module.routines:
             for block in routine.blocks:
@@ -791,6 +800,8 @@ class Writer:
                                   f"keeps one CUR per device ({self.resolution_of(op.axis)} user steps/rev)", "G003")
             self.emit(prefix + ("B" if self.in_sequence else "") + "CUR" + number(op.value.value), span)
         elif param is ir.MotionParam.INITIAL_SPEED:
+            if id(op.value) in self.start_speeds_refused:
+                raise CannotWrite(self.start_speeds_refused[id(op.value)], "X216")
             self.out.diagnostics.add("X205", span or self.fallback_span(),
                                      "X150 moves start from standstill: it has no initial (start) speed, so "
                                      "this one is left out and each move ramps from 0 at A")
@@ -799,6 +810,44 @@ class Writer:
                 raise CannotWrite("X150 ramps are trapezoidal only; an S-curve profile has no equivalent", "G003")
         else:
             raise CannotWrite(f"X150 has no command for the {param.value.replace('_', ' ')}", "G003")
+
+    def check_start_speed(self, state: dict, axis: str) -> None:
+        """X150 starts every move from standstill (it has no initial speed, docs/dialects/x150.md). A
+        source move that starts at v0 > 0 and ramps at a ends later on X150, by at most 2 * v0 / a
+        (the ramp from 0 to v0 at each end; less on a short move). Where that exceeds the profile's
+        `[x150] start_speed_drift` (one tick, 1 ms, by default), the initial speed in force is refused
+        at its own line (X216) rather than written as a program the validation then refuses (S010).
+        The acceleration is the one in force, or a ramp time's with the speeds in force."""
+        start = lookup(state, ir.MotionParam.INITIAL_SPEED, axis)
+        if start is None or id(start) in self.start_speeds_refused or not isinstance(start.value, (int, float)) \
+                or start.value <= 0:
+            return
+        v0 = float(start.value)
+        accel = lookup(state, ir.MotionParam.ACCEL, axis)
+        ramp = lookup(state, ir.MotionParam.ACCEL_TIME, axis)
+        top = lookup(state, ir.MotionParam.MAX_SPEED, axis)
+        rate = None
+        if accel is not None and float(accel.value) > 0:
+            rate = float(accel.value)
+        elif ramp is not None and top is not None and float(ramp.value) > 0 and float(top.value) > v0:
+            rate = (float(top.value) - v0) / float(ramp.value)
+        limit = float(self.profile.get("x150.start_speed_drift", START_SPEED_DRIFT) if self.profile else
+                      START_SPEED_DRIFT)
+        speed = f"{number(v0)} {start.unit.value}"
+        if rate is None:
+            self.start_speeds_refused[id(start)] = (
+                f"X150 starts every move from standstill and has no initial speed; with the initial speed {speed} "
+                "and an acceleration not known here, how much later its moves would end cannot be bounded: set "
+                "the initial speed to 0 (or its lowest) or the acceleration with a constant")
+            return
+        drift = 2 * v0 / rate
+        if drift > limit:
+            self.start_speeds_refused[id(start)] = (
+                f"X150 starts every move from standstill and has no initial speed: a move starting at {speed} "
+                f"would end up to {drift * 1000:.3g} ms later (2 x initial speed / acceleration), more than the "
+                f"{limit * 1000:g} ms the profile allows ([x150] start_speed_drift); lower the initial speed to "
+                f"{number(round(rate * limit / 2, 3))} {start.unit.value} or less, or compile to a target "
+                "with a start speed")
 
     def ranged(self, mnemonic: str, text: str, what: str, unit: str) -> str:
         """`text` when the catalog's range for `mnemonic` takes it (a (VARn) is checked on the device)."""
@@ -1033,23 +1082,27 @@ class Writer:
                 raise CannotWrite(f"X150 has no {'input' if name == 'input_function' else 'output'} function "
                                   f"'{function}' for line {index} (IN/OUT letters, L2058, L2974)", "G003")
             return prefix + ("IN" if name == "input_function" else "OUT") + str(index) + letters[function]
-        if name in ("input_active_high", "output_active_high"):
-            top = neutral.USER_INPUTS if name == "input_active_high" else neutral.OUTPUTS
+        if name in LEVELS:
+            top = LEVEL_COUNTS[name]
             if not (isinstance(op.value, ir.Const) and op.value.value in (0, 1) and 1 <= index <= top):
-                raise CannotWrite(f"X150 sets the active level of inputs 1-10 and outputs 1-6 to a constant 0 or 1 "
-                                  f"(INL/OUTL); this {name.replace('_', ' ')} has no equivalent", "G003")
+                raise CannotWrite(f"X150 sets the active level of its 7 dedicated inputs, inputs 1-10 and outputs "
+                                  f"1-6 to a constant 0 or 1 (INL/OUTL); this {name.replace('_', ' ')} has no "
+                                  "equivalent", "G003")
             bits = "X" * (index - 1) + str(int(op.value.value))
-            return prefix + ("INL_" + bits if name == "input_active_high" else "OUTL" + bits)
+            return prefix + level_command(name, bits)
         raise CannotWrite(f"the setting '{name}' ({describe_setting(name)}) has no X150 command", "G003")
 
     def levels(self, group: list) -> str:
         """Active levels of several inputs (or outputs) of one device as one INL/OUTL pattern."""
-        bits = ["X"] * (neutral.USER_INPUTS if group[0].name == "input_active_high" else neutral.OUTPUTS)
+        bits = {name: ["X"] * LEVEL_COUNTS[name] for name in {op.name for op in group}}
         for op in group:
             text = self.setting(op)
-            bits[op.index - 1] = text[-1]
+            bits[op.name][op.index - 1] = text[-1] if op.name != "switch_active_high" else text[-2]
         head = self.address(group[0].axis)
-        return head + ("INL_" if group[0].name == "input_active_high" else "OUTL") + "".join(bits).rstrip("X")
+        if "switch_active_high" in bits:   # one INL: the dedicated group, `_`, the user inputs (L2136)
+            user = "".join(bits.get("input_active_high", [])).rstrip("X")
+            return head + "INL" + "".join(bits["switch_active_high"]).rstrip("X") + "_" + user
+        return head + level_command(group[0].name, "".join(bits[group[0].name]).rstrip("X"))
 
     def handler(self, op: ir.SetHandler) -> None:
         command = HANDLER_COMMANDS.get(op.event)
@@ -1144,11 +1197,19 @@ class Writer:
         item = op.items[0] if len(op.items) == 1 else None
         report = report_command(op)
         if report is not None:
-            axis = neutral.report_axis(op) if report == "PR" else item.axis
+            axis = neutral.report_axis(op) if report == "PR" else neutral.levels_report_of(op)[1] \
+                if report in ("INL", "OUTL") else neutral.identity_report_of(op) if report == "QS" else item.axis
             if report == "PR" and self.factor_of(axis or ir.ALL_AXES) != 1:
                 raise CannotWrite(f"X150 reports the position in its own user steps (PR); the source counts "
                                   f"{self.source_spr} steps/rev, the target {self.resolution}", "X207")
             return self.address(op.axis or axis or ir.ALL_AXES) + report
+        sent = neutral.transmit_of(op)
+        if sent is not None:
+            return self.transmit(*sent)
+        if op.formats:
+            raise CannotWrite("X150 sends a formatted value only as TX (a text, then a variable with its decimals, "
+                              "L4463-L4483) or as its reports (PR, INL, OUTL, QS); this print has no equivalent",
+                              "G003")
         if any(isinstance(i, ir.Status) and i.meaning == "position" for i in op.items):
             raise CannotWrite("X150 sends a position only as its report, the sign always written (PR: *+4000, "
                               "*-25600, L3141); this print sends it in another form, which the host would read "
@@ -1159,6 +1220,17 @@ class Writer:
             return '"' + text.replace(" ", "_") + '"'
         raise CannotWrite("X150 transmits up to 50 characters of quoted text without quotes, underscores or a "
                           "line end (\"...\", L5589); this print has no equivalent", "G003")
+
+    def transmit(self, name: str, sign: bool, decimals: int, text: str) -> str:
+        """TXn,m,p,x (L4463-L4483): x is the rest of the command, printable ASCII without a comma."""
+        n = self.var_number(name)
+        if not n:
+            raise CannotWrite(f"X150 transmits only VAR1-VAR50 (TX); {name} has no equivalent", "G003")
+        if not text or len(text) > 40 or any(not 33 <= ord(c) <= 126 or c in ',";' for c in text) or decimals > 5:
+            raise CannotWrite("X150 transmits a variable after a text of printable characters without a comma, a "
+                              "quote or a semicolon, with up to 5 decimals (TX, L4463-L4483); this print has no "
+                              "equivalent", "G003")
+        return f"TX{n},{1 if sign else 0},{decimals},{text}"
 
     def assign(self, op: ir.Assign) -> str:
         n = self.var_number(op.target.name)
@@ -1454,7 +1526,14 @@ def describe(expr) -> str:
     return f"this {type(expr).__name__.lower()}"
 
 
-LEVELS = ("input_active_high", "output_active_high")
+LEVELS = ("input_active_high", "output_active_high", "switch_active_high")
+LEVEL_COUNTS = {"input_active_high": neutral.USER_INPUTS, "output_active_high": neutral.OUTPUTS,
+                "switch_active_high": len(neutral.DEDICATED)}
+
+
+def level_command(name: str, bits: str) -> str:
+    """INL_<user inputs>, INL<dedicated inputs>_ (L2136: LMT+ ... INDEX, then I1-I10) or OUTL<outputs>."""
+    return {"input_active_high": "INL_" + bits, "switch_active_high": "INL" + bits + "_"}.get(name, "OUTL" + bits)
 
 
 def level_run(nodes: list, index: int) -> list:
@@ -1465,8 +1544,10 @@ def level_run(nodes: list, index: int) -> list:
     group = [first]
     for node in nodes[index + 1:]:
         op = node.op if isinstance(node, Simple) else None
-        if not (isinstance(op, ir.Setting) and op.name == first.name and op.axis == first.axis
-                and op.index not in {o.index for o in group}):
+        # INL's dedicated levels and its user inputs' make one INL (`INLXXXX10X_1XX1X0XX`)
+        names = (first.name, "input_active_high") if first.name == "switch_active_high" else (first.name,)
+        if not (isinstance(op, ir.Setting) and op.name in names and op.axis == first.axis
+                and (op.name, op.index) not in {(o.name, o.index) for o in group}):
             break
         group.append(op)
     return group
@@ -1475,17 +1556,36 @@ def level_run(nodes: list, index: int) -> list:
 # The readings X150 reports with a command of their own, a line each: PR (*-25600, L3141, the print
 # `neutral.position_report` makes), the setting queries 1FOL (FOLLOWING PERCENT = n%, L1569), 1INL and
 # 1OUTL (*bbbbbbb_bbbbbbbbbb, L2134)
-REPORTS = {"following_ratio": "FOL", "input_levels": "INL", "output_levels": "OUTL"}
+REPORTS = {"following_ratio": "FOL"}
 
 
 def report_command(op: ir.Print) -> str | None:
-    """The X150 report a print is, when it is a line with one such reading alone."""
+    """The X150 report a print is, when it is a line with one such reading alone, or the shape the
+    lowering gives INL, OUTL (compiler/x150/neutral.levels_report) and QS (identity_report)."""
     if neutral.report_axis(op) is not None:
         return "PR"
+    levels = neutral.levels_report_of(op)
+    if levels is not None:
+        return levels[0]
+    if neutral.identity_report_of(op) is not None:
+        return "QS"
+    if op.formats:
+        return None
     if len(op.items) == 1 and isinstance(op.items[0], ir.Status) and op.items[0].index is None and op.newline \
             and not op.signed:
         return REPORTS.get(op.items[0].meaning)
     return None
+
+
+def without_trace_reports(module: ir.Module) -> ir.Module:
+    """The module without its trace reports (`Print.traced`): an X150 in trace mode reports each
+    command it runs by itself (XTR, L5384-L5433), so they are not written. A copy when it has some."""
+    if not any(isinstance(op, ir.Print) and op.traced for _, block in module.blocks() for op in block.ops):
+        return module
+    copy = ir.copy_module(module)
+    for _, block in copy.blocks():
+        block.ops[:] = [op for op in block.ops if not (isinstance(op, ir.Print) and op.traced)]
+    return copy
 
 
 def describe_setting(name: str) -> str:

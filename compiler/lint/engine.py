@@ -120,7 +120,8 @@ def settle(checked: Checked, settings: Settings, rules: bool = True,
 
 def run_rules(analysis, profile, dialect: str, settings: Settings, path: str, diags: Diagnostics,
               stop: Callable[[], bool] | None = None) -> None:
-    ctx = Context(analysis, profile or load_profile(dialects.get(dialect).default_profile), dialect, diags)
+    ctx = Context(analysis, profile or load_profile(dialects.get(dialect).default_profile), dialect, diags,
+                  settings=settings)
     with flow.shared_shapes():  # the rules read the module, never change it: one graph walk per routine
         for rule in rules_for(dialect):
             if not settings.enabled(rule.code, path):

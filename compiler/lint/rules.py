@@ -34,6 +34,7 @@ class Context:
     diagnostics: Diagnostics = field(default_factory=Diagnostics)
     code: str = ""  # the code of the rule being run; set by the engine
     cache: dict[str, Any] = field(default_factory=dict)  # facts several rules share (per file)
+    settings: Any = None  # the file's config.Settings (the envelope rules read `axes`)
 
     @property
     def source(self):
@@ -97,6 +98,7 @@ def load(dialect: str) -> None:
     if dialect in _LOADED:
         return
     _LOADED.add(dialect)
+    importlib.import_module("mcc.compiler.lint.envelope_rules")  # the machine's envelope: every dialect
     try:
         importlib.import_module(f"mcc.compiler.lint.{dialect}_rules")
     except ModuleNotFoundError as exc:

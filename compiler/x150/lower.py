@@ -62,7 +62,7 @@ KIND_RANK = {ir.RoutineKind.POWERUP: 3, ir.RoutineKind.HANDLER: 2, ir.RoutineKin
 NEUTRAL_ROLES = frozenset((*MOTION, "distance", "go", "home", "delay", "wait_input", "assign", "save", "return",
                            "when"))
 NEUTRAL_NAMES = frozenset((*DIRECTION, "CUR", "O", "TRIP", "PZ", '"', "PR", "SB", "ST", *neutral.SETTINGS,
-                           "IN", "OUT", "INL", "OUTL", "HALT", "PS", "C", "#"))
+                           "IN", "OUT", "INL", "OUTL", "HALT", "PS", "C", "#", "TX", "QS"))
 # Queries that report a setting in force (`1FOL` -> FOLLOWING PERCENT = n%, L1569; `1INL` ->
 # *0000000_0000000000, L2134): a print of the setting's reading
 SETTING_REPORTS = {"FOL": "following_ratio", "INL": "input_levels", "OUTL": "output_levels"}
@@ -84,6 +84,7 @@ class Frame:
     head: str = ""  # L/WHILE/REPEAT: the block to go back to
     exit: str = ""  # WHILE: the block after the loop
     counter: str = ""  # L: the hidden counter variable
+    count: object = None  # L: the count it starts from (an IR expression)
     branch: ir.Branch | None = None  # IF: the conditional branch, its `otherwise` patched by ELSE/NIF
     ends: list[ir.Jump] = field(default_factory=list)  # IF: jumps to the join, patched at NIF
     else_seen: bool = False
@@ -134,6 +135,9 @@ class Lowering:
         self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
+        # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them; they
+        # also mark where each command starts, which single step (XST, L5330-L5345) counts
+        self.tracing = any(c.mnemonic in ("XTR", "XST") for c in self.tree.commands())
         self.name_units()
         self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
         kinds = self.routine_kinds()
@@ -276,6 +280,8 @@ class Lowering:
         for command in unit.commands:
             self.lower_command(command)
         end = unit.end or unit.start
+        if self.tracing and unit.is_sequence and unit.end is not None:
+            self.trace(unit.end)
         self.close_all(end, "XT" if unit.is_sequence else "the end of the stream")
         end_span = unit.end.span if unit.end is not None else self.block.span
         if self.block.terminator is not None and unit.end is not None:
@@ -353,6 +359,8 @@ class Lowering:
                            f"{skip.mnemonic} skips the next command, here {command.text}: skipping one end of a "
                            f"construct unbalances the {'sequence' if self.unit.is_sequence else 'stream'} "
                            "(L3772, L3814); put a command such as T0.001 in between, or use IF(IN...)")
+        if self.tracing and self.unit.is_sequence:
+            self.trace(command)
         if role in OPENERS:
             self.open(command, OPENERS[role])
         elif role in CLOSERS:
@@ -447,13 +455,26 @@ class Lowering:
             table = neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS
             setting = "input_function" if name == "IN" else "output_function"
             self.emit(ir.Setting(setting, axis, ir.Text(table[arg.function.upper()], arg.span), span, arg.index))
-        elif name in ("INL", "OUTL") and isinstance(arg, st.Pattern) and self.settable(command) \
-                and (name == "OUTL" or not neutral.split(arg.bits)[0]):
-            bits = arg.bits if name == "OUTL" else neutral.split(arg.bits)[1]
-            setting = "input_active_high" if name == "INL" else "output_active_high"
-            for index, bit in enumerate(bits.upper(), 1):  # X leaves a level as it is: one setting per level set
-                if bit in "01":
-                    self.emit(ir.Setting(setting, axis, ir.Const(int(bit), ir.Unit.NONE, arg.span), span, index))
+        elif name in ("INL", "OUTL") and isinstance(arg, st.Pattern) and self.settable(command):
+            # X leaves a level as it is: one setting per level set; INL's dedicated group (LMT+ ...
+            # INDEX, L2136) sets the switch inputs' levels (ir_names.SWITCH_INPUTS, the same order)
+            groups = [("output_active_high", arg.bits)] if name == "OUTL" else \
+                list(zip(("switch_active_high", "input_active_high"), neutral.split(arg.bits)))
+            for setting, bits in groups:
+                for index, bit in enumerate(bits.upper(), 1):
+                    if bit in "01":
+                        self.emit(ir.Setting(setting, axis, ir.Const(int(bit), ir.Unit.NONE, arg.span), span, index))
+        elif name in ("INL", "OUTL") and arg is None and not command.buffered:  # *0000100_1001000000 (L2141)
+            self.emit(neutral.levels_report(name, axis, span, self.sender(command)))
+        elif name == "TX" and isinstance(arg, st.Fields) and len(arg.values) == 3 and arg.tail \
+                and 1 <= arg.values[0] <= 50 and arg.values[1] in (0, 1) and 0 <= arg.values[2] <= 5 \
+                and not command.buffered:  # TXn,m,p,x: x then VARn (L4463-L4483)
+            var = st.VarRef(arg.values[0], arg.spans[0] if arg.spans else arg.span)
+            self.declare(var)
+            self.emit(neutral.transmit(ir.Var(var.name, var.span), arg.values[1] == 1, arg.values[2], arg.tail, span,
+                                       self.sender(command)))
+        elif name == "QS" and arg is None and not command.buffered:  # ;*01! (L3209-L3217)
+            self.emit(neutral.identity_report(axis, span, self.sender(command)))
         elif name in SETTING_REPORTS and arg is None and not command.buffered:
             self.emit(ir.Print((ir.Status(SETTING_REPORTS[name], axis, None, span),), True, span, self.sender(command)))
         elif name == "PS" and arg is None and axis_ok:  # pauses command execution, not motion (L3151)
@@ -474,6 +495,22 @@ class Lowering:
         else:
             op = self.native(command)
             self.emit(op)
+
+    def trace(self, command: st.Command) -> None:
+        """The device's trace report of `command`, sent while the trace is on (XTR1):
+        `;SEQUENCE: 1 COMMAND: G      LOOP COUNT: 2` in an L loop, the iteration of the innermost
+        one (L5408-L5433). The loop count is the counter's: n + 1 - %Lk (it counts down from n)."""
+        span = command.span
+        # the command as stored; the end is `XT` whatever address its download gave it (L5431)
+        text = "XT" if command is self.unit.end else command.text.strip()
+        items: tuple = (ir.Text(f";SEQUENCE: {self.unit.number} COMMAND: {text}", span),)
+        loop = next((f for f in reversed(self.frames) if f.kind == "L"), None)
+        if loop is not None:
+            iteration = ir.BinOp("-", ir.BinOp("+", loop.count, ir.Const(1, ir.Unit.NONE, span), span),
+                                 ir.Var(loop.counter, span), span)
+            items += (ir.Text("      LOOP COUNT: ", span), iteration)
+        axis = "" if self.device is None else str(self.device)
+        self.emit(ir.Print(items, True, span, axis, traced=True))
 
     def settable(self, command: st.Command) -> bool:
         """A setting command whose B prefix the backend writes back by itself: none, or the one every
@@ -554,7 +591,7 @@ class Lowering:
             self.module.variables[counter] = ir.Variable(counter, ir.VarType.INT32, ir.Const(0), "local", span)
             count = self.value(command.arg, command.info) if command.arg is not None else ir.Const(0, ir.Unit.NONE, span)
             self.emit(ir.Assign(ir.Var(counter, span), count, span))
-            frame.counter = counter
+            frame.counter, frame.count = counter, count
             head = self.label()
             self.terminate(ir.Jump(head, span))
             self.new_block(span, head)

@@ -173,3 +173,85 @@ def report_axis(op: ir.Print) -> str | None:
             and items[1].meaning == "position" and items[1].index is None:
         return items[1].axis
     return None
+
+
+# The reports of the active levels (INL L2131-L2141, OUTL L3034-L3051), defined once: the lowering
+# makes `aINL` / `aOUTL` these prints, the X150 writer writes them back, the simulator and the
+# virtual device print them (the text is the IR's alone). Decision (docs/dialects/x150.md,
+# "Decisions"): the reply is always the header lines and the levels; the manual's first samples
+# (L2133, L3040) show the levels alone in the description column, its re-samples the whole reply
+# (L2138-L2141, L3047-L3051), as every report of levels does (TRS, L4353-L4356).
+INPUT_LEVELS_HEADER = ("Input active levels are:\n"
+                       "LMT+ LMT- HOME AUX-IN STOP ENG INDEX_I1 I2 I3 I4 I5 I6 I7 I8 I9 I10\n")   # L2138-L2140
+OUTPUT_LEVELS_HEADER = ";Output active levels are:\n;01 02 03 04 05 06\n"   # L3049-L3050
+
+
+def levels_report(kind: str, axis: str, span: Span | None, sender: str = "") -> ir.Print:
+    """`aINL` (kind "INL": `*` the seven dedicated inputs' levels `_` the ten user inputs') or
+    `aOUTL` (kind "OUTL": `*` the six outputs'), after the header lines."""
+    if kind == "INL":
+        return ir.Print((ir.Text(INPUT_LEVELS_HEADER + REPORT_PREFIX, span), ir.Status("switch_levels", axis, None, span),
+                         ir.Text("_", span), ir.Status("input_levels", axis, None, span)), True, span, sender,
+                        formats=("", f"bits {len(DEDICATED)}", "", f"bits {USER_INPUTS}"))
+    return ir.Print((ir.Text(OUTPUT_LEVELS_HEADER + REPORT_PREFIX, span), ir.Status("output_levels", axis, None, span)),
+                    True, span, sender, formats=("", f"bits {OUTPUTS}"))
+
+
+def levels_report_of(op: ir.Print) -> tuple[str, str] | None:
+    """(kind, axis) when `op` is a report `levels_report` makes, else None."""
+    for kind in ("INL", "OUTL"):
+        shape = levels_report(kind, "", None)
+        if op.newline and not op.signed and op.formats == shape.formats and len(op.items) == len(shape.items) \
+                and all(_same_item(a, b) for a, b in zip(op.items, shape.items)):
+            axes = {item.axis for item in op.items if isinstance(item, ir.Status)}
+            if len(axes) == 1:
+                return kind, axes.pop()
+    return None
+
+
+def _same_item(item, shape) -> bool:
+    if isinstance(shape, ir.Text):
+        return isinstance(item, ir.Text) and item.value == shape.value
+    return isinstance(item, ir.Status) and item.meaning == shape.meaning and item.index is None
+
+
+# TX: "transmits via the serial port (RS-232C) the value of a user variable and a string" (L4463-
+# L4483): `aTXn,m,p,x` sends x, then VARn with p digits after the point, with its sign when m is 1
+# (`2D+987`) and without it when m is 0 (`3V987.123`). Decisions (docs/dialects/x150.md): the
+# digits past p are dropped (the manual's examples round and truncate alike); a line end follows,
+# as after every report; m = 0 sends no sign, a negative value included ("0 if the sign is not to
+# be transmitted").
+def transmit(variable: ir.Var, sign: bool, decimals: int, text: str, span: Span | None,
+             sender: str = "") -> ir.Print:
+    spec = f"fixed {decimals}" + ("" if sign else " magnitude")
+    return ir.Print((ir.Text(text, span), variable), True, span, sender, signed=sign, formats=("", spec))
+
+
+def transmit_of(op: ir.Print) -> tuple[str, bool, int, str] | None:
+    """(variable name, sign, decimals, text) when `op` is a `transmit`, else None."""
+    if not (op.newline and len(op.items) == 2 and isinstance(op.items[0], ir.Text)
+            and isinstance(op.items[1], ir.Var) and len(op.formats) == 2 and op.formats[0] == ""):
+        return None
+    words = op.formats[1].split()
+    if len(words) < 2 or words[0] != "fixed" or not words[1].isdigit():
+        return None
+    magnitude = words[2:] == ["magnitude"]
+    if magnitude == op.signed or words[2:] not in ([], ["magnitude"]):
+        return None   # m is 0 (no sign) or 1 (the sign always): nothing else has a TX
+    return op.items[1].name, op.signed, int(words[1]), op.items[0].value
+
+
+# QS: "Responds with the identity of the echoing device ... an asterisk, a two digit device
+# address, an exclamation mark" (L3209-L3217); run by axis 1 the host receives `;*01!` (L3217).
+def identity_report(axis: str, span: Span | None, sender: str = "") -> ir.Print:
+    return ir.Print((ir.Text(";" + REPORT_PREFIX, span), ir.Status("device_address", axis, None, span),
+                     ir.Text("!", span)), True, span, sender, formats=("", "pad 2", ""))
+
+
+def identity_report_of(op: ir.Print) -> str | None:
+    """The axis whose identity `op` reports (`identity_report`), else None."""
+    shape = identity_report("", None)
+    if op.newline and not op.signed and op.formats == shape.formats and len(op.items) == 3 \
+            and all(_same_item(a, b) for a, b in zip(op.items, shape.items)):
+        return op.items[1].axis
+    return None

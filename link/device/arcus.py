@@ -12,6 +12,7 @@ commands (spelled as standalone statements, HOST_COMMANDS); PX, PP, PS, DO and D
 
 from __future__ import annotations
 
+import copy
 import re
 
 from mcc.compiler import ir
@@ -31,6 +32,7 @@ SETTINGS = {"ACC": "300", "HS": "1000", "LS": "100", "DO": "0", "DI": "0", "EO":
             # signal polarity PO[axis], bits home/alarm/limit (L702-L704); the manual gives no
             # default: 0
             **{f"PO{axis}": "0" for axis in "XYZU"}}
+BUFFER_POINTS = 36   # "Linear Interpolations is buffer move size is 36 points" (L628)
 TIMER_MAX = 1_000_000  # TR reads 0..1,000,000 ms (L1701)
 ACTIONS = ("ABORT", "ABS", "INC", "STOP", "BO", "BF", "STORE")
 AXES = "XYZU"
@@ -76,6 +78,8 @@ class ArcusDevice(VirtualDevice):
         self.stored_settings = dict(SETTINGS)
         self.paused = False
         self.pc = 0
+        self.buffered = False                       # BO / BF (L628)
+        self.points: list[tuple[int, int, int, int]] = []   # I moves waiting for BO
 
     @property
     def state(self) -> str:
@@ -160,6 +164,14 @@ class ArcusDevice(VirtualDevice):
         if upper in ("ABS", "INC"):
             self.mode = upper
             return "OK"
+        match = re.fullmatch(r"I(-?\d+):(-?\d+):(-?\d+):(\d+)", upper)
+        if match:   # buffered linear interpolation of X, Y, Z at a constant speed (L622-L630)
+            return self.interpolation(tuple(int(g) for g in match.groups()))
+        if upper in ("BO", "BF"):
+            self.buffered = upper == "BO"
+            while self.buffered and self.points:
+                self.interpolate(self.points.pop(0))
+            return "OK"
         if self.on_machine(upper) or upper in ACTIONS:
             return "OK"
         return INVALID
@@ -175,12 +187,13 @@ class ArcusDevice(VirtualDevice):
             return ":".join(str(int(round(abs(sim.moving.get(a, 0))))) for a in AXES)
         if cmd == "DO":
             return str(sim.machine.output_mask())
-        if cmd == "DI":
-            return str(sim.machine.input_mask())
+        if cmd == "DI":   # the levels: 255 with nothing connected, an input sunk to ground reads 0 (L797, L1905)
+            return str(sum(sim.input_level(n) << (n - 1) for n in range(1, 9)))
         match = re.fullmatch(r"D([OI])([1-8])", cmd)
-        if match:
-            table = sim.machine.outputs if match.group(1) == "O" else sim.machine.inputs
-            return str(table.get(int(match.group(2)), 0))
+        if match:   # DI1-DI8: 1 when the input is triggered, as a program reads it (L1929)
+            if match.group(1) == "I":
+                return str(sim.input_logic(int(match.group(2))))
+            return str(sim.machine.outputs.get(int(match.group(2)), 0))
         return None
 
     def on_machine(self, cmd: str) -> bool:
@@ -197,6 +210,36 @@ class ArcusDevice(VirtualDevice):
                 self.take_variables()
                 return True
         return False
+
+    def interpolation(self, point: tuple[int, int, int, int]) -> str:
+        """`I x:y:z:speed`: with the buffered mode on the move starts at once, else it waits in
+        the 36-point buffer for BO (L628)."""
+        if point[3] <= 0:
+            return INVALID
+        if self.buffered:
+            self.interpolate(point)
+            return "OK"
+        if len(self.points) >= BUFFER_POINTS:
+            return INVALID
+        self.points.append(point)
+        return "OK"
+
+    def interpolate(self, point: tuple[int, int, int, int]) -> None:
+        """One buffered move to the X, Y, Z position at its own constant speed: "There is no
+        acceleration or deceleration in the speed" (L624), so it starts and ends at that speed
+        (LSPD = HSPD). The move's speed is its own: the speeds in force are kept."""
+        x, y, z, speed = point
+        kept = copy.deepcopy((self.sim.machine.shared, {a: ax.settings for a, ax in self.sim.machine.axes.items()}))
+        module = module_of("arcus", f"HSPD={speed}\nLSPD={speed}\nABS\nX{x} Y{y} Z{z}\nEND\n")
+        if module is not None:
+            self.sim.run(module, None, program=False)
+        shared, settings = kept
+        self.sim.machine.shared.clear()
+        self.sim.machine.shared.update(shared)
+        for name, axis in self.sim.machine.axes.items():
+            if name in settings:
+                axis.settings = settings[name]
+            axis.cached = None
 
     def control(self, code: str) -> str:
         if code == "0":
@@ -231,6 +274,9 @@ class ArcusDevice(VirtualDevice):
 
     def take_settings(self) -> None:
         """What the program set (ACC=V3, HSPD=2500, HSPDX=...) is what the host reads back."""
+        enable = self.sim.settings.get(("enable_outputs", ir.ALL_AXES, None))   # EO=3 in the program (L2142)
+        if enable is not None:
+            self.settings["EO"] = str(int(enable))
         shared = self.sim.machine.shared.get("*", {})
         for name, (param, scale) in READ_BACK.items():
             if param in shared:

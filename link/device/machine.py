@@ -19,6 +19,7 @@ later command starts from that state, and a stop command ends the program.
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 from dataclasses import dataclass, field
 
@@ -124,6 +125,12 @@ class DeviceMachine:
         self.slewing: dict[str, float] = {}   # axis -> velocity, for slews (jogs) that run on between commands
         self.last: Trace | None = None       # the trace of the last run
         self.outcome: Outcome | None = None   # how the last run (a program or a command) ended
+        # the device settings the runs set (the simulator's `settings`: (name, axis, index) -> value)
+        # and the input polarities: a device keeps them from one command or program to the next,
+        # so the host reads back what a stored program set and a report reads what earlier
+        # commands set
+        self.settings: dict = {}
+        self.active_high: dict[int, bool] = {}
 
     # -- the state the host protocol reads -------------------------------------------------------
     def position(self, axis: str) -> float:
@@ -136,6 +143,28 @@ class DeviceMachine:
     def setting(self, axis: str, param: ir.MotionParam) -> float:
         return self.machine.axis(axis).setting(param, self.machine.shared)
 
+    def input_level(self, index: int) -> int:
+        """Input `index`'s electrical level: what the host set, else the inactive level of the
+        polarity in force (the product's `[machine.inputs] active_high`): an input nothing
+        drives is not active."""
+        level = self.machine.inputs.get(index)
+        if level is not None:
+            return 1 if level else 0
+        table = self.profile.get("machine.inputs", {}) if self.profile is not None else {}
+        idle = table.get("idle_level") if isinstance(table, dict) else None
+        if idle in (0, 1) and not isinstance(idle, bool):
+            return idle
+        return 0 if self.active_high.get(index, self._active_high_default()) else 1
+
+    def input_logic(self, index: int) -> int:
+        """Input `index`'s logic state (1 active) through the polarity in force."""
+        level = self.input_level(index)
+        return level if self.active_high.get(index, self._active_high_default()) else 1 - level
+
+    def _active_high_default(self) -> bool:
+        table = self.profile.get("machine.inputs", {}) if self.profile is not None else {}
+        return bool(table.get("active_high", True)) if isinstance(table, dict) else True
+
     def stop(self) -> None:
         """The program is stopped (a stop command): it no longer runs and nothing moves."""
         self.status, self.reason = "idle", "stopped"
@@ -143,7 +172,19 @@ class DeviceMachine:
         self.slewing.clear()
 
     # -- running ---------------------------------------------------------------------------------
-    def run(self, module: ir.Module, entry: tuple[str, str | None] | None = None, program: bool = True) -> Outcome:
+    def snapshot(self) -> dict:
+        """The device's state, to run a program again from it (single step: each step request
+        replays the program from where it started, up to one more command)."""
+        return copy.deepcopy({"machine": self.machine, "variables": self.variables, "settings": self.settings,
+                              "active_high": self.active_high, "clock": self.clock})
+
+    def restore(self, state: dict) -> None:
+        state = copy.deepcopy(state)
+        self.machine, self.variables, self.settings = state["machine"], state["variables"], state["settings"]
+        self.active_high, self.clock = state["active_high"], state["clock"]
+
+    def run(self, module: ir.Module, entry: tuple[str, str | None] | None = None, program: bool = True,
+            commands: int | None = None) -> Outcome:
         """Run `module` from `entry` (see `starting_at`) on the device's machine and variables.
         `program`: this run is the device's program (its end sets the program's status); an
         immediate command runs on the same machine without changing the program's status."""
@@ -155,7 +196,7 @@ class DeviceMachine:
             vtype = module.type_of(name) or module.default_type or ir.VarType.FLOAT64  # registers: the lowering's
             scope = declared.scope if declared is not None else "global"
             module.variables[name] = ir.Variable(name, vtype, ir.Const(self.variables[name]), scope)
-        options = Options(until=self.run_limit, max_steps=MAX_STEPS, samples=False)
+        options = Options(until=self.run_limit, max_steps=MAX_STEPS, samples=False, commands=commands)
         try:
             simulator = Simulator(module, Scenario(inputs=dict(self.machine.inputs)), options, self.profile)
         except ContractError as exc:
@@ -175,6 +216,7 @@ class DeviceMachine:
             return self._ended(Outcome("error", f"internal error in the simulator ({type(exc).__name__}: {exc}); "
                                                 "this is a bug in mcc, please report it"), program)
         self.last = trace
+        self.settings, self.active_high = simulator.settings, simulator.active_high
         simulator.finish_homing(max(self.run_limit, trace.time))  # its phases follow one another
         end = trace.time
         if trace.stopped == "end":

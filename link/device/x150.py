@@ -88,6 +88,7 @@ class X150Device(VirtualDevice):
         self.units = {a: Unit(a) for a in addresses}
         self.capacity = capacity
         self.sim = DeviceMachine("x150", run_limit)
+        self.stepping: dict[str, Stepping] = {}   # address -> its sequence in single-step mode
         for unit in self.units.values():
             unit.saved = self.snapshot(unit)
 
@@ -141,6 +142,8 @@ class X150Device(VirtualDevice):
                 unit.refused = unit.refused or "unknown command"
             unit.buffer.append(body)
             return []
+        if word == "#":
+            return self.step(unit, arg)
         handler = getattr(self, f"do_{word}", None)
         if handler is not None:
             return handler(unit, arg)
@@ -262,6 +265,32 @@ class X150Device(VirtualDevice):
         unit.variables[n] = float(match.group(2))
         return []
 
+    # -- single step --------------------------------------------------------------------------
+    def setting_on(self, name: str, unit: Unit) -> bool:
+        """Whether the device setting `name` (the simulator's, kept between commands) is on for `unit`."""
+        return any(value for (setting, axis, _), value in self.sim.settings.items()
+                   if setting == name and axis in (unit.address, "*"))
+
+    def step(self, unit: Unit, arg: str) -> list[str]:
+        """`#n`: the sequence running in single-step mode runs n more commands (L5330-L5345; `#`
+        alone one, L5557). The device replays it from where it started up to that many commands
+        (the simulator runs a program from its start), so the machine is where those commands left
+        it; the reply is what they transmitted (their trace lines when the trace is on, L5345)."""
+        state = self.stepping.get(unit.address)
+        if state is None:
+            return []
+        state.done += int(arg) if arg.isdigit() else 1
+        self.sim.restore(state.start)
+        outcome = self.sim.run(state.module, None, program=True, commands=state.done)
+        lines = [line for text in outcome.prints for line in text.splitlines()]
+        new, state.sent = lines[state.sent:], len(lines)
+        if outcome.status != "running" or outcome.reason and not outcome.reason.startswith("single step"):
+            del self.stepping[unit.address]   # the sequence ended (or stopped otherwise)
+        for name, value in self.sim.variables.items():
+            if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
+                unit.variables[int(name[3:])] = float(value)
+        return new
+
     # -- the simulator's machine ----------------------------------------------------------
     def on_machine(self, unit: Unit, text: str, word: str) -> list[str]:
         """Run a command on the machine, after the unit's context; a sequence run (XR, XG, GOSUB,
@@ -286,6 +315,10 @@ class X150Device(VirtualDevice):
                 lines += [f"{unit.address}XD{n}", *body, f"{unit.address}XT"]
             if not parse(text)[0]:
                 text = unit.address + text   # an unaddressed XR1 runs the unit's sequence 1, stored as 1XD1
+            if self.setting_on("trace", unit):
+                lines.append(f"{unit.address}XTR1")   # trace on (XTR1 earlier): the run reports its commands
+            if self.setting_on("single_step", unit):
+                lines.append(f"{unit.address}XST1")   # single step (XST1 earlier): the host's # runs each command
 
             if any('"' in line for body in unit.sequences.values() for line in body):
                 # a quote may start another device's sequence (`1"2XR3"`): theirs are in the program too
@@ -297,6 +330,11 @@ class X150Device(VirtualDevice):
         if module is None:
             return []
         self.sim.variables.update({f"VAR{k}": v for k, v in unit.variables.items()})
+        if program and self.setting_on("single_step", unit):
+            # single step (L5330-L5345): the sequence waits for the host's #n; it starts from here
+            self.stepping[unit.address] = Stepping(module, self.sim.snapshot())
+            self.sim.run(module, None, program=True, commands=0)
+            return []
         outcome = self.sim.run(module, None, program=program)
         for name, value in self.sim.variables.items():
             if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
@@ -304,6 +342,17 @@ class X150Device(VirtualDevice):
         if program and outcome.status == "error":
             unit.xsr = "2"
         return [line for text in outcome.prints for line in text.splitlines()]
+
+
+@dataclass
+class Stepping:
+    """A sequence run in single-step mode: its program, the device's state where it started, the
+    commands the host has let run and the lines already sent."""
+
+    module: object
+    start: dict
+    done: int = 0
+    sent: int = 0
 
 
 PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",

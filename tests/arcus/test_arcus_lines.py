@@ -126,7 +126,7 @@ def test_the_grammar_still_has_the_terminals_the_reader_assumes() -> None:
     assert terminals["WORD"] == lines.WORD_PATTERN
     assert terminals["NUMBER"] == lines.NUMBER_PATTERN
     assert terminals["COMMENT"] == lines.COMMENT_PATTERN
-    ignored = [terminals[name] for name in lark.ignore_tokens]
+    ignored = [terminals[name] for name in lark.lexer_conf.ignore]
     assert ignored == [lines.IGNORED_PATTERN]
     assert {name: terminals[name] for name in ("CONDKW", "LOGIC")} == {
         "CONDKW": "(?i:ELSEIF|IF|WHILE)(?![A-Za-z])", "LOGIC": "(?i:AND|OR)(?![A-Za-z0-9])"}

@@ -149,3 +149,56 @@ def test_into_arcus_an_axis_speed_of_its_own_becomes_a_complete_set(tmp_path) ->
     first, second = code.index("X4000"), code.index("X0")
     assert {"HSPDX=32000", "LSPDX=1"} <= set(code[:first]) and any(c.startswith("ACCX=") for c in code[:first])
     assert "HSPD=24000" in code[first:second] and "HSPDX=24000" in code[first:second]
+
+
+def test_settings_sent_before_the_program_are_in_force_in_it() -> None:
+    """MCode settings sent before `PG` run at once and hold when the program runs (lexium-mcode.txt
+    L510-L512); the simulator runs them first. The values in force carry them into the program, so
+    MCode -> Arcus, which must write axis 1's complete set (HSPDX, LSPDX, ACCX, L447-L457) before its
+    first move, knows the initial speed there (issue 23: tests/sim/golden/mcode/sub_call.mxt was
+    refused, G003 "the initial speed axis 1 runs with here is not known")."""
+    text = "VI=500\nVM=5000\nA=50000\nD=50000\nPG 100\nLB MN\n  MR 1000\n  H\n  E\nPG\n"
+    module = driver.check_file("p.mxt", "mcode", text=text).analysis.module
+    analysis = in_force.InForce(module)
+    (main,) = [r for r in module.routines if r.kind is ir.RoutineKind.MAIN]
+    state = next(state for _, _, op, state in analysis.walk(main) if isinstance(op, ir.Move))
+    assert in_force.lookup(state, ir.MotionParam.INITIAL_SPEED, "1").value == 500
+    assert in_force.lookup(state, ir.MotionParam.MAX_SPEED, "1").value == 5000
+    result = driver.compile_file("p.mxt", "mcode", target="arcus", text=text, always_verify=True)
+    assert not [d for d in result.diagnostics if d.severity.value == "error"], \
+        [(d.code, d.message) for d in result.diagnostics]
+    code = [line for line in result.listing.text.splitlines() if not line.startswith(";")]
+    assert {"LSPDX=500", "HSPDX=5000"} <= set(code[:code.index("X1000")])
+
+
+def test_commands_that_never_end_carry_nothing_into_the_program() -> None:
+    """The program's entry runs after the commands sent before it only when they end (the
+    simulator's order, sim/interpreter.py): a stretch that loops for ever leaves nothing known, one
+    that ends leaves its settings."""
+    speed = ir.SetMotion(ir.MotionParam.INITIAL_SPEED, "1", ir.Const(500, ir.Unit.STEPS_PER_S))
+    move = ir.Move(ir.MoveMode.RELATIVE, (("1", ir.Const(1000, ir.Unit.STEPS)),))
+
+    def start_of_main(terminator) -> in_force.State:
+        first = ir.Routine("immediate", ir.RoutineKind.IMMEDIATE, [ir.Block("i", [speed], terminator)])
+        main = ir.Routine("main", ir.RoutineKind.MAIN, [ir.Block("m", [move], ir.End())])
+        analysis = in_force.InForce(ir.Module("mcode", "lmd-c", routines=[first, main]))
+        return next(state for _, _, op, state in analysis.walk(main) if isinstance(op, ir.Move))
+
+    assert in_force.lookup(start_of_main(ir.FallOff()), ir.MotionParam.INITIAL_SPEED, "1").value == 500
+    assert in_force.lookup(start_of_main(ir.Jump("i")), ir.MotionParam.INITIAL_SPEED, "1") is None
+
+
+def test_an_axis_acceleration_replaces_its_ramp_time_in_force() -> None:
+    """An acceleration and a ramp time give the same thing two ways; the one set last applies
+    (docs/SIMULATOR.md, "Motion"). Setting the acceleration of axis 1 alone replaces the ramp time
+    it ran with, its own or the one set for every axis: neither may be read for axis 1 afterwards
+    (before, only a setting for every axis replaced the other)."""
+    span = None
+    ops = [ir.SetMotion(ir.MotionParam.ACCEL_TIME, ir.ALL_AXES, ir.Const(0.2, ir.Unit.S), span),
+           ir.SetMotion(ir.MotionParam.ACCEL_TIME, "1", ir.Const(0.3, ir.Unit.S), span),
+           ir.SetMotion(ir.MotionParam.ACCEL, "1", ir.Const(50000, ir.Unit.STEPS_PER_S2), span)]
+    state: in_force.State = {}
+    for op in ops:
+        in_force.transfer(state, op, {})
+    assert in_force.lookup(state, ir.MotionParam.ACCEL_TIME, "1") is None
+    assert in_force.lookup(state, ir.MotionParam.ACCEL, "1").value == 50000

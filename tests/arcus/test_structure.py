@@ -233,6 +233,41 @@ def test_too_deep_an_expression_runs_out_of_temporaries() -> None:
     assert "A205" in [d.code for d in listing.diagnostics]
 
 
+def a205(text: str, dialect: str):
+    result = driver.compile_file(f"temps.{dialect}", dialect, "arcus", None, text)
+    return [d for d in result.diagnostics if d.code == "A205"]
+
+
+def test_running_out_of_temporaries_names_the_expression_that_needs_them() -> None:
+    """Arcus computes one operator per line (arcus-pmx-4ex-sa.txt L1797: a register's value is a
+    literal or one variable), so an X150 chain evaluated left to right (parker-x150.md L4638) takes
+    one temporary per operator; the refusal points at that line, not at the whole file (issue 23:
+    135 fuzz refusals named no line)."""
+    text = "1XE1\n1XD1\n1VAR2=3\n1VAR1=VAR2+1*2+1*2+1*2\n1IF(VAR1>3)\n1O1\n1NIF\n1XT\n"
+    found = a205(text, "x150")
+    assert [(d.span.line, d.span.column) for d in found] == [(4, 1)]
+
+
+def test_running_out_of_loop_flags_names_the_routine_whose_loops_need_them() -> None:
+    """Sixteen nested X150 loops (L..N, parker-x150.md L2332 allows 16) each need a loop flag
+    on Arcus: the refusal names the sequence that holds them (line 2, its XE), not line 1 column 1."""
+    text = "; sixteen nested loops\n1XE1\n1XD1\n" + "1L2\n" * 16 + "1G\n" + "1N\n" * 16 + "1XT\n"
+    found = a205(text, "x150")
+    assert [d.span.line for d in found] == [2]
+
+
+def test_the_fuzz_finding_of_a_refusal_without_a_line_now_names_the_sequence() -> None:
+    """bench/fuzz_codegen.py x150 seed 208, minimized (was bench/findings/
+    x150-arcus-temporaries-refused-without-line.x150): A205 was reported on the whole file.
+    Sequence 1's nested loops (parker-x150.md L2332) need the fifth temporary: the refusal names its
+    XD line."""
+    text = ("1XD3\n1L2\n1G\n1G\n1N\n1IF(VAR3>3)\n1NIF\n1L2\n1N\n1XT\n"
+            "1XD2\n1L2\n1L3\n1G\n1O1\n1T0.25\n1N\n1IF(VAR2>-8)\n1NIF\n1N\n1XT\n"
+            "1XD1\n1L3\n1L3\n1VAR1=-4000\n1D(VAR3)\n1G\n1N\n1N\n1IF(VAR4>54)\n1NIF\n1XT\n")
+    found = a205(text, "x150")
+    assert [d.span.line for d in found] == [22]
+
+
 def test_logic_conditions_predicated_calls_and_input_waits() -> None:
     v1, v2 = ir.Var("V1"), ir.Var("V2")
     di1 = ir.Status("input", "", 1)

@@ -32,6 +32,19 @@ class Result:
         self.returncode, self.stdout, self.stderr = returncode, stdout, stderr
 
 
+# The virtual device answers from a thread of the test process: on a loaded machine (the suite runs
+# on both cores) a reply can take longer than a real device's 1-2 s timeout, which would fail a test
+# about something else. Commands that talk to a device wait this long unless the test says otherwise.
+PATIENT_TIMEOUT = "10"
+TALKING = {"download", "upload", "send"}
+
+
+def with_patience(args: tuple[str, ...]) -> tuple[str, ...]:
+    if args and args[0] in TALKING and "--timeout" not in args and "--help" not in args:
+        return (*args, "--timeout", PATIENT_TIMEOUT)
+    return args
+
+
 def mcc(*args: str) -> Result:
     """Run an `mcc` command in this process (click's runner: the same command, parsing and exit
     codes as the installed script, without starting an interpreter per call; the virtual device
@@ -40,5 +53,6 @@ def mcc(*args: str) -> Result:
 
     from mcc.cli.commands import cli
 
+    args = with_patience(args)
     result = CliRunner().invoke(cli, list(args), env={"NO_COLOR": "1"}, catch_exceptions=False)
     return Result(result.exit_code, result.stdout, result.stderr)

@@ -126,3 +126,37 @@ def test_arcus_sample_runs_where_the_simulator_predicts(path, serve, tmp_path):
     assert [int(v) for v in pp.split(":")] == [position(trace, a) for a in "XYZU"]
     assert state == ("0" if trace.stopped == "end" else "1")
     assert [int(v) for v in values] == [int(trace.variables[n]) for n in names]
+
+
+def test_x150_single_step_runs_one_command_per_step_request():
+    """XST1 then XR1: each # runs one command and answers its trace line, the move has been made
+    after the 4th (parker-x150.md L5350-L5372); #n runs n (L5557)."""
+    device = X150Device()
+    for command in ("XE1", "XD1", "A5", "V2", "D10000", "G", "XT", "1XST1", "1XTR1", "XR1"):
+        device.feed(f"{command}\r".encode())
+
+    def send(command: str) -> list[str]:
+        return [line for line in device.feed(f"{command}\r".encode()).decode().split("\r")[1:] if line != ">"]
+
+    assert send("#") == [";SEQUENCE: 1 COMMAND: A5"]
+    assert send("#2") == [";SEQUENCE: 1 COMMAND: V2", ";SEQUENCE: 1 COMMAND: D10000"]
+    assert send("1PR") == ["*+0"] and send("1R") == ["*B"]
+    assert send("#") == [";SEQUENCE: 1 COMMAND: G"]
+    assert send("1PR") == ["*+10000"]
+    assert send("#") == [";SEQUENCE: 1 COMMAND: XT"]
+    assert send("1R") == ["*R"] and send("#") == []
+
+
+def test_arcus_interpolation_waits_in_the_buffer_until_bo_and_keeps_the_speeds():
+    """I x:y:z:speed starts at once with BO on, else waits for BO; its constant speed is its own
+    (arcus-pmx-4ex-sa.txt L622-L630)."""
+    device = ArcusDevice()
+
+    def send(command: str) -> str:
+        return device.feed(f"@00{command}\r".encode()).decode().rstrip("\r")
+
+    assert send("I1000:0:0:500") == "OK" and send("PX") == "0"
+    assert send("BO") == "OK" and send("PX") == "1000"
+    assert abs(device.sim.clock - 2.0) < 1e-6        # 1000 pulses at 500 pulses/s, no ramp
+    assert send("I1000:2000:0:250") == "OK" and send("PY") == "2000"
+    assert send("HS") == "1000" and send("LS") == "100"

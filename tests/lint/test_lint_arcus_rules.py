@@ -76,7 +76,8 @@ def test_rule_reports_bad_and_accepts_good(code: str, bad: str, good: str) -> No
 def test_every_arcus_rule_has_extra_cases() -> None:
     from mcc.compiler.lint.rules import rules_for
 
-    assert {r.code for r in rules_for("arcus")} <= {c[0] for c in CASES}
+    # the envelope rules (G3xx, every dialect) have their cases per dialect in test_envelope.py
+    assert {r.code for r in rules_for("arcus") if r.code.startswith("A")} <= {c[0] for c in CASES}
 
 
 def test_move_before_speed_is_reported_once_per_routine() -> None:

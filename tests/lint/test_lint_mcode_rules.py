@@ -544,7 +544,8 @@ def test_rule_reports_bad_and_accepts_good(code: str, bad: str, good: str) -> No
 def test_every_mcode_rule_has_extra_cases() -> None:
     from mcc.compiler.lint.rules import rules_for
 
-    assert {r.code for r in rules_for("mcode")} <= {c[0] for c in CASES}
+    # the envelope rules (G3xx, every dialect) have their cases per dialect in test_envelope.py
+    assert {r.code for r in rules_for("mcode") if r.code.startswith("M")} <= {c[0] for c in CASES}
 
 
 def test_conventional_end_after_main_loop_is_not_unreachable() -> None:

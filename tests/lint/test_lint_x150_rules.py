@@ -69,7 +69,8 @@ def test_rule_reports_bad_and_accepts_good(code: str, bad: str, good: str) -> No
 def test_every_x150_rule_has_extra_cases() -> None:
     from mcc.compiler.lint.rules import rules_for
 
-    assert {r.code for r in rules_for("x150")} <= {c[0] for c in CASES}
+    # the envelope rules (G3xx, every dialect) have their cases per dialect in test_envelope.py
+    assert {r.code for r in rules_for("x150") if r.code.startswith("X")} <= {c[0] for c in CASES}
 
 
 def test_comments_in_one_sequence_are_reported_once() -> None:

@@ -28,6 +28,11 @@ SERVER = ClientServerConfig(server_command=[sys.executable, "-m", "mcc", "lsp"])
 @pytest_lsp.fixture(config=SERVER, scope="module")
 async def client(lsp_client: LanguageClient):
     lsp_client.refreshed = []  # the lens and hint refreshes the server asked for, in order
+    lsp_client.registrations = []  # what the server registered dynamically (file watchers)
+
+    @lsp_client.feature(t.CLIENT_REGISTER_CAPABILITY)
+    def register_capability(params: t.RegistrationParams) -> None:
+        lsp_client.registrations.extend(params.registrations)
 
     @lsp_client.feature(t.WORKSPACE_CODE_LENS_REFRESH)
     def code_lens_refresh(params) -> None:
@@ -112,3 +117,19 @@ async def open_fixture(client: LanguageClient, dialect: str) -> Doc:
     doc = Doc(client, DIALECT_FILES[dialect], fixture_text(dialect))
     await doc.settled()
     return doc
+
+
+def apply_edits(text: str, edits: list) -> str:
+    """The text edits applied as an editor applies them (LSP lines end at CRLF, CR or LF)."""
+    from mcc.lsp.edits import LINE
+
+    starts = [0]
+    for line in LINE.findall(text):
+        starts.append(starts[-1] + len(line))
+
+    def offset(position) -> int:
+        return min(starts[min(position.line, len(starts) - 1)] + position.character, len(text))
+
+    for edit in sorted(edits, key=lambda e: (e.range.start.line, e.range.start.character), reverse=True):
+        text = text[:offset(edit.range.start)] + edit.new_text + text[offset(edit.range.end):]
+    return text

@@ -13,6 +13,27 @@ def test_lsp_help_and_usage_errors():
     assert result.returncode == 0 and "language server" in result.stdout and "--tcp" in result.stdout
     bad = run_mcc("lsp", "--tcp", "localhost")
     assert bad.returncode == 2 and "HOST:PORT" in bad.stderr
+    both = run_mcc("lsp", "--stdio", "--tcp", "127.0.0.1:2087")
+    assert both.returncode == 2 and "--stdio" in both.stderr
+
+
+def test_stdio_flag_that_editor_clients_pass_is_accepted():
+    """vscode-languageclient and others start servers with `--stdio`: it must answer initialize."""
+    import json
+
+    request = json.dumps({"jsonrpc": "2.0", "id": 1, "method": "initialize",
+                          "params": {"processId": None, "rootUri": None, "capabilities": {}}})
+    message = f"Content-Length: {len(request)}\r\n\r\n{request}".encode()
+    server = subprocess.Popen([sys.executable, "-m", "mcc", "lsp", "--stdio"], stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    try:
+        server.stdin.write(message)
+        server.stdin.flush()
+        header = server.stdout.readline()
+        assert header.startswith(b"Content-Length:"), header
+    finally:
+        server.kill()
+        server.wait()
 
 
 def test_the_cli_does_not_import_the_language_server():

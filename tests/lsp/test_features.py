@@ -251,7 +251,8 @@ async def test_rename_variables_in_arcus_and_x150(client):
         await client.text_document_rename_async(t.RenameParams(arcus.id(), arcus.find("V1=0"), "V64"))
     x150 = await open_fixture(client, "x150")
     edit = await client.text_document_rename_async(t.RenameParams(x150.id(), x150.find("VAR1", offset=3), "VAR9"))
-    assert sorted(e.new_text for e in edit.changes[x150.uri]) == ["9", "VAR9"]
+    # the assignment target is the whole name `VAR1` too (it was its number alone, issue 25)
+    assert sorted(e.new_text for e in edit.changes[x150.uri]) == ["VAR9", "VAR9"]
 
 
 OUTLINES = {"mcode": ["PG 1"], "arcus": ["main program", "SUB 1", "SUB 2"], "x150": ["sequence 2 (device 1)"]}

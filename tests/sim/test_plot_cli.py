@@ -155,7 +155,9 @@ def test_trace_csv_is_a_wide_table(plotter: Path) -> None:
     assert "output 1" in header
     times = [float(r["time (s)"]) for r in rows]
     assert times == sorted(times) and len(set(times)) == len(times)
-    assert max(float(r["X position (steps)"]) for r in rows) == pytest.approx(2000)
+    # the arc's angle is its end point's, measured from the negative x-axis (arcus-pmx-4ex-sa.txt
+    # L598): 180 degrees about (2000, 2000) with radius 1000 ends at (3000, 2000)
+    assert max(float(r["X position (steps)"]) for r in rows) == pytest.approx(3000)
     for r in rows:
         assert float(r["X position (mm)"]) == pytest.approx(float(r["X position (steps)"]) * 5 / 1000, abs=1e-5)
         assert float(r["Z position (steps)"]) == 0

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from mcc.compiler import ir
@@ -77,6 +79,25 @@ def test_an_arc_ends_on_its_circle():
     trace = simulate(module([move("X", 1000), move("Y", 0), ir.WaitMotion("*"), arc, ir.WaitMotion("*")]))
     assert trace.axes["X"] == pytest.approx(0, abs=1e-6)
     assert trace.axes["Y"] == pytest.approx(1000)
+
+
+@pytest.mark.parametrize(("start", "clockwise", "degrees", "end", "turned"), [
+    ((0, 1000), True, 180, (1000, 0), 90),       # arcus-pmx-4ex-sa.txt L604-L610: ARCP0:0:180000
+    ((-1000, 0), False, 450, (0, 1000), 270),    # L612-L614: ARCN0:0:450000 (450 = 90 + a turn)
+    ((-1000, 0), False, 0, (-1000, 0), 360),     # the end is the start: a full turn
+])
+def test_an_arc_s_angle_is_its_end_point_s_direction_clockwise_from_the_negative_first_axis(
+        start, clockwise, degrees, end, turned):
+    """arcus-pmx-4ex-sa.txt L598: "The θ value should be calculated by making the 0° reference
+    point to be the negative x-axis"; both examples (L604-L614) put the end point at θ measured
+    clockwise. The arc runs from the start in its direction to that point (docs/IR.md, "Arcs")."""
+    arc = ir.Arc(("X", "Y"), (steps(0), steps(0)), clockwise=clockwise, angle=ir.Const(degrees, U.DEGREES))
+    trace = simulate(module([move("X", start[0]), move("Y", start[1]), ir.WaitMotion("*"), arc,
+                             ir.WaitMotion("*")]))
+    assert trace.axes["X"] == pytest.approx(end[0], abs=1e-6)
+    assert trace.axes["Y"] == pytest.approx(end[1], abs=1e-6)
+    length = [e for e in trace.motion_log if e[0] == "X"][-1][1].path.length
+    assert length == pytest.approx(1000 * math.radians(turned))
 
 
 def test_delays_advance_virtual_time_and_prints_keep_their_time():

@@ -82,3 +82,17 @@ limit_plus = 50000
 def test_scenario_errors_say_what_is_wrong(text, message):
     with pytest.raises(ScenarioError, match=message):
         parse(text, "s.toml")
+
+
+@pytest.mark.parametrize(("value", "spec", "signed", "text"), [
+    (Decimal("987.12345"), "fixed 3 magnitude", False, "987.123"),   # parker-x150.md L4481: 1TX1,0,3,3V
+    (Decimal("987.12345"), "fixed 0", True, "+987"),                 # L4482: 1TX1,1,0,2D
+    (Decimal("987.12345"), "fixed 5 magnitude", False, "987.12345"),  # L4483: 1TX1,0,5,2VAR3=
+    (Decimal("-7.59"), "fixed 1 magnitude", False, "7.5"),            # digits past p dropped, no sign (m=0)
+    (Decimal("-7.59"), "fixed 1", True, "-7.5"),
+    (0b1001, "bits 10", False, "1001000000"),                          # L2141: input 1 first
+    (1, "pad 2", False, "01"),                                          # L3217: ;*01!
+])
+def test_print_formats(value, spec, signed, text):
+    """The print formats of docs/IR.md ("Print formats"), with the manual's examples."""
+    assert values.formatted(value, spec, signed) == text

@@ -254,3 +254,24 @@ def test_a_while_on_a_negated_condition_x150_cannot_write_is_an_if_around_a_repe
     assert lines[start + 1:start + 3] == ["1ELSE", "1REPEAT"] and "1UNTIL(IN_X01 OR VAR1>5)" in lines
     again = driver.compile_file("w2.x150", "x150", text=result.listing.text, opt_level="O0")
     assert not again.has_errors and again.listing.text == result.listing.text
+
+
+def test_reports_and_transmissions_are_written_back_as_the_commands_they_came_from():
+    """TX (parker-x150.md L4463-L4483), QS (L3209-L3217), INL and OUTL reports and levels
+    (L2131-L2141, L3034-L3051) lower to prints and settings the writer turns back into them."""
+    lines = output("1XE1\n1XD1\n1TX1,0,3,3V\n1TX2,1,0,2D\n1QS\n1INL\n1OUTL\n1INLXXXX10X_1XX1X0XX\n1OUTLXX10X1\n"
+                   "1XT\n1SV\n")
+    assert lines == ["1XE1", "1XD1", "1TX1,0,3,3V", "1TX2,1,0,2D", "1QS", "1INL", "1OUTL", "1INLXXXX10_1XX1X0",
+                     "1OUTLXX10X1", "1XT", "1SV"]
+
+
+def test_a_print_in_a_format_x150_has_no_command_for_is_refused():
+    """X150 sends a formatted value only as TX or as its reports (L4463-L4483): a print of a
+    variable in another format (four decimals and a second item) has no X150 form."""
+    mod = check("VAR1=1\n1TX1,0,3,3V\n").analysis.module
+    for _, block in mod.blocks():
+        for index, op in enumerate(block.ops):
+            if isinstance(op, ir.Print):
+                block.ops[index] = ir.Print(op.items + (ir.Text("!"),), True, op.span, formats=op.formats)
+    written = backend.write(mod, profiles.load("x150-pdhx"))
+    assert any(d.code == "G003" and "TX" in d.message for d in written.diagnostics)

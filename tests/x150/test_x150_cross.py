@@ -38,14 +38,16 @@ def body(listing) -> list[str]:
 
 def test_a_ramp_time_becomes_an_acceleration_with_the_speeds_in_force():
     """Issue 8: Arcus ACC=300 (a 300 ms ramp) is not X150 A300 (300 rev/s^2)."""
-    module = arcus(speed("X", ir.MotionParam.INITIAL_SPEED, 1000, ir.Unit.STEPS_PER_S, 1),
+    # (an initial speed of 10 steps/s, not 1000: X150 starts from standstill, and a move from 1000
+    # steps/s would end 75 ms later, refused since issue 23 as X216; see the tests below)
+    module = arcus(speed("X", ir.MotionParam.INITIAL_SPEED, 10, ir.Unit.STEPS_PER_S, 1),
                    speed("X", ir.MotionParam.MAX_SPEED, 9000, ir.Unit.STEPS_PER_S, 2),
                    speed("X", ir.MotionParam.ACCEL_TIME, 0.3, ir.Unit.S, 3),
                    move(ir.MoveMode.RELATIVE, 4, X=4000))
     listing = backend.emit(module, PROFILE)
-    # (9000 - 1000) steps/s / 0.3 s = 26666.7 steps/s^2 = 6.6667 rev/s^2 at 4000 steps/rev
+    # (9000 - 10) steps/s / 0.3 s = 29966.7 steps/s^2 = 7.4917 rev/s^2 at 4000 steps/rev
     # the move is not awaited before END: MQ (HALT ends the program, not the move)
-    assert body(listing) == ["XE1", "XD1", "1V2.25", "1A6.6667", "1MQ", "1MPI", "1D4000", "1G", "HALT", "XT"]
+    assert body(listing) == ["XE1", "XD1", "1V2.25", "1A7.4917", "1MQ", "1MPI", "1D4000", "1G", "HALT", "XT"]
     assert [d.code for d in listing.diagnostics] == ["X205"]  # X150 has no start speed: said, not hidden
 
 
@@ -160,3 +162,46 @@ def test_a_move_in_whatever_mode_is_in_force_is_refused_not_guessed():
     listing = backend.emit(module, PROFILE)
     assert [(d.code, d.span.line) for d in listing.diagnostics] == [("G003", 2)]
     assert "D1000" not in listing.text
+
+
+def test_an_initial_speed_that_would_make_moves_end_late_is_refused_at_its_line():
+    """Arcus LSPD is the speed a move starts at (pulses/s, arcus-pmx-4ex-sa.txt L443); X150 has no
+    start speed, its moves ramp at A (parker-x150.md L195-L207) up to V and have no start speed. A
+    move from 500 steps/s with a 100 ms ramp to 5000 steps/s (45,000 steps/s^2) ends up to
+    2 x 500 / 45000 = 22 ms later: refused at the LSPD line (X216), before anything is written,
+    where it used to be written and refused by the validation (S010, tests/sim/golden/arcus/sub_call)."""
+    module = arcus(speed("X", ir.MotionParam.INITIAL_SPEED, 500, ir.Unit.STEPS_PER_S, 1),
+                   speed("X", ir.MotionParam.MAX_SPEED, 5000, ir.Unit.STEPS_PER_S, 2),
+                   speed("X", ir.MotionParam.ACCEL_TIME, 0.1, ir.Unit.S, 3),
+                   move(ir.MoveMode.RELATIVE, 4, X=4000))
+    listing = backend.emit(module, PROFILE)
+    found = [(d.code, d.span.line) for d in listing.diagnostics if d.severity.value == "error"]
+    assert found == [("X216", 1)]
+    assert "22.2 ms later" in next(d.message for d in listing.diagnostics if d.code == "X216")
+
+
+def test_an_initial_speed_whose_drift_stays_within_a_tick_is_left_out_with_a_warning():
+    """LSPD=1 (the lowest, what the X150 -> Arcus writer sets itself): 2 x 1 / 45000 s is far below
+    the 1 ms tick, so the initial speed is left out (X205) and the program is written."""
+    module = arcus(speed("X", ir.MotionParam.INITIAL_SPEED, 1, ir.Unit.STEPS_PER_S, 1),
+                   speed("X", ir.MotionParam.MAX_SPEED, 5000, ir.Unit.STEPS_PER_S, 2),
+                   speed("X", ir.MotionParam.ACCEL_TIME, 0.1, ir.Unit.S, 3),
+                   move(ir.MoveMode.RELATIVE, 4, X=4000))
+    listing = backend.emit(module, PROFILE)
+    assert [d.code for d in listing.diagnostics] == ["X205"]
+
+
+def test_the_drift_an_initial_speed_may_cause_is_the_profiles_choice():
+    """`[x150] start_speed_drift` (docs/dialects/x150.md): a user whose machine does not mind moves
+    ending 25 ms later allows it, and the same program is written with the warning only."""
+    import dataclasses
+
+    data = dict(PROFILE.data)
+    data["x150"] = {**data.get("x150", {}), "start_speed_drift": 0.025}
+    lenient = dataclasses.replace(PROFILE, data=data)
+    module = arcus(speed("X", ir.MotionParam.INITIAL_SPEED, 500, ir.Unit.STEPS_PER_S, 1),
+                   speed("X", ir.MotionParam.MAX_SPEED, 5000, ir.Unit.STEPS_PER_S, 2),
+                   speed("X", ir.MotionParam.ACCEL_TIME, 0.1, ir.Unit.S, 3),
+                   move(ir.MoveMode.RELATIVE, 4, X=4000))
+    listing = backend.emit(module, lenient)
+    assert [d.code for d in listing.diagnostics] == ["X205"]

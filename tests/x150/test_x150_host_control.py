@@ -79,8 +79,12 @@ def test_the_simulator_says_when_a_stopping_pause_catches_a_move():
 
 
 def test_setting_reports_print_the_value_in_force_or_the_factory_default():
+    """1INL reports the header and `*` the dedicated inputs' levels `_` the user inputs', input 1
+    first (parker-x150.md L2131-L2141); INL_X1 makes input 2 active high."""
     trace = simulate(module("1FOL\n1FOL50\n1FOL\n1INL\n1INL_X1\n1INL\n"))
-    assert [text.strip() for _, text in trace.prints] == ["100", "50", "0", "2"]
+    lines = [text.strip().splitlines()[-1] for _, text in trace.prints]
+    assert lines == ["100", "50", "*0000000_0000000000", "*0000000_0100000000"]
+    assert trace.prints[2][1].startswith("Input active levels are:\nLMT+ LMT- HOME AUX-IN STOP ENG INDEX_I1")
 
 
 def test_an_unaddressed_jog_moves_the_device_not_a_phantom_axis():
@@ -104,4 +108,36 @@ def test_settled_operations_are_those_no_move_can_reach():
 
 def test_setting_reports_are_per_device():
     trace = simulate(module("FOL50\n2FOL20\n1FOL\n2FOL\nFOL70\n2FOL\n2INL_1\n1INL\n2INL\n"))
-    assert [text.strip() for _, text in trace.prints] == ["50", "20", "70", "0", "1"]
+    assert [text.strip().splitlines()[-1] for _, text in trace.prints] == [
+        "50", "20", "70", "*0000000_0000000000", "*0000000_1000000000"]
+
+
+TRACED = "XE1\nXD1\nA10\nV5\nD25000\nL2\nG\nN\nXT\n1XTR{on}\nXR1\n"
+
+
+def test_trace_mode_reports_each_command_with_the_loop_count():
+    """XTR1: "commands will be echoed to the host ... if you have a loop (L) ... it will display
+    the iteration count" (parker-x150.md L5400-L5433, the example's output L5421-L5431)."""
+    trace = simulate(module(TRACED.format(on=1)))
+    assert [text.rstrip("\n") for _, text in trace.prints] == [
+        ";SEQUENCE: 1 COMMAND: A10", ";SEQUENCE: 1 COMMAND: V5", ";SEQUENCE: 1 COMMAND: D25000",
+        ";SEQUENCE: 1 COMMAND: L2", ";SEQUENCE: 1 COMMAND: G      LOOP COUNT: 1",
+        ";SEQUENCE: 1 COMMAND: N      LOOP COUNT: 1", ";SEQUENCE: 1 COMMAND: G      LOOP COUNT: 2",
+        ";SEQUENCE: 1 COMMAND: N      LOOP COUNT: 2", ";SEQUENCE: 1 COMMAND: XT"]
+    assert {e.kind for e in trace.events if e.data.get("text")} == {"trace"}
+
+
+def test_without_the_trace_on_nothing_is_reported_and_no_program_carries_trace_reports():
+    """XTR0 (the default, L5384) reports nothing; a program without XTR has no trace report."""
+    assert simulate(module(TRACED.format(on=0))).prints == []
+    mod = module("XE1\nXD1\nA10\nG\nXT\nXR1\n")
+    assert not any(isinstance(op, ir.Print) for _, block in mod.blocks() for op in block.ops)
+
+
+def test_the_x150_writer_leaves_trace_reports_to_the_device_and_verify_passes():
+    """The device reports by itself (L5400): the written program is the commands alone, and a
+    rewrite that changes the commands' text still behaves like its source."""
+    lines = output(TRACED.format(on=1))
+    assert not any("SEQUENCE" in line for line in lines) and "1XTR1" in lines
+    result = driver.compile_file("p.x150", "x150", text=TRACED.format(on=1), verify=True)
+    assert not result.has_errors, [d.message for d in result.diagnostics]

@@ -171,12 +171,21 @@ def test_assignments_are_left_to_right():
 
 
 def test_natives_keep_mnemonic_args_form_and_axis():
-    mod = module("1XE1\n1XD1\n1BCDG50\n1OUT3L\n1DPC208\n1TX1,0,3,A=\n1XT\n")  # L: no neutral output function
+    mod = module("1XE1\n1XD1\n1BCDG50\n1OUT3L\n1DPC208\n1XT\n")  # L: no neutral output function
     natives = ops(mod.routines[0])
     assert [(n.mnemonic, n.form, n.axis) for n in natives] == [
-        ("CDG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1"), ("TX", "", "1")]
+        ("CDG", "B", "1"), ("OUT", "", "1"), ("DPC", "", "1")]
     assert [a.value for a in natives[1].args] == [3, "L"]
-    assert [a.value for a in natives[3].args] == [1, 0, 3, "A="]
+    assert [a.value for a in natives[2].args] == [2, 8]
+
+
+def test_tx_is_a_print_of_its_text_then_the_variable_in_its_format():
+    """TXn,m,p,x sends x, then VARn with p decimals, signed when m is 1 (parker-x150.md
+    L4463-L4483: `1TX1,0,3,3V` -> 3V987.123, `1TX1,1,0,2D` -> 2D+987)."""
+    mod = module("1XE1\n1XD1\n1TX1,0,3,3V\n1TX1,1,0,2D\n1XT\n")
+    prints = [op for op in mod.routines[0].blocks[0].ops if isinstance(op, ir.Print)]
+    assert [(p.items[0].value, p.items[1].name, p.formats[1], p.signed) for p in prints] == [
+        ("3V", "VAR1", "fixed 3 magnitude", False), ("2D", "VAR1", "fixed 0", True)]
 
 
 def test_mixed_devices_keep_addresses_on_natives():

@@ -1,21 +1,32 @@
 // The mcc extension: starts `mcc lsp` (the language server of the mcc package) for Lexium MCode,
-// Parker X150 and Arcus PMX-4EX-SA files. Everything the editor shows comes from the server;
-// this file only starts it and restarts it when its settings change.
+// Parker X150 and Arcus PMX-4EX-SA files, and adds commands that run mcc on the active program
+// (commands.ts). Everything the editor shows about a program comes from the server; this file
+// finds mcc (locate.ts), starts the server and restarts it when its settings change.
 import * as vscode from "vscode";
-import {
-  LanguageClient,
-  LanguageClientOptions,
-  ServerOptions,
-  TransportKind,
-} from "vscode-languageclient/node";
+import { LanguageClient, LanguageClientOptions, ServerOptions } from "vscode-languageclient/node";
+import { registerCommands } from "./commands";
+import { locateMcc } from "./locate";
 
 let client: LanguageClient | undefined;
+let output: vscode.OutputChannel;
+
+function mcc(): string {
+  const folders = (vscode.workspace.workspaceFolders ?? []).map((folder) => folder.uri.fsPath);
+  return locateMcc(vscode.workspace.getConfiguration("mcc").get<string>("path", "mcc"), folders).command;
+}
 
 function serverOptions(): ServerOptions {
   const config = vscode.workspace.getConfiguration("mcc");
-  const command = config.get<string>("path", "mcc");
-  const args = config.get<string[]>("args", ["lsp"]);
-  return { command, args, transport: TransportKind.stdio };
+  const folders = (vscode.workspace.workspaceFolders ?? []).map((folder) => folder.uri.fsPath);
+  const found = locateMcc(config.get<string>("path", "mcc"), folders);
+  const args = [...config.get<string[]>("args", ["lsp"])];
+  if (config.get<string>("logLevel", "info") === "debug" && !args.includes("--verbose") && !args.includes("-v")) {
+    args.push("--verbose");
+  }
+  output.appendLine(`starting ${found.command} ${args.join(" ")} (mcc from ${found.source})`);
+  // No transport: the client then passes no --stdio flag (mcc lsp speaks stdio by default and
+  // rejects options it does not know), and talks over the process's stdin and stdout.
+  return { command: found.command, args };
 }
 
 function clientOptions(): LanguageClientOptions {
@@ -29,6 +40,7 @@ function clientOptions(): LanguageClientOptions {
       { scheme: "untitled", language: "x150" },
       { scheme: "untitled", language: "arcus" },
     ],
+    outputChannel: output,
     synchronize: {
       // the project's configuration: the server reads it again when it changes
       fileEvents: vscode.workspace.createFileSystemWatcher("**/{mcc.toml,pyproject.toml}"),
@@ -38,30 +50,45 @@ function clientOptions(): LanguageClientOptions {
 }
 
 async function start(): Promise<void> {
+  // The client reads the mcc.trace.server setting itself (its id is "mcc").
   client = new LanguageClient("mcc", "mcc", serverOptions(), clientOptions());
   try {
     await client.start();
   } catch (error) {
     void vscode.window.showErrorMessage(
-      `mcc: could not start "${vscode.workspace.getConfiguration("mcc").get("path")} lsp" ` +
-        `(install it with pip install "mcc[lsp]" or set mcc.path): ${error}`,
+      `mcc: could not start "${mcc()} lsp" (install it in the workspace's .venv with ` +
+        `pip install "mcc[lsp]", or set mcc.path): ${error}`,
     );
   }
 }
 
+async function restart(): Promise<void> {
+  const running = client;
+  client = undefined;
+  try {
+    await running?.stop();
+  } catch (error) {
+    output.appendLine(`stopping the server: ${error}`);
+  }
+  await start();
+}
+
 export async function activate(context: vscode.ExtensionContext): Promise<void> {
+  output = vscode.window.createOutputChannel("mcc");
   context.subscriptions.push(
+    output,
     vscode.workspace.onDidChangeConfiguration(async (event) => {
-      if (event.affectsConfiguration("mcc")) {
-        await client?.stop();
-        await start();
+      // mcc.trace.server is read by the running client; the compile, simulate and device settings
+      // are read by each command; everything else changes how the server is started.
+      const server = ["mcc.path", "mcc.args", "mcc.debounce", "mcc.logLevel"];
+      if (server.some((key) => event.affectsConfiguration(key))) {
+        await restart();
       }
     }),
-    vscode.commands.registerCommand("mcc.restart", async () => {
-      await client?.stop();
-      await start();
-    }),
+    vscode.workspace.onDidChangeWorkspaceFolders(restart),
+    vscode.commands.registerCommand("mcc.restart", restart),
   );
+  registerCommands(context, { command: mcc, output, storage: context.globalStorageUri });
   await start();
 }
 
