@@ -23,7 +23,7 @@ def cli() -> None:
     """mcc: check, lint, format and compile motion-controller programs.
 
     \b
-    Dialects (chosen from the file extension unless --dialect is given):
+    Dialects (chosen from the file extension, or `extensions` in [tool.mcc], unless --dialect is given):
       mcode  Lexium MCode (Schneider/Novanta Lexium MDrive, Motion Module)  .mxt .ixt .mcode
       x150   Parker/Digiplan X150 and X150E indexers                        .x150
       arcus  Arcus Performax PMX-4EX-SA standalone language                 .prg
@@ -90,13 +90,22 @@ def read_stdin(paths, stdin_filename: str | None, dialect: str | None) -> tuple[
     from mcc.compiler import dialects
 
     name = stdin_filename or STDIN
-    if dialect is None and dialects.from_path(name) is None:
+    if dialect is None and dialects.from_path(name) is None and not mapped_extension(name):
         raise click.UsageError("cannot tell the dialect of standard input: pass --dialect, or --stdin-filename "
                                f"with the program's name ({', '.join(dialects.all_extensions())})")
     from mcc.compiler import files
 
     # the bytes decoded as a file's are (compiler/files.py: UTF-8, else Latin-1), never a traceback
     return name, files.decode(click.get_binary_stream("stdin").read()).text
+
+
+def mapped_extension(name: str) -> bool:
+    """Whether the configuration nearest to `name` maps its extension to a dialect (`extensions`)."""
+    if name == STDIN:
+        return False
+    from mcc.compiler import config
+
+    return config.Resolver().for_path(name).dialect_for(name) is not None
 
 
 def use_color(fmt: str) -> bool:
@@ -111,7 +120,7 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 
 
 @cli.command()
-@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False, allow_dash=True),
+@click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, allow_dash=True),
                 callback=regular_files)
 @click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
 @click.option("--format", "fmt", type=click.Choice(CHECK_FORMATS), default="text", show_default=True,
@@ -122,15 +131,22 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
                                 "over a `mcc: profile=` line in the file and the configuration's per-file-profiles "
                                 "and target (docs/CONFIGURATION.md).")
 @click.option("--verify-ir", is_flag=True, help="Also run the IR verifier after lowering (violations are G010).")
+@click.option("--force-exclude", is_flag=True,
+              help="Apply `exclude` and .gitignore to the files named on the command line too (as `mcc lint`).")
+@click.option("--respect-gitignore/--no-respect-gitignore", default=True, show_default=True,
+              help="In directories, skip the files .gitignore ignores (inside a git work tree).")
 @stdin_option
 def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str | None, profile: str | None,
-          verify_ir: bool, stdin_filename: str | None) -> None:
-    """Check FILES for syntax and semantic errors, without writing anything. `-` reads the program
-    from standard input (name it with --stdin-filename).
+          verify_ir: bool, force_exclude: bool, respect_gitignore: bool, stdin_filename: str | None) -> None:
+    """Check FILES (files or directories) for syntax and semantic errors, without writing anything.
+    Directories are searched as `mcc lint` searches them (the dialects' extensions and the
+    configuration's `extensions`; `exclude` and .gitignore skipped). `-` reads the program from
+    standard input (name it with --stdin-filename).
 
     \b
     Examples:
       mcc check samples/mcode/pick_and_place.mxt
+      mcc check programs/
       mcc check --format json *.prg
       mcc check --profile lmm program.mxt
       mcc check - --stdin-filename feeder.mxt < feeder.mxt
@@ -142,7 +158,8 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str 
     if piped is not None:
         results = [driver.check_file(piped[0], dialect, prof, piped[1], settings=file_settings(piped[0]))]
     else:
-        results = [driver.check_file(path, dialect, prof, settings=file_settings(path)) for path in files]
+        results = [driver.check_file(path, dialect, prof, settings=file_settings(path))
+                   for path in discover(files, force_exclude, respect_gitignore)]
     if verify_ir:
         for result in results:
             driver.verify_ir(result)
@@ -152,6 +169,17 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str 
     if not machine_report(results, fmt, rules_url):
         report(results, fmt)
     sys.exit(EXIT_ERRORS if any(r.has_errors for r in results) else EXIT_OK)
+
+
+def discover(paths: tuple[str, ...], force_exclude: bool, respect_gitignore: bool) -> list[str]:
+    """The files `mcc check` works on: those named, and those found in the directories named, by the
+    discovery `mcc lint` uses (cli/lint.py `expand`, compiler/lint/ignore.py)."""
+    if not force_exclude and not any(os.path.isdir(p) for p in paths):
+        return list(paths)
+    from mcc.cli.lint import expand
+    from mcc.compiler import config
+
+    return expand(list(paths), config.Resolver(), force_exclude, respect_gitignore, verb="check")
 
 
 def report(results, fmt: str, extra=None) -> None:

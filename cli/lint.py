@@ -66,15 +66,60 @@ def config_outcomes(resolver):
             for path, diags, source in resolver.diagnostics()]
 
 
-def expand(paths, resolver, force_exclude: bool = False, respect_gitignore: bool = True) -> list[str]:
-    """The files to work on; special files met in directories are skipped with a note on stderr."""
+LISTED_UNKNOWN = 20  # files of unknown extension named one by one when nothing else was found
+
+
+def expand(paths, resolver, force_exclude: bool = False, respect_gitignore: bool = True,
+           verb: str = "lint") -> list[str]:
+    """The files to work on. Special files met in directories are skipped with a note on stderr, and
+    so are files whose extension no dialect has (counted per extension; named one by one when they
+    are all there is). No file at all is a usage error (exit 2): a run that checked nothing must
+    not pass as clean, unless --force-exclude left out every file named (pre-commit)."""
     from mcc.compiler.lint import engine
 
     skipped: list[str] = []
-    targets = engine.expand(paths or ["."], resolver, skipped, force_exclude, respect_gitignore)
+    unknown: list[str] = []
+    targets = engine.expand(paths or ["."], resolver, skipped, force_exclude, respect_gitignore, unknown)
     for note in skipped:
         click.echo(f"note: {note}", err=True)
+    if unknown:
+        for line in unknown_notes(unknown, listed=not targets):
+            click.echo(line, err=True)
+    if not targets and not (force_exclude and paths):
+        where = " ".join(paths) if paths else "."
+        click.echo(f"mcc: error: no program to {verb} in {where}: no file has an extension of a dialect "
+                   f"({' '.join(ext for ext in all_extensions())}) or one mapped by `extensions` in the "
+                   "configuration", err=True)
+        sys.exit(EXIT_USAGE)
     return targets
+
+
+def all_extensions() -> tuple[str, ...]:
+    from mcc.compiler import dialects
+
+    return dialects.all_extensions()
+
+
+def unknown_notes(unknown: list[str], listed: bool) -> list[str]:
+    """Notes on the files left out for their extension: one line with the count per extension and
+    how to map one (docs/CONFIGURATION.md, `extensions`); with `listed`, each file first."""
+    by_ext: dict[str, int] = {}
+    for path in unknown:
+        ext = os.path.splitext(path)[1].lower() or "(none)"
+        by_ext[ext] = by_ext.get(ext, 0) + 1
+    lines = []
+    if listed:
+        for path in unknown[:LISTED_UNKNOWN]:
+            lines.append(f"note: skipped {path}: unknown extension {os.path.splitext(path)[1] or '(none)'}")
+        if len(unknown) > LISTED_UNKNOWN:
+            lines.append(f"note: ... and {len(unknown) - LISTED_UNKNOWN} more")
+    counts = ", ".join(f"{ext} {n}" for ext, n in sorted(by_ext.items(), key=lambda kv: (-kv[1], kv[0])))
+    example = next((e.lstrip(".") for e in sorted(by_ext, key=lambda e: -by_ext[e]) if e != "(none)"), "lxt")
+    total = len(unknown)
+    lines.append(f"note: skipped {total} file{'s' if total != 1 else ''} of unknown extension ({counts}); if they "
+                 f"are programs, map the extension to a dialect in [tool.mcc]: extensions = {{{example} = "
+                 "\"mcode\"} (docs/CONFIGURATION.md), or name a file with --dialect")
+    return lines
 
 
 def common_options(func):
@@ -320,7 +365,7 @@ def fmt(paths, check, diff, verify, dialect, config, isolated, profile, jobs, st
                 sys.stdout.write(piped[1])  # an excluded program is passed through unchanged
             sys.exit(EXIT_OK)
         fmt_stdin(piped, resolver, check, diff, verify, dialect)
-    targets = expand(paths, resolver, force_exclude, respect_gitignore)
+    targets = expand(paths, resolver, force_exclude, respect_gitignore, verb="format")
     work = [(path, resolver.for_path(path)) for path in targets]
     options = formatting.Options(check=check, diff=diff, dialect=dialect, verify=verify)
     outcomes = engine.run(work, options, jobs or jobs_default(), progress_starter(len(work), "formatting"),

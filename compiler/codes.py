@@ -32,6 +32,9 @@ class CodeInfo:
     dialects: tuple[str, ...] = ()
     fixable: bool = False
     manual: str = ""
+    # an opt-in rule runs only when its own code is selected (`extend-select = ["A315"]`), never
+    # through `ALL` or a shorter prefix: a style some projects want and most do not (docs/LINT.md)
+    opt_in: bool = False
     config: str = ""  # the `[tool.mcc]` configuration the examples are checked with (envelope rules)
 
     def page(self) -> str:
@@ -42,6 +45,8 @@ class CodeInfo:
                  f"- default severity: {self.severity.value}",
                  f"- dialects: {', '.join(self.dialects) or 'all'}",
                  f"- fix available: {'yes' if self.fixable else 'no'}"]
+        if self.opt_in:
+            parts.append(f"- opt-in: off unless selected by its code (`extend-select = [\"{self.code}\"]`)")
         if self.manual:
             parts.append(f"- manual: {self.manual}")
         if self.explanation:
@@ -86,6 +91,7 @@ def _load_file(path: Path) -> list[CodeInfo]:
             dialects=tuple(raw.get("dialects", ())),
             fixable=bool(raw.get("fixable", False)),
             manual=raw.get("manual", ""),
+            opt_in=bool(raw.get("opt_in", False)),
             config=raw.get("config", ""),
         ))
     return infos

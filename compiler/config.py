@@ -37,7 +37,8 @@ SEVERITIES = tuple(s.value for s in Severity)
 LIST_KEYS = ("select", "extend-select", "ignore", "exclude")
 DEFAULT_FAIL_ON = "warning"  # `mcc lint` exits 1 on a warning, as ruff on any finding (docs/LINT.md)
 KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles",
-              "axes")  # axes: the machine's envelope (compiler/envelope/axes.py)
+              "axes",  # axes: the machine's envelope (compiler/envelope/axes.py)
+              "extensions")
 
 
 class ConfigError(Exception):
@@ -77,6 +78,13 @@ def deselectable(code: str) -> bool:
     return info is None or info.kind not in (Kind.SYNTAX, Kind.INTERNAL)
 
 
+@lru_cache(maxsize=None)
+def opt_in(code: str) -> bool:
+    """An opt-in rule (compiler/codes/*.toml `opt_in = true`) is enabled only by its own code."""
+    info = registry().get(code)
+    return info is not None and info.opt_in
+
+
 @dataclass(frozen=True)
 class Selection:
     layers: tuple[Layer, ...] = (DEFAULT_LAYER,)
@@ -86,11 +94,12 @@ class Selection:
         if not deselectable(code):
             return True
         state = False
+        exact = opt_in(code)
         for layer in self.layers:
             if layer.select is not None:
                 state = False
             chosen = [(specificity(p), True) for p in (*(layer.select or ()), *layer.extend_select)
-                      if prefix_matches(p, code)]
+                      if (p == code if exact else prefix_matches(p, code))]
             chosen += [(specificity(p), False) for p in layer.ignore if prefix_matches(p, code)]
             if chosen:
                 best = max(s for s, _ in chosen)
@@ -119,6 +128,17 @@ class Settings:
     per_file_profiles: tuple[tuple[str, str], ...] = ()
     cli_profile: str | None = None  # --profile: wins over everything (compiler/selection.py)
     axes: tuple = ()  # (axis, envelope.axes.AxisEnvelope): `[tool.mcc.axes.<axis>]`, in steps
+    # extension (lower case, no dot) -> dialect: `extensions = {lxt = "mcode"}`; wins over the
+    # built-in extensions, loses to --dialect (docs/CONFIGURATION.md)
+    extensions: tuple[tuple[str, str], ...] = ()
+
+    def dialect_for(self, path: str) -> str | None:
+        """The dialect `extensions` gives `path` by its extension, or None."""
+        suffix = os.path.splitext(path)[1].lower().lstrip(".")
+        for ext, dialect in self.extensions:
+            if ext == suffix:
+                return dialect
+        return None
 
     def profile_for_path(self, path: str, dialect: str) -> tuple[str, str] | None:
         """(glob, profile) of the first `per-file-profiles` entry that matches `path` for `dialect`."""
@@ -192,7 +212,7 @@ class Settings:
         # the command line's profile wins for its own dialect, over a directive and the file's keys
         return Settings(self.root, self.path, self.targets, Selection(layers), self.severity, self.per_file_ignores,
                         overrides.fail_on or self.fail_on, self.exclude, self.per_file_profiles,
-                        overrides.profile or self.cli_profile, self.axes)
+                        overrides.profile or self.cli_profile, self.axes, extensions=self.extensions)
 
 
 def relative_to(path: str, root: str) -> str:
@@ -367,7 +387,8 @@ class Reader:
                         per_file_ignores=self.per_file(table.get("per-file-ignores")),
                         fail_on=self.fail_on(table.get("fail-on")), exclude=self.strings(table, "exclude"),
                         per_file_profiles=self.per_file_profiles(table.get("per-file-profiles")),
-                        axes=self.axes(table.get("axes")))
+                        axes=self.axes(table.get("axes")),
+                        extensions=self.extensions(table.get("extensions")))
 
     def strings(self, table: dict, key: str) -> tuple[str, ...]:
         value = table.get(key)
@@ -478,6 +499,31 @@ class Reader:
             out.append((pattern, resolved))
         return tuple(out)
 
+    def extensions(self, value: Any) -> tuple[tuple[str, str], ...]:
+        """`extensions = {lxt = "mcode", txt = "mcode"}`: a file extension (with or without its dot)
+        -> the dialect its files are written in."""
+        if value is None:
+            return ()
+        if not isinstance(value, dict):
+            self.error("G103", ("extensions",), "'extensions' must be a table: extension = \"dialect\", "
+                                                "e.g. extensions = {lxt = \"mcode\"}")
+            return ()
+        known = dialects.names()
+        out = []
+        for ext, dialect in value.items():
+            keys = ("extensions", ext)
+            name = ext.strip().lstrip(".").lower()
+            if not name or not re.fullmatch(r"[a-z0-9_.+-]+", name):
+                self.error("G103", keys, f"'{ext}' is not a file extension (write it without the dot: lxt = \"mcode\")")
+                continue
+            if not isinstance(dialect, str) or dialect not in known:
+                near = difflib.get_close_matches(str(dialect).lower(), known, n=1, cutoff=0.5)
+                hint = f"; did you mean '{near[0]}'?" if near else ""
+                self.error("G103", keys, f"'{dialect}' is not a dialect ({', '.join(known)}){hint}",
+                           needle=dialect if isinstance(dialect, str) else None)
+                continue
+            out.append((name, dialect))
+        return tuple(out)
     def axes(self, value: Any) -> tuple:
         """`[tool.mcc.axes.<axis>]`: the envelope of each axis (compiler/envelope/axes.py)."""
         if value is None:

@@ -7,6 +7,7 @@ processing one file becomes a G001 internal diagnostic on that file, and the run
 from __future__ import annotations
 
 import gc
+import os
 import traceback
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -63,10 +64,22 @@ def internal_error(diags: Diagnostics, path: str, exc: BaseException, stage: str
               "This is a bug in mcc, not in your program; please report it with this file.")
 
 
-def resolve_dialect(path: str, dialect: str | None) -> dialects.Dialect | None:
+def resolve_dialect(path: str, dialect: str | None, settings=None) -> dialects.Dialect | None:
+    """--dialect, else the configuration's `extensions` (config.Settings), else the built-in extensions.
+    A caller without settings (mcc sim, the validation) gets the nearest configuration's `extensions`
+    for an extension that is no dialect's, so a mapped file is read the same by every command."""
     if dialect:
         return dialects.get(dialect)
-    return dialects.from_path(path)
+    mapped = settings.dialect_for(path) if settings is not None else None
+    if mapped is not None:
+        return dialects.get(mapped)
+    found = dialects.from_path(path)
+    if found is None and settings is None and os.path.isfile(path):
+        from mcc.compiler import config
+
+        mapped = config.Resolver().for_path(path).dialect_for(path)
+        return dialects.get(mapped) if mapped is not None else None
+    return found
 
 
 def profile_for(dialect: dialects.Dialect, profile: Profile | None) -> Profile:
@@ -234,11 +247,13 @@ def check_file(path: str, dialect: str | None = None, profile: Profile | None = 
     `settings` (per-file-profiles, target), else the dialect's default; with the default, a file
     that fails and fits another profile gets that profile named (G021)."""
     diags = Diagnostics()
-    found = resolve_dialect(path, dialect)
+    found = resolve_dialect(path, dialect, settings)
     if found is None:
+        ext = os.path.splitext(path)[1].lstrip(".").lower() or "lxt"
         diags.add("G004", file_span(path),
                   f"cannot tell the dialect of '{path}' from its extension "
-                  f"(known: {', '.join(dialects.all_extensions())}); pass --dialect")
+                  f"(known: {', '.join(dialects.all_extensions())}); pass --dialect, or map the extension in "
+                  f"[tool.mcc]: extensions = {{{ext} = \"mcode\"}}")
         return FileResult(path, dialect or "unknown", diags.items)
     source = SourceFile(path, text) if text is not None else read_source(path, diags)
     result = FileResult(path, found.name, source=source)

@@ -188,7 +188,7 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
     when the document's dialect is new); the cache to keep for the next version. The check is
     None when `stop` answered True at a checkpoint (after parsing, in the lowering, between the
     checks, before the memory: compiler/cancel.py); the cache then holds the new text's lines."""
-    found = driver.resolve_dialect(path, dialect)
+    found = driver.resolve_dialect(path, dialect, settings)
     if found is None or found.name not in dialects.DIALECTS:
         return engine.check_text(path, text, settings, dialect), None
     if cache is None or cache.dialect.name != found.name:
@@ -218,6 +218,11 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
 def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile, diags: Diagnostics, cache: LineCache):
     """`driver.analyze_source` with the parse going through the cache (cancel.Cancelled goes
     through: the cache is complete for the new text once the parse is done)."""
+    if dialect.name == "mcode" and "#" in source.text:
+        from mcc.compiler.mcode import preprocessor
+
+        if preprocessor.directive_lines(source):  # mcontrol preprocessor source: M142, as `mcc check`
+            return driver.analyze_source(source, dialect, profile, diags)
     source = driver.without_long_lines(source, dialect.longest_line, diags)
     try:
         frontend = dialect.load_frontend()

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import Callable, Iterable
 
 from mcc.compiler import dialects, driver
-from mcc.compiler.config import Resolver, Settings, load_profile
+from mcc.compiler.config import CONFIG_FILES, Resolver, Settings, load_profile
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Kind
 from mcc.compiler.lint import files, fixes, flow, ignore, suppress
 from mcc.compiler.lint.rules import Context, rules_for
@@ -157,7 +157,7 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
     except OSError as exc:
         diags = Diagnostics()
         diags.add("G002", driver.file_span(path), f"cannot read {path}: {exc.strerror or exc}")
-        found = driver.resolve_dialect(path, options.dialect)
+        found = driver.resolve_dialect(path, options.dialect, settings)
         return Outcome(path, found.name if found else "unknown", diags.items)
     outcome = lint_source(path, original.text, settings, options)
     text = outcome.text
@@ -182,7 +182,7 @@ def lint_file(path: str, settings: Settings, options: Options = Options()) -> Ou
 
 def fix_text(path: str, text: str, diags: list[Diagnostic], settings: Settings, options: Options) -> fixes.FixRun:
     """Apply the fixes to one text until it settles (safe ones proved by fixes.fix_is_safe)."""
-    found = driver.resolve_dialect(path, options.dialect)
+    found = driver.resolve_dialect(path, options.dialect, settings)
     profile = None
     if found is not None:
         from mcc.compiler import selection
@@ -215,18 +215,25 @@ def _diverges(outcome: Outcome, before: str, options: Options) -> bool:
 # many files ----------------------------------------------------------------------------------------
 
 def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list[str] | None = None,
-           force_exclude: bool = False, respect_gitignore: bool = True) -> list[str]:
+           force_exclude: bool = False, respect_gitignore: bool = True,
+           unknown: list[str] | None = None) -> list[str]:
     """Files to lint: the files given, and the files with a known extension under the directories
     given. Hidden directories, the configuration's `exclude` patterns and what `.gitignore` ignores
     (compiler/lint/ignore.py) are skipped in directories; with `force_exclude` also among the paths
     given (pre-commit names each staged file). Only regular files are taken from a directory: a
     FIFO, device or socket (or a broken link) with a dialect's extension is left out, with a note
-    appended to `skipped`."""
+    appended to `skipped`. A file in a directory whose extension no dialect has (neither built in
+    nor mapped by the configuration's `extensions`) is left out and appended to `unknown`."""
     from mcc.compiler import files as files_mod
 
     extensions = dialects.all_extensions()
     found: list[str] = []
     seen: set = set()
+
+    def known(full: str, name: str) -> bool:
+        if name.lower().endswith(extensions):
+            return True
+        return resolver is not None and resolver.for_path(full).dialect_for(full) is not None
 
     def left_out(path: str, within: str | None = None) -> bool:
         return excluded(path, resolver) or (respect_gitignore and ignore.gitignored(path, within=within))
@@ -240,7 +247,12 @@ def expand(paths: Iterable[str], resolver: Resolver | None = None, skipped: list
                                     and not left_out(os.path.join(folder, d), path))
                 for name in sorted(names):
                     full = os.path.join(folder, name)
-                    if name.lower().endswith(extensions) and not left_out(full, path):
+                    if not known(full, name):
+                        if unknown is not None and not name.startswith(".") and name not in CONFIG_FILES \
+                                and not left_out(full, path):
+                            unknown.append(os.path.normpath(full))
+                        continue
+                    if not left_out(full, path):
                         problem = files_mod.unreadable(full)
                         if problem is None:
                             add(found, seen, full)
@@ -276,8 +288,8 @@ def _batch(func: Callable, work: list[tuple[str, Settings]], options) -> list:
 def warm_up(work: list[tuple[str, Settings]], options) -> None:
     """Build each needed parser once before forking, so the workers inherit it."""
     done = set()
-    for path, _ in work:
-        found = driver.resolve_dialect(path, options.dialect)
+    for path, settings in work:
+        found = driver.resolve_dialect(path, options.dialect, settings)
         if found is not None and found.name not in done:
             done.add(found.name)
             driver.check_file(f"warm-up{found.extensions[0]}", found.name, text="")

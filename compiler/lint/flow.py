@@ -73,6 +73,17 @@ def reachable(routine: ir.Routine, start: ir.Block | None = None,
     return [b for b in routine.blocks if b.label in seen]
 
 
+def entry_points(routine: ir.Routine, used: Callable[[str], bool]) -> set[str]:
+    """Named blocks of `routine` that nothing in the file reaches: not its entry, no block of the
+    routine jumps or runs on into them, and no BR, CL, EX or trip names them (`used`). A host may start
+    such a label with `EX` (real MDrive programs put entry points after a subroutine's RT), so it is
+    an entry point of its own, not a part of the routine it follows (issue 24)."""
+    succ = successor_map(routine)
+    reached = {b.label for targets in succ.values() for b in targets}
+    return {b.label for b in routine.blocks
+            if b.named and b is not routine.entry and b.label not in reached and not used(b.label)}
+
+
 def components(labels: Iterable[str], succ: Callable[[str], Iterable[str]]) -> list[list[str]]:
     """The strongly connected components of a graph (Tarjan's algorithm with an explicit stack, so
     a long chain of blocks or calls needs no Python recursion), callees before callers."""

@@ -105,10 +105,18 @@ def long_line(text: str, limit: int) -> str:
 def format_source(path: str, text: str, dialect: str, settings: Settings) -> tuple[str, str]:
     """(formatted text, "") or (text, why it was not formatted): the one formatting step of
     `mcc fmt` for a file and for standard input. A text with a syntax error is not formatted."""
-    found = driver.resolve_dialect(path, dialect)
+    found = driver.resolve_dialect(path, dialect, settings)
     too_long = long_line(text, found.longest_line)
     if too_long:
         return text, f"{too_long}; the file was left unchanged (G007)"
+    if found.name == "mcode":
+        from mcc.compiler.mcode import preprocessor
+        from mcc.compiler.span import SourceFile
+
+        directives = preprocessor.directive_lines(SourceFile(path, text))
+        if directives:
+            return text, (f"not formatted: mcontrol preprocessor source (#{directives[0][1]} on line "
+                          f"{directives[0][0]}, M142); format the preprocessor's output instead")
     try:
         formatted = format_text(text, path, found.name, settings, strict=True)
     except SyntaxErrors as exc:
@@ -129,7 +137,7 @@ def format_source(path: str, text: str, dialect: str, settings: Settings) -> tup
 
 
 def format_file(path: str, settings: Settings, options: Options = Options()) -> Outcome:
-    found = driver.resolve_dialect(path, options.dialect)
+    found = driver.resolve_dialect(path, options.dialect, settings)
     if found is None:
         return Outcome(path, "unknown", error="cannot tell the dialect from the extension; pass --dialect")
     outcome = Outcome(path, found.name)

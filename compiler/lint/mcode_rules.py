@@ -154,8 +154,11 @@ def branch_out_of_subroutine(ctx: Context) -> None:
     for routine in ctx.module.routines:
         if routine.kind not in SUBROUTINE_KINDS:
             continue
+        # only code the routine's own entry reaches: a label after its RT that nothing in the file
+        # reaches is an entry point the host starts with EX, and leaving it with BR pushes nothing
+        inside = {b.label for b in flow.reachable(routine)}
         for block, label, target, fallthrough in flow.foreign_jumps(ctx.module, routine, index):
-            if fallthrough:
+            if fallthrough or block.label not in inside:
                 continue
             what = "handler" if routine.kind is ir.RoutineKind.HANDLER else "subroutine"
             ctx.report(block.terminator.span,
@@ -377,9 +380,16 @@ def motion_at_power_up(ctx: Context) -> None:
 @rule("M305", MCODE)
 def unused_label(ctx: Context) -> None:
     labels = ctx.analysis.symbols.labels  # references: BR (not a fall-through), CL, EX, trips, OE
+
+    def used(name: str) -> bool:
+        return name in labels and labels[name].used
+
     for routine in ctx.module.routines:
+        # a label nothing reaches (after RT, E or BR) is how the host starts a part of the program
+        # (EX <label>): deleting it would cut that part off, so it is not reported (issue 24)
+        starts = flow.entry_points(routine, used)
         for block in routine.blocks:
-            if not block.named or labels[block.label].used or block.label == "SU":
+            if not block.named or used(block.label) or block.label == "SU" or block.label in starts:
                 continue
             if routine.origin is not None and block is routine.entry:
                 continue  # a program start: run with EX <label> or EX <address>

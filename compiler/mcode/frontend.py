@@ -5,7 +5,7 @@ from __future__ import annotations
 from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.analysis import Analysis
-from mcc.compiler.mcode import checks, parser
+from mcc.compiler.mcode import checks, parser, preprocessor
 from mcc.compiler.mcode.lower import Lowering
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
@@ -13,6 +13,12 @@ from mcc.compiler.span import SourceFile
 
 def analyze(source: SourceFile, profile: Profile) -> Analysis:
     diags = Diagnostics()
+    directives = preprocessor.directive_lines(source)
+    if directives:  # mcontrol preprocessor source: one M142, the file read without its directives
+        text = preprocessor.blanked(source, directives)
+        analysis = analyze_tree(text, parser.parse(text, Diagnostics()), profile, Diagnostics())
+        preprocessor.report(source, directives, diags)
+        return Analysis(source, analysis.tree, analysis.module, diags)
     tree = parser.parse(source, diags)
     return analyze_tree(source, tree, profile, diags)
 

@@ -75,7 +75,8 @@ class Resolver:
             res.legacy = self.cat.legacy[upper]
         elif self.cat.family and upper in (lexium := cat.load().commands) and upper not in self.names.variables:
             res.command = lexium[upper]  # a Lexium command the older family lacks: M114 names the products
-        elif len(upper) == 3 and upper[1:] in commands and not stmt.party and word[0].isalnum():
+        elif len(upper) == 3 and upper[1:] in commands and not stmt.party and word[0].isalnum() \
+                and upper not in self.names.variables:
             res.party, res.command = word[0], commands[upper[1:]]
         elif (m := GLUED.match(word)) and m.group(1).upper() in commands and upper not in self.names.variables:
             res.command = commands[m.group(1).upper()]
@@ -96,7 +97,29 @@ class Resolver:
 
     # statement checks ---------------------------------------------------------------------------
     def check(self, res: Resolved, in_program: bool) -> bool:
-        """Check one statement; False when it is unusable (unknown head, wrong kind)."""
+        """Check one statement; False when it is unusable (unknown head, wrong kind).
+
+        A message names what the user wrote: when the head was read as something else (`Pos` as
+        the command OS addressed to the party-mode device P), every diagnostic of the statement
+        starts by saying so, rather than speaking of a command the user never typed (issue 24)."""
+        before = len(self.diags.items)
+        ok = self.check_head(res, in_program)
+        if res.party and not res.stmt.party and res.command is not None:
+            word = res.stmt.head.text
+            lead = f"'{word}' reads as {res.command.name} addressed to the party-mode device {res.party}"
+            rule = str(self.profile.get("limits.label_rule", "strict"))
+            pattern = {"relaxed": USER_NAME, "short": SHORT_USER_NAME}.get(rule, STRICT_USER_NAME)
+            if pattern.match(word):
+                lead += f" (if {word} is a variable of yours, declare it first: `VA {word}`)"
+            else:
+                lead += f" ({word} cannot be a variable: a name of this product has at most "\
+                        f"{2 if rule != 'relaxed' else 3} characters, L550)"
+            for diag in self.diags.items[before:]:
+                if not diag.message.startswith(f"'{word}'"):
+                    diag.message = f"{lead}: {diag.message}"
+        return ok
+
+    def check_head(self, res: Resolved, in_program: bool) -> bool:
         stmt = res.stmt
         if stmt.form == "number":
             return True
@@ -160,8 +183,10 @@ class Resolver:
             self.diags.add("M129", stmt.head.span, f"{word} is a label, not a variable: a label cannot be set")
             return False
         if res.user not in self.names.variables:
-            if stmt.form == "bare":
+            if stmt.form == "bare" and not self.near_commands(word):
                 self.unknown(stmt.head, also=f" (to name this place in the program write `LB {word}`)")
+            elif stmt.form == "bare":  # `END`: a command misspelt (E), not a label (issue 24)
+                self.unknown(stmt.head)
             elif stmt.form == "command":  # `MX 2000` reads as a mistyped command
                 self.unknown(stmt.head)
             else:
@@ -178,11 +203,15 @@ class Resolver:
         self.check_value(res.args[0], "int")
         return True
 
-    def unknown(self, head: st.Name, also: str = "") -> None:
+    def near_commands(self, text: str) -> list[str]:
+        """Up to three names close to `text`, those with its first letter first."""
         choices = list(self.cat.commands) + list(self.names.variables)
-        word = head.text.upper()
+        word = text.upper()
         near = difflib.get_close_matches(word, choices, n=12, cutoff=0.5)
-        near = sorted(near, key=lambda c: (c[:1] != word[:1], near.index(c)))[:3]  # same first letter first
+        return sorted(near, key=lambda c: (c[:1] != word[:1], near.index(c)))[:3]
+
+    def unknown(self, head: st.Name, also: str = "") -> None:
+        near = self.near_commands(head.text)
         hint = f"; did you mean {' or '.join(near)}?" if near else ""
         self.diags.add("M101", head.span, f"unknown command '{head.text}'{also}{hint}")
 

@@ -8,9 +8,19 @@ from mcc.compiler.config import Settings
 from mcc.compiler.lint import engine
 
 
+def every_rule() -> Settings:
+    """Settings that run every rule, the opt-in ones (A315) too: the rules' own tests check them all."""
+    from mcc.compiler import config
+    from mcc.compiler.codes import registry
+
+    chosen = tuple(info.code for info in registry() if info.opt_in)
+    return Settings(selection=config.Selection((config.DEFAULT_LAYER, config.Layer(extend_select=chosen))))
+
+
 def lint(text: str, path: str = "program.mxt", settings: Settings | None = None):
-    """The diagnostics of `text` (dedented) as `mcc lint` would report them."""
-    _, diags = engine.lint_text(path, textwrap.dedent(text).lstrip("\n"), settings or Settings())
+    """The diagnostics of `text` (dedented) as `mcc lint --extend-select <the opt-in rules>` would
+    report them."""
+    _, diags = engine.lint_text(path, textwrap.dedent(text).lstrip("\n"), settings or every_rule())
     return diags
 
 

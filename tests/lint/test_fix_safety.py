@@ -239,7 +239,7 @@ def test_g008_is_reported_by_lint_and_the_file_is_left(tmp_path: Path, monkeypat
 
 def test_unsafe_fixes_show_in_diff_only_when_asked(tmp_path: Path) -> None:
     path = tmp_path / "p.mxt"
-    path.write_text("PG 1\nLB G1\n  E\nLB K9\n  RT\nPG\n")  # K9 unused: deleting it is unsafe (M305)
+    path.write_text("PG 1\nLB G1\n  H\nLB K9\n  E\nPG\n")  # K9 unused: deleting it is unsafe (M305)
     plain = run_mcc("lint", "--diff", "--select", "M305", str(path))
     assert "-LB K9" not in plain.stdout
     unsafe = run_mcc("lint", "--diff", "--unsafe-fixes", "--select", "M305", str(path))

@@ -13,8 +13,9 @@ from mcc.compiler.lint import engine, fixes
 from mcc.compiler.diagnostics import Edit, Fix
 from mcc.compiler.span import SourceFile
 
-# M320 (safe fix), M305 (unsafe fix), M124 (a frontend fix: PG1 -> PG 1), M321 (safe)
-PROGRAM = "PG1\nLB G1\n  BR G1,I5=<100\n  E\nLB K9\n  RT\nPG\nS\n"
+# M320 (safe fix), M305 (unsafe fix), M124 (a frontend fix: PG1 -> PG 1), M321 (safe). K9 is reached by
+# running on from G1 (a label after E that nothing names is an entry point, not M305: issue 24)
+PROGRAM = "PG1\nLB G1\n  BR G1,I5=<100\n  H\nLB K9\n  E\nPG\nS\n"
 
 
 def test_fix_applies_safe_fixes_and_reports_the_rest(tmp_path: Path) -> None:
@@ -22,7 +23,7 @@ def test_fix_applies_safe_fixes_and_reports_the_rest(tmp_path: Path) -> None:
     path.write_text(PROGRAM)
     result = run_mcc("lint", "--fix", str(path))
     text = path.read_text()
-    assert text == "PG 1\nLB G1\n  BR G1,I5<=100\n  E\nLB K9\n  RT\nPG\nS\n' keep this line: it ends the S\n"
+    assert text == "PG 1\nLB G1\n  BR G1,I5<=100\n  H\nLB K9\n  E\nPG\nS\n' keep this line: it ends the S\n"
     assert "Fixed 3 problems in 1 file." in result.stdout
     assert "M305" in result.stdout and "M320" not in result.stdout  # the unsafe one remains, re-checked
     assert "1 more fix available with `--fix --unsafe-fixes`" in result.stdout

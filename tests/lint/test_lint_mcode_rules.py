@@ -160,14 +160,14 @@ CASES = [
        E
      PG
      """),
-    ("M305",
+    ("M305",  # K9 is reached only by running on from G1: a label no code needs (issue 24)
      """
      PG 1
      LB G1
-       BR G1,I1=0
-       E
+       MA 1000
+       H
      LB K9
-       RT
+       E
      PG
      """,
      """
@@ -575,11 +575,20 @@ def test_position_read_points_at_the_read_and_names_the_move() -> None:
 
 
 def test_unused_label_fix_deletes_the_line_and_is_unsafe() -> None:
-    text = "PG 1\nLB G1\n  E\nLB K9\n  RT\nPG\n"
+    text = "PG 1\nLB G1\n  MA 10\nLB K9\n  E\nPG\n"
     diag = next(d for d in lint(text) if d.code == "M305")
     assert diag.fix is not None and not diag.fix.safe
     edit = diag.fix.edits[0]
     assert text[edit.span.start:edit.span.end] == "LB K9\n" and edit.text == ""
+
+
+def test_a_label_nothing_reaches_is_an_entry_point() -> None:
+    """A label after E or RT that no BR, CL, EX or trip names is how a host starts part of a program
+    (lexium-mcode.txt L533: "EX K1 executes a program labeled K1"); issue 24 asks mcc to treat it as an entry point:
+    M305 neither reports it nor offers to delete it, and leaving it with BR is not M302."""
+    text = "PG 1\nLB G1\n  CL S9\n  E\nLB S9\n  MR 10\n  H\n  RT\nLB K9\n  MA 0\n  BR G1\nPG\n"
+    found = codes(text)
+    assert "M305" not in found and "M302" not in found, lint(text)
 
 
 def test_trip_argument_order_fix_swaps_the_arguments() -> None:
