@@ -19,11 +19,13 @@ case, `NAME=value` for settings, `MA 100` for instructions, no comments but the 
 
 from __future__ import annotations
 
+import dataclasses
 from functools import lru_cache
 
 import string
 from fractions import Fraction
 
+from mcc.backends import resolution
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
@@ -128,8 +130,9 @@ def format_number(value: int | float) -> str:
 
 
 class Writer:
-    def __init__(self, module: ir.Module, profile: Profile):
+    def __init__(self, module: ir.Module, profile: Profile, microsteps: int | None = None):
         self.module = module
+        self.microsteps = microsteps  # the MS the output sets first (chosen_microsteps), or None
         self.profile = profile
         self.cat = cat.for_profile(profile)  # Lexium MCode, or the profile's older family (S1-S4 I/O set-up)
         self.listing = Listing(DIALECT)
@@ -419,6 +422,9 @@ class Writer:
     def run(self) -> Listing:
         if self.foreign:
             self.header()
+        if self.microsteps is not None:
+            span = next((op.span for _, b in self.module.blocks() for op in b.ops if op.span is not None), None)
+            self.line(f"MS={self.microsteps}", span)
         for name, var in self.module.variables.items():
             if var.scope == "global" or self.foreign:
                 init = f"={self.expr(var.init)}" if var.init is not None else ""
@@ -1325,7 +1331,30 @@ def successors(term) -> tuple[str, ...]:
     return ()
 
 
+def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
+    """The MS code the output sets (lexium-mcode.txt L4282-L4340: microsteps per full step, one of
+    the catalog's fixed codes, steps/rev = MS x full steps) when the profile's resolution would not
+    convert a program of another dialect exactly and the program does not fix its own
+    (backends/resolution.py). Codes below 10 are never chosen: with hMT on the drive takes none of
+    them (L1480). None: the profile's resolution serves, or no code does better."""
+    if module.dialect == DIALECT or not module.steps_per_rev or not profile.steps_per_rev \
+            or not profile.get("cross.choose_resolution", True):
+        return None
+    if any(isinstance(op, ir.Setting) and op.name == "encoder_enable" for _, b in module.blocks() for op in b.ops):
+        return None  # with the encoder on, MS is fixed at 256 (L7194, L7333): the profile's resolution
+    full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
+    entry = cat.for_profile(profile).lookup("MS")
+    codes = [int(v) for v in (entry.values or ()) if int(v) >= 10] if entry is not None else []
+    chosen = resolution.choose(int(module.steps_per_rev), int(profile.steps_per_rev), [c * full for c in codes],
+                               resolution.positions(module))
+    return chosen // full if chosen is not None else None
+
+
 def emit(module: ir.Module, profile: Profile) -> Listing:
+    microsteps = chosen_microsteps(module, profile)
+    if microsteps is not None:  # the drive counts the steps the output sets with MS, written first
+        full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
+        profile = dataclasses.replace(profile, steps_per_rev=microsteps * full)
     # an X150 program starts every move from standstill; VI has no 0: the output sets its lowest
     lowest = float(cat.load().lookup("VI").entry.range[0])
     lowest = lowest / float(units.ratio(module.steps_per_rev, profile.steps_per_rev))
@@ -1335,7 +1364,7 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
     if refused is not None:
         return refused
     try:
-        return Writer(module, profile).run()
+        return Writer(module, profile, microsteps).run()
     except Unsupported as exc:  # a limit of the whole program (the name space), not of one line
         listing = Listing(DIALECT)
         span = next((op.span for _, b in module.blocks() for op in b.ops if op.span is not None),

@@ -375,6 +375,8 @@ class Legalizer:
     def op_setting(self, op: ir.Setting) -> None:
         """A neutral setting the PMX-4EX-SA has, in its spelling; the others are refused by name."""
         ctx = self.ctx
+        if ctx.input_setup.needs_none(op):
+            raise Skip  # a home/limit/general line: the PMX-4EX-SA's own input, nothing to set up
         if op.name in ("clear_error", "compare_output"):
             axis = self.axis(op.axis, op)
             on = isinstance(op.value, ir.Const) and op.value.value != 0
@@ -388,6 +390,10 @@ class Legalizer:
                 raise Refused("the position-compare output is switched by a value computed at run time; Arcus has "
                               "only SYN<axis>O and SYN<axis>F")
             return
+        if op.name == "input_active_high" and op.index is not None:
+            raise Refused(f"the program reads input {op.index} at a level of its own; the PMX-4EX-SA reads "
+                          f"DI{op.index} as wired and sets no input level in a program (POX, from the host, sets "
+                          "the home, alarm and limit polarity only, L700-L704)")
         if op.name not in convert.SETTINGS:
             raise Refused(f"the setting '{op.name}' has no Arcus statement")
         name, kind = convert.SETTINGS[op.name]
