@@ -128,3 +128,15 @@ def test_resolution_choice_can_be_turned_off_in_the_profile() -> None:
     fixed = dataclasses.replace(base, data={**base.data, "cross": {"choose_resolution": False}})
     result = driver.compile_file("fixture.mxt", "mcode", "x150", profile=fixed, text="MA 20000\n")
     assert [d.code for d in result.diagnostics if d.severity.value == "error"] == ["X207"]
+
+
+# -- abs without an abs function -----------------------------------------------------------------------
+
+def test_x150_direction_on_the_distance_is_written_with_an_if_on_arcus() -> None:
+    """parker-x150.md L1854 (H+ & H- Set Direction): H- makes the distance negative (the IR's D = -abs(D)); the
+    PMX-4EX-SA has no abs function but IF/ENDIF and one-operator assignments
+    (arcus-pmx-4ex-sa.txt L2671-L2677): V = V*-1 when V > 0. Validated by simulation."""
+    out = body(written("MC\nH-\nA10\nV10\nG\n", "x150", "arcus"), "arcus")
+    at = out.index(next(line for line in out if line.startswith("IF ")))
+    assert out[at].endswith(">0") and out[at + 1].endswith("*-1") and out[at + 2] == "ENDIF", out
+    assert "JOGX-" in out

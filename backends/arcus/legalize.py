@@ -99,7 +99,25 @@ class Legalizer:
 
     def op_assign(self, op: ir.Assign) -> None:
         target = self.ctx.var(op.target)
+        magnitude = signed_abs(op.value)
+        if magnitude is not None:
+            self.assign_abs(target, *magnitude, op.span)
+            return
         self.assign(target, self.arcus(op.value), op.span)
+
+    def assign_abs(self, target: ir.Var, inner: ir.Expr, negative: bool, span: Span | None) -> None:
+        """target = abs(inner) (or -abs(inner), X150 H-/H+ on the distance, parker-x150.md L1854)
+        without an abs function: target = inner, then IF target<0 (>0) target = target*-1 ENDIF
+        (one operator per assignment, arcus-pmx-4ex-sa.txt L2671-L2677)."""
+        value = self.arcus(inner)
+        if not (isinstance(value, ir.Var) and self.ctx.var(value).name == target.name):
+            self.assign(target, value, span)
+        flip, after = self.new_block(span), self.new_block(span)
+        self.test(ir.Compare(">" if negative else "<", target, ir.Const(0)), flip.label, after.label, span)
+        self.block = flip
+        self.assign(target, ir.BinOp("*", target, ir.Const(-1)), span)
+        self.block.terminator = ir.Jump(after.label, span)
+        self.block = after
 
     def op_setmotion(self, op: ir.SetMotion) -> None:
         param = op.param
@@ -802,3 +820,13 @@ def accel_ramp_ms(state: dict, axis: str) -> float | None:
         return units.s_to_ms(ramp.value)
     accel = lookup(state, ir.MotionParam.ACCEL, axis)
     return ramp_ms(accel.value, state, axis) if accel is not None else None
+
+
+def signed_abs(value: ir.Expr) -> tuple[ir.Expr, bool] | None:
+    """(x, negative) when `value` is abs(x) or -abs(x), else None."""
+    negative = False
+    if isinstance(value, ir.UnOp) and value.op == "-":
+        value, negative = value.operand, True
+    if isinstance(value, ir.Func) and value.name == "abs" and len(value.args) == 1:
+        return value.args[0], negative
+    return None
