@@ -909,10 +909,7 @@ class Writer:
             if beyond:
                 raise Unsupported(f"setting output {beyond[0]} in the pattern {value.bits} (the drive has outputs 1 "
                                   f"to {OUTPUTS})")
-            bits = value.bits[:OUTPUTS]
-            if len(bits) == OUTPUTS and set(bits) <= {"0", "1"}:  # every output: OT, output 3 the high bit (L851)
-                return [f"OT={int(bits[::-1], 2)}"]
-            return [f"O{n + 1}={bit}" for n, bit in enumerate(bits) if bit in "01"]
+            return [f"O{n + 1}={bit}" for n, bit in enumerate(value.bits[:OUTPUTS]) if bit in "01"]
         if isinstance(value, ir.Const):
             number = value.value
             if isinstance(number, float) and number.is_integer():

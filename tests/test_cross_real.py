@@ -140,28 +140,3 @@ def test_x150_direction_on_the_distance_is_written_with_an_if_on_arcus() -> None
     at = out.index(next(line for line in out if line.startswith("IF ")))
     assert out[at].endswith(">0") and out[at + 1].endswith("*-1") and out[at + 2] == "ENDIF", out
     assert "JOGX-" in out
-
-
-# -- MCode OT <-> X150 O -----------------------------------------------------------------------------
-
-def test_mcode_ot_is_an_x150_output_pattern() -> None:
-    """lexium-mcode.txt L851-L853: OT sets the 3 outputs from a 3-bit value, output 3 the most
-    significant, "OT=5 will set the outputs to 101"; X150 O writes one position per output, output 1
-    first, X leaving one as it is (parker-x150.md L2731-L2753): OT=5 is O101, outputs 4-6 untouched."""
-    assert body(written("OT=5\n", "mcode", "x150"), "x150") == ["O101"]
-    assert body(written("OT=6\n", "mcode", "x150"), "x150") == ["O011"]
-
-
-def test_mcode_ot_stays_ot_in_mcode_and_is_three_outputs_on_arcus() -> None:
-    """The pattern of OT=5 (lexium-mcode.txt L853) is written OT=5 again in MCode, and DO1-DO3 one by
-    one on the PMX-4EX-SA (DOn=0/1, arcus-pmx-4ex-sa.txt L2671-L2677 argument list: Digital Output)."""
-    assert body(written("OT=5\n", "mcode", "mcode"), "mcode") == ["OT=5"]
-    assert body(written("OT=5\n", "mcode", "arcus"), "arcus") == ["DO1=1", "DO2=0", "DO3=1", "END"]
-
-
-def test_x150_pattern_of_three_outputs_is_mcode_ot() -> None:
-    """parker-x150.md L2731-L2753: O101 sets outputs 1-3; MCode's OT sets exactly outputs 1-3 (L851), so
-    the output is OT=5; a pattern that leaves one of them (O1X1) is written one output at a time."""
-    assert "OT=5" in body(written("O101\n", "x150", "mcode"), "mcode")
-    out = body(written("O1X1\n", "x150", "mcode"), "mcode")
-    assert "O1=1" in out and "O3=1" in out and not any(line.startswith("OT") for line in out)

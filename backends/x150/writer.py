@@ -1160,10 +1160,6 @@ class Writer:
             return value.bits
         if op.index is not None and isinstance(value, ir.Const) and value.value in (0, 1) and 1 <= op.index <= 6:
             return "X" * (op.index - 1) + str(int(value.value))
-        if op.index is None and isinstance(value, ir.Const):
-            raise CannotWrite(f"the value {number(value.value)} sets every output of the source's bank, also "
-                              f"those beyond output {neutral.OUTPUTS}, which X150 lacks (O sets outputs 1-6, "
-                              "L2731-L2753); set the outputs one by one in the source", "G003")
         raise CannotWrite("X150 sets outputs 1-6 to 0 or 1 with a constant pattern (O); this output change has "
                           "no equivalent", "G003")
 

@@ -110,9 +110,6 @@ def handler_label(res: Resolved) -> st.Node | None:
     return None
 
 
-OT_OUTPUTS = 3  # the outputs OT sets (lexium-mcode.txt L851)
-
-
 class Lowering:
     def __init__(self, tree: st.SyntaxTree, profile: Profile, diags: Diagnostics):
         self.tree = tree
@@ -459,12 +456,7 @@ class Lowering:
         if kind == "output" and args and command.index is not None:
             return ir.SetOutput(command.index, self.expr(args[0]), span)
         if kind == "outputs" and args:
-            value = self.expr(args[0])
-            if isinstance(value, ir.Const) and isinstance(value.value, int) and 0 <= value.value < 1 << OT_OUTPUTS:
-                # OT sets the 3 outputs from a 3-bit value, output 3 the most significant (L851-L853):
-                # a constant is that pattern, output 1 first, so no other output is touched
-                value = ir.Pattern("".join(str((value.value >> n) & 1) for n in range(OT_OUTPUTS)), value.span)
-            return ir.SetOutput(None, value, span)
+            return ir.SetOutput(None, self.expr(args[0]), span)
         if kind == "drive_enable" and args:
             return ir.DriveEnable(axis, self.expr(args[0]), span)
         if kind == "print" and len(args) == 1 and isinstance(args[0], st.Name) and stmt.suffix != ";":
