@@ -140,3 +140,15 @@ def test_x150_direction_on_the_distance_is_written_with_an_if_on_arcus() -> None
     at = out.index(next(line for line in out if line.startswith("IF ")))
     assert out[at].endswith(">0") and out[at + 1].endswith("*-1") and out[at + 2] == "ENDIF", out
     assert "JOGX-" in out
+
+
+# -- a constant output bank on X150 --------------------------------------------------------------------
+
+def test_a_constant_output_bank_is_refused_on_x150_with_its_reason() -> None:
+    """lexium-mcode.txt L851-L853: OT=5 sets the outputs to 101; X150 O sets outputs 1-6 by pattern
+    (parker-x150.md L2731-L2753). The simulator's bank sets every output the source has, so the
+    conversion is refused on its line, naming the bank, until validation knows the outputs a device
+    lacks (docs/CROSS.md)."""
+    _, errors = convert("OT=5\n", "mcode", "x150")
+    assert [(code, line) for code, line, _ in errors] == [("G003", 1)]
+    assert "bank" in errors[0][2]

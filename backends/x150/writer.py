@@ -1160,6 +1160,11 @@ class Writer:
             return value.bits
         if op.index is not None and isinstance(value, ir.Const) and value.value in (0, 1) and 1 <= op.index <= 6:
             return "X" * (op.index - 1) + str(int(value.value))
+        if op.index is None and isinstance(value, ir.Const):
+            raise CannotWrite(f"the value {number(value.value)} sets every output of the source's bank at once "
+                              f"(Arcus DO, MCode OT); X150 O sets outputs 1-{neutral.OUTPUTS} by pattern only "
+                              "(L2731-L2753), and the validation compares every output the source sets, also "
+                              "those X150 lacks; set the outputs one by one in the source", "G003")
         raise CannotWrite("X150 sets outputs 1-6 to 0 or 1 with a constant pattern (O); this output change has "
                           "no equivalent", "G003")
 
