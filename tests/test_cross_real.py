@@ -152,3 +152,12 @@ def test_a_constant_output_bank_is_refused_on_x150_with_its_reason() -> None:
     _, errors = convert("OT=5\n", "mcode", "x150")
     assert [(code, line) for code, line, _ in errors] == [("G003", 1)]
     assert "bank" in errors[0][2]
+
+
+def test_x150_cur_is_the_unit_the_arcus_pulses_count_in() -> None:
+    """parker-x150.md L731-L745: CUR sets the user steps per revolution, `1CUR2000` then `D4000` is 2
+    revolutions. The IR counts in those steps (the module's 2000/rev) and the PMX-4EX-SA output
+    counts one pulse per source step (its header says so): the CUR statement has nothing left to say
+    and the move is X4000."""
+    out = body(written("1CUR2000\nD4000\nG\n", "x150", "arcus"), "arcus")
+    assert "X4000" in out and not any("CUR" in line for line in out)

@@ -130,6 +130,11 @@ class Legalizer:
         if param in RAMP_PARAMS:
             self.ramp(op, axis)
             return
+        if param is ir.MotionParam.RESOLUTION and isinstance(op.value, ir.Const) \
+                and op.value.value == self.ctx.module.steps_per_rev:
+            # the steps the IR already counts in (X150 CUR, MCode MS): the output counts its pulses
+            # in them too (the header's assumption), so the statement has nothing left to say
+            raise Skip
         if MOTION_IR.get(param) is None:
             raise Refused(f"the {param.value.replace('_', ' ')} setting has no Arcus statement (Arcus has HSPD, LSPD, "
                           "ACC and SCV)")
