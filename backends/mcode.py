@@ -154,7 +154,7 @@ class Writer:
         self.contexts = self.run_contexts() if self.foreign else {}
         self.block_start = 0
         self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
-        self.moving = moving_before(module)
+        self.moving = moving_before(module, foreign=self.foreign)
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -422,9 +422,6 @@ class Writer:
     def run(self) -> Listing:
         if self.foreign:
             self.header()
-        if self.microsteps is not None:
-            span = next((op.span for _, b in self.module.blocks() for op in b.ops if op.span is not None), None)
-            self.line(f"MS={self.microsteps}", span)
         for name, var in self.module.variables.items():
             if var.scope == "global" or self.foreign:
                 init = f"={self.expr(var.init)}" if var.init is not None else ""
@@ -433,6 +430,9 @@ class Writer:
             for name in self.names:
                 if name not in self.module.variables:
                     self.line(f"VA {self.var(name)}")
+        if self.microsteps is not None:
+            span = next((op.span for _, b in self.module.blocks() for op in b.ops if op.span is not None), None)
+            self.line(f"MS={self.microsteps}", span)  # after the variables, as an MCode source's own MS is written
         region_open = False
         order = [(r, b) for r in self.program_order() for b in r.blocks]
         origin_given = any(r.origin is not None for r in self.module.routines)
@@ -1180,7 +1180,7 @@ def pattern_cond(pattern: ir.Pattern):
     return cond
 
 
-def moving_before(module: ir.Module) -> dict[int, frozenset[str]]:
+def moving_before(module: ir.Module, foreign: bool = False) -> dict[int, frozenset[str]]:
     """The axes that may still be moving before each operation (by id), for `Writer.hold_first`.
 
     A forward data flow over the blocks of every routine, and across calls: a move, homing or slew
@@ -1189,8 +1189,13 @@ def moving_before(module: ir.Module) -> dict[int, frozenset[str]]:
     immediate) starts with nothing moving; a subroutine with what its callers may leave running; a
     handler, which interrupts anywhere, with what may be running anywhere else or at the end of a
     handler; and what a handler may leave running at its end may be running before any operation.
-    A block another routine jumps to, or that nothing reaches, may start with any axis moving."""
-    return Motion(module).run()
+    A block another routine jumps to, or that nothing reaches, may start with any axis moving.
+
+    `foreign`: the module is another dialect's, written as one MCode program. Its second and later
+    main routines (X150 sequences the host starts) become labels in that program, which MCode
+    reads back as subroutines nothing calls: they start with any axis moving here too, so that
+    compiling the output again writes the same H (issue 24)."""
+    return Motion(module, foreign).run()
 
 
 class Motion:
@@ -1198,8 +1203,9 @@ class Motion:
 
     STARTS = (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)
 
-    def __init__(self, module: ir.Module):
+    def __init__(self, module: ir.Module, foreign: bool = False):
         self.module = module
+        self.foreign = foreign
         axes = {axis for _, b in module.blocks() for op in b.ops for axis in op_axes(op)}
         axes |= {op.axis for _, b in module.blocks() for op in b.ops if isinstance(op, ir.WaitMotion)}
         axes.discard(ir.ALL_AXES)
@@ -1231,9 +1237,13 @@ class Motion:
         called |= {b.terminator.routine for _, b in module.blocks() if isinstance(b.terminator, ir.GotoRoutine)}
         handlers = [r for r in module.routines if r.kind is ir.RoutineKind.HANDLER]
         entry: dict[str, frozenset[str]] = {}
+        mains = [r.name for r in module.routines if r.kind is ir.RoutineKind.MAIN]
         for routine in module.routines:
             known = routine.kind in self.STARTS or routine.kind is ir.RoutineKind.HANDLER \
                 or routine.kind is ir.RoutineKind.SUBROUTINE and routine.name in called
+            if self.foreign and routine.kind is ir.RoutineKind.MAIN and routine.name in mains[1:] \
+                    and routine.name not in called:
+                known = False
             entry[routine.name] = frozenset() if known else self.anything  # else: filled below
         exits: dict[str, frozenset[str]] = {r.name: frozenset() for r in module.routines}
         handler_names = {r.name for r in handlers}
@@ -1352,7 +1362,7 @@ def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
 
 def emit(module: ir.Module, profile: Profile) -> Listing:
     microsteps = chosen_microsteps(module, profile)
-    if microsteps is not None:  # the drive counts the steps the output sets with MS, written first
+    if microsteps is not None:  # the drive counts the steps the output sets with MS, before any program
         full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
         profile = dataclasses.replace(profile, steps_per_rev=microsteps * full)
     # an X150 program starts every move from standstill; VI has no 0: the output sets its lowest
