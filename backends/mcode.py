@@ -19,11 +19,13 @@ case, `NAME=value` for settings, `MA 100` for instructions, no comments but the 
 
 from __future__ import annotations
 
+import dataclasses
 from functools import lru_cache
 
 import string
 from fractions import Fraction
 
+from mcc.backends import resolution
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
@@ -128,8 +130,9 @@ def format_number(value: int | float) -> str:
 
 
 class Writer:
-    def __init__(self, module: ir.Module, profile: Profile):
+    def __init__(self, module: ir.Module, profile: Profile, microsteps: int | None = None):
         self.module = module
+        self.microsteps = microsteps  # the MS the output sets first (chosen_microsteps), or None
         self.profile = profile
         self.cat = cat.for_profile(profile)  # Lexium MCode, or the profile's older family (S1-S4 I/O set-up)
         self.listing = Listing(DIALECT)
@@ -151,7 +154,7 @@ class Writer:
         self.contexts = self.run_contexts() if self.foreign else {}
         self.block_start = 0
         self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
-        self.moving = moving_before(module)
+        self.moving = moving_before(module, foreign=self.foreign)
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -427,6 +430,9 @@ class Writer:
             for name in self.names:
                 if name not in self.module.variables:
                     self.line(f"VA {self.var(name)}")
+        if self.microsteps is not None:
+            span = next((op.span for _, b in self.module.blocks() for op in b.ops if op.span is not None), None)
+            self.line(f"MS={self.microsteps}", span)  # after the variables, as an MCode source's own MS is written
         region_open = False
         order = [(r, b) for r in self.program_order() for b in r.blocks]
         origin_given = any(r.origin is not None for r in self.module.routines)
@@ -1181,7 +1187,7 @@ def pattern_cond(pattern: ir.Pattern):
     return cond
 
 
-def moving_before(module: ir.Module) -> dict[int, frozenset[str]]:
+def moving_before(module: ir.Module, foreign: bool = False) -> dict[int, frozenset[str]]:
     """The axes that may still be moving before each operation (by id), for `Writer.hold_first`.
 
     A forward data flow over the blocks of every routine, and across calls: a move, homing or slew
@@ -1190,8 +1196,13 @@ def moving_before(module: ir.Module) -> dict[int, frozenset[str]]:
     immediate) starts with nothing moving; a subroutine with what its callers may leave running; a
     handler, which interrupts anywhere, with what may be running anywhere else or at the end of a
     handler; and what a handler may leave running at its end may be running before any operation.
-    A block another routine jumps to, or that nothing reaches, may start with any axis moving."""
-    return Motion(module).run()
+    A block another routine jumps to, or that nothing reaches, may start with any axis moving.
+
+    `foreign`: the module is another dialect's, written as one MCode program. Its second and later
+    main routines (X150 sequences the host starts) become labels in that program, which MCode
+    reads back as subroutines nothing calls: they start with any axis moving here too, so that
+    compiling the output again writes the same H (issue 24)."""
+    return Motion(module, foreign).run()
 
 
 class Motion:
@@ -1199,8 +1210,9 @@ class Motion:
 
     STARTS = (ir.RoutineKind.MAIN, ir.RoutineKind.IMMEDIATE, ir.RoutineKind.POWERUP)
 
-    def __init__(self, module: ir.Module):
+    def __init__(self, module: ir.Module, foreign: bool = False):
         self.module = module
+        self.foreign = foreign
         axes = {axis for _, b in module.blocks() for op in b.ops for axis in op_axes(op)}
         axes |= {op.axis for _, b in module.blocks() for op in b.ops if isinstance(op, ir.WaitMotion)}
         axes.discard(ir.ALL_AXES)
@@ -1232,9 +1244,13 @@ class Motion:
         called |= {b.terminator.routine for _, b in module.blocks() if isinstance(b.terminator, ir.GotoRoutine)}
         handlers = [r for r in module.routines if r.kind is ir.RoutineKind.HANDLER]
         entry: dict[str, frozenset[str]] = {}
+        mains = [r.name for r in module.routines if r.kind is ir.RoutineKind.MAIN]
         for routine in module.routines:
             known = routine.kind in self.STARTS or routine.kind is ir.RoutineKind.HANDLER \
                 or routine.kind is ir.RoutineKind.SUBROUTINE and routine.name in called
+            if self.foreign and routine.kind is ir.RoutineKind.MAIN and routine.name in mains[1:] \
+                    and routine.name not in called:
+                known = False
             entry[routine.name] = frozenset() if known else self.anything  # else: filled below
         exits: dict[str, frozenset[str]] = {r.name: frozenset() for r in module.routines}
         handler_names = {r.name for r in handlers}
@@ -1332,7 +1348,30 @@ def successors(term) -> tuple[str, ...]:
     return ()
 
 
+def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
+    """The MS code the output sets (lexium-mcode.txt L4282-L4340: microsteps per full step, one of
+    the catalog's fixed codes, steps/rev = MS x full steps) when the profile's resolution would not
+    convert a program of another dialect exactly and the program does not fix its own
+    (backends/resolution.py). Codes below 10 are never chosen: with hMT on the drive takes none of
+    them (L1480). None: the profile's resolution serves, or no code does better."""
+    if module.dialect == DIALECT or not module.steps_per_rev or not profile.steps_per_rev \
+            or not profile.get("cross.choose_resolution", True):
+        return None
+    if any(isinstance(op, ir.Setting) and op.name == "encoder_enable" for _, b in module.blocks() for op in b.ops):
+        return None  # with the encoder on, MS is fixed at 256 (L7194, L7333): the profile's resolution
+    full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
+    entry = cat.for_profile(profile).lookup("MS")
+    codes = [int(v) for v in (entry.values or ()) if int(v) >= 10] if entry is not None else []
+    chosen = resolution.choose(int(module.steps_per_rev), int(profile.steps_per_rev), [c * full for c in codes],
+                               resolution.positions(module))
+    return chosen // full if chosen is not None else None
+
+
 def emit(module: ir.Module, profile: Profile) -> Listing:
+    microsteps = chosen_microsteps(module, profile)
+    if microsteps is not None:  # the drive counts the steps the output sets with MS, before any program
+        full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
+        profile = dataclasses.replace(profile, steps_per_rev=microsteps * full)
     # an X150 program starts every move from standstill; VI has no 0: the output sets its lowest
     lowest = float(cat.load().lookup("VI").entry.range[0])
     lowest = lowest / float(units.ratio(module.steps_per_rev, profile.steps_per_rev))
@@ -1342,7 +1381,7 @@ def emit(module: ir.Module, profile: Profile) -> Listing:
     if refused is not None:
         return refused
     try:
-        return Writer(module, profile).run()
+        return Writer(module, profile, microsteps).run()
     except Unsupported as exc:  # a limit of the whole program (the name space), not of one line
         listing = Listing(DIALECT)
         span = next((op.span for _, b in module.blocks() for op in b.ops if op.span is not None),

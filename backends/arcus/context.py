@@ -14,6 +14,7 @@ from functools import cached_property
 from mcc.backends.arcus.convert import Axes, Scale
 from mcc.backends.arcus.target import DIALECT, Config
 from mcc.backends.arcus.temporaries import Temps
+from mcc.backends.input_setup import InputSetup
 from mcc.compiler import in_force, ir
 from mcc.compiler.arcus import catalog as arcus_catalog
 from mcc.compiler.diagnostics import Diagnostics, Severity
@@ -38,6 +39,7 @@ class Context:
         self.scale = Scale(module.steps_per_rev, profile.steps_per_rev)
         self.axes = Axes(module, self.config.axes)
         self._in_force: dict[int, in_force.State] | None = None
+        self.input_setup = InputSetup(module, DIALECT)  # MCode IS lines the PMX-4EX-SA needs no set-up for
 
     @cached_property
     def sets_accel(self) -> bool:

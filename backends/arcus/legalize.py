@@ -99,7 +99,25 @@ class Legalizer:
 
     def op_assign(self, op: ir.Assign) -> None:
         target = self.ctx.var(op.target)
+        magnitude = signed_abs(op.value)
+        if magnitude is not None:
+            self.assign_abs(target, *magnitude, op.span)
+            return
         self.assign(target, self.arcus(op.value), op.span)
+
+    def assign_abs(self, target: ir.Var, inner: ir.Expr, negative: bool, span: Span | None) -> None:
+        """target = abs(inner) (or -abs(inner), X150 H-/H+ on the distance, parker-x150.md L1854)
+        without an abs function: target = inner, then IF target<0 (>0) target = target*-1 ENDIF
+        (one operator per assignment, arcus-pmx-4ex-sa.txt L2671-L2677)."""
+        value = self.arcus(inner)
+        if not (isinstance(value, ir.Var) and self.ctx.var(value).name == target.name):
+            self.assign(target, value, span)
+        flip, after = self.new_block(span), self.new_block(span)
+        self.test(ir.Compare(">" if negative else "<", target, ir.Const(0)), flip.label, after.label, span)
+        self.block = flip
+        self.assign(target, ir.BinOp("*", target, ir.Const(-1)), span)
+        self.block.terminator = ir.Jump(after.label, span)
+        self.block = after
 
     def op_setmotion(self, op: ir.SetMotion) -> None:
         param = op.param
@@ -112,6 +130,11 @@ class Legalizer:
         if param in RAMP_PARAMS:
             self.ramp(op, axis)
             return
+        if param is ir.MotionParam.RESOLUTION and isinstance(op.value, ir.Const) \
+                and op.value.value == self.ctx.module.steps_per_rev:
+            # the steps the IR already counts in (X150 CUR, MCode MS): the output counts its pulses
+            # in them too (the header's assumption), so the statement has nothing left to say
+            raise Skip
         if MOTION_IR.get(param) is None:
             raise Refused(f"the {param.value.replace('_', ' ')} setting has no Arcus statement (Arcus has HSPD, LSPD, "
                           "ACC and SCV)")
@@ -375,6 +398,8 @@ class Legalizer:
     def op_setting(self, op: ir.Setting) -> None:
         """A neutral setting the PMX-4EX-SA has, in its spelling; the others are refused by name."""
         ctx = self.ctx
+        if ctx.input_setup.needs_none(op):
+            raise Skip  # a home/limit/general line: the PMX-4EX-SA's own input, nothing to set up
         if op.name in ("clear_error", "compare_output"):
             axis = self.axis(op.axis, op)
             on = isinstance(op.value, ir.Const) and op.value.value != 0
@@ -388,6 +413,10 @@ class Legalizer:
                 raise Refused("the position-compare output is switched by a value computed at run time; Arcus has "
                               "only SYN<axis>O and SYN<axis>F")
             return
+        if op.name == "input_active_high" and op.index is not None:
+            raise Refused(f"the program reads input {op.index} at a level of its own; the PMX-4EX-SA reads "
+                          f"DI{op.index} as wired and sets no input level in a program (POX, from the host, sets "
+                          "the home, alarm and limit polarity only, L700-L704)")
         if op.name not in convert.SETTINGS:
             raise Refused(f"the setting '{op.name}' has no Arcus statement")
         name, kind = convert.SETTINGS[op.name]
@@ -796,3 +825,13 @@ def accel_ramp_ms(state: dict, axis: str) -> float | None:
         return units.s_to_ms(ramp.value)
     accel = lookup(state, ir.MotionParam.ACCEL, axis)
     return ramp_ms(accel.value, state, axis) if accel is not None else None
+
+
+def signed_abs(value: ir.Expr) -> tuple[ir.Expr, bool] | None:
+    """(x, negative) when `value` is abs(x) or -abs(x), else None."""
+    negative = False
+    if isinstance(value, ir.UnOp) and value.op == "-":
+        value, negative = value.operand, True
+    if isinstance(value, ir.Func) and value.name == "abs" and len(value.args) == 1:
+        return value.args[0], negative
+    return None

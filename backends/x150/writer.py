@@ -29,6 +29,8 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
+from mcc.backends import resolution
+from mcc.backends.input_setup import InputSetup
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
 from mcc.compiler.x150 import naming, neutral
 from mcc.compiler import homing
@@ -160,8 +162,12 @@ class Writer:
         self.source_spr = module.steps_per_rev or profile.steps_per_rev
         self.resolution = profile.steps_per_rev or self.source_spr
         self.cur = self.device_resolutions()
+        self.chosen_cur = self.chosen_resolution()  # a CUR the output sets so positions convert exactly
+        if self.chosen_cur is not None:
+            self.resolution = self.chosen_cur
         self.factor = units.ratio(self.source_spr, self.resolution)
         self.axes = self.axis_map()
+        self.input_setup = InputSetup(module, DIALECT)  # MCode IS lines X150 has inputs of its own for
         self.in_force = InForce(module)
         self.numbers = self.sequence_numbers()
         self.variables = self.variable_numbers()
@@ -197,6 +203,18 @@ class Writer:
                         and isinstance(op.value, ir.Const) and isinstance(op.value.value, int):
                     found.setdefault(op.axis, op.value.value)
         return found
+
+    def chosen_resolution(self) -> int | None:
+        """The user resolution the output sets (CUR, parker-x150.md L731-L747: 1-32,767 user steps per
+        revolution, the motor's travel per revolution unchanged) when the profile's would not convert
+        the program's positions exactly and the program does not fix its own (backends/resolution.py).
+        None: the profile's resolution serves, or no CUR does better."""
+        if self.native or not self.module.steps_per_rev or not self.profile.get("cross.choose_resolution", True):
+            return None
+        info = self.cat.lookup("CUR")
+        top = int(max((hi for _, hi in (info.intervals or ())), default=32767)) if info is not None else 32767
+        return resolution.choose(int(self.source_spr), int(self.resolution), list(range(1, top + 1)),
+                                 resolution.positions(self.module))
 
     def resolution_of(self, axis: str) -> int:
         return self.cur.get(axis, self.cur.get(ir.ALL_AXES, self.resolution))
@@ -316,6 +334,10 @@ class Writer:
     def write_module(self) -> Written:
         if not self.native:
             self.out.header = self.header()
+        if self.chosen_cur is not None:  # an immediate command (L734), before any sequence is stored
+            self.routine, self.in_sequence = None, False
+            for device in self.save_addresses():  # CUR is device specific like SV (Universal, L734)
+                self.emit(f"{device}CUR{self.chosen_cur}", self.first_span())
         for _, _, op, state in self.each_op():
             self.forces[id(op)] = state
             if isinstance(op, ir.Move):
@@ -427,6 +449,14 @@ class Writer:
     def dispatch_var(self) -> ir.Var:
         return ir.Var("%dispatch")  # never written: a routine that needs it is refused (X201)
 
+    def first_span(self) -> Span:
+        """The first source line with an operation (where the chosen CUR is reported, if at all)."""
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                if getattr(op, "span", None) is not None:
+                    return op.span
+        return self.fallback_span()
+
     def fallback_span(self) -> Span:
         return Span(self.module.path or "<module>", 1, 1, 1, 1)
 
@@ -455,6 +485,8 @@ class Writer:
                 if self.is_loop_count(node, nodes, index) or self.dead_count(node):
                     continue
                 group = level_run(nodes, index)
+                if len(group) > 1 and any(self.input_setup.needs_none(op) for op in group):
+                    group = [group[0]]  # written one by one, the lines X150 needs no set-up for left out
                 if len(group) > 1:  # several input/output levels: one INL/OUTL pattern, as written
                     merged = len(group) - 1
                     try:
@@ -723,7 +755,8 @@ class Writer:
             prefix = "" if report_command(op) else self.address(op.axis) if op.axis else self.address()
             self.emit(prefix + self.print_text(op), span)
         elif isinstance(op, ir.Setting):
-            self.emit(self.setting(op), span)
+            if not self.input_setup.needs_none(op):
+                self.emit(self.setting(op), span)
         elif isinstance(op, (ir.Pause, ir.Resume, ir.Step)):
             self.emit(self.host_control(op), span)
         else:
@@ -1180,6 +1213,11 @@ class Writer:
             return value.bits
         if op.index is not None and isinstance(value, ir.Const) and value.value in (0, 1) and 1 <= op.index <= 6:
             return "X" * (op.index - 1) + str(int(value.value))
+        if op.index is None and isinstance(value, ir.Const):
+            raise CannotWrite(f"the value {number(value.value)} sets every output of the source's bank at once "
+                              f"(Arcus DO, MCode OT); X150 O sets outputs 1-{neutral.OUTPUTS} by pattern only "
+                              "(L2731-L2753), and the validation compares every output the source sets, also "
+                              "those X150 lacks; set the outputs one by one in the source", "G003")
         raise CannotWrite("X150 sets outputs 1-6 to 0 or 1 with a constant pattern (O); this output change has "
                           "no equivalent", "G003")
 

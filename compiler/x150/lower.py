@@ -173,7 +173,15 @@ class Lowering:
 
     def distance(self, arg, axis: str):
         """A distance in user steps of its device (CUR) as IR steps (the module's first CUR)."""
-        cur = self.cur.get(axis, self.cur.get(ir.ALL_AXES, self.profile.steps_per_rev or self.module.steps_per_rev))
+        cur = self.cur.get(axis, self.cur.get(ir.ALL_AXES))
+        if cur is None and axis == ir.ALL_AXES:
+            # an unaddressed distance on a one-device chain is that device's: `1CUR2000` then `D4000`
+            # is 2 revolutions (parker-x150.md L742-L745), not 4000 steps at the profile's CUR
+            devices = {str(a) for a in self.profile.axes} | {str(a) for a in self.addresses}
+            if len(devices) == 1:
+                cur = self.cur.get(next(iter(devices)))
+        if cur is None:
+            cur = self.profile.steps_per_rev or self.module.steps_per_rev
         factor = self.factors.get(cur)
         if factor is None:  # a Fraction is slow to make and to compare: once per resolution
             factor = self.factors[cur] = Fraction(self.module.steps_per_rev, cur) if cur else Fraction(1)

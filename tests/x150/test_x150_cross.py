@@ -64,7 +64,12 @@ def test_positions_scale_between_resolutions_or_are_refused():
     # MCode at 51200 steps/rev (MS=256) into X150 at 4000 user steps/rev: x 5/64
     exact = arcus(move(ir.MoveMode.ABSOLUTE, 1, X=12800), steps_per_rev=51200)
     assert "1D1000" in body(backend.emit(exact, PROFILE))
-    between = backend.emit(arcus(move(ir.MoveMode.ABSOLUTE, 3, X=5), steps_per_rev=51200), PROFILE)
+    # 5 steps falls between two steps at CUR4000: the output sets CUR (1-32,767 user steps/rev,
+    # parker-x150.md L734) to a whole fraction of the source's that makes it whole (issue 24)
+    chosen = body(backend.emit(arcus(move(ir.MoveMode.ABSOLUTE, 3, X=5), steps_per_rev=51200), PROFILE))
+    assert chosen[0] == "1CUR10240" and "1D1" in chosen
+    # 20001 steps is whole only at a multiple of 51200 user steps/rev, beyond CUR's 32,767: refused
+    between = backend.emit(arcus(move(ir.MoveMode.ABSOLUTE, 3, X=20001), steps_per_rev=51200), PROFILE)
     [refusal] = [d for d in between.diagnostics if d.code == "X207"]
     assert refusal.span.line == 3 and "51200" in refusal.message and "4000" in refusal.message
     assert "--profile" in refusal.message

@@ -269,3 +269,13 @@ def test_g_in_mc_before_any_d_runs_forward_from_the_factory_d():
     ops = [op for _, b in result.analysis.module.blocks() for op in b.ops]
     slews = [op for op in ops if isinstance(op, ir.Slew)]
     assert [s.direction for s in slews] == [1] and any(isinstance(op, ir.Stop) and op.ramp for op in ops)
+
+
+def test_an_unaddressed_distance_uses_the_one_device_cur():
+    """parker-x150.md L742-L745: `1CUR2000`, `D4000` "Set distance to 4000 user steps (2 revs)", `G`
+    "move 2 revolutions". On a one-device profile the unaddressed D is device 1's, at its CUR: 4000
+    steps at the module's 2000 steps/rev (it was 2000, converted at the profile's CUR4000)."""
+    mod = module("1CUR2000\nD4000\nG\n")
+    assert mod.steps_per_rev == 2000
+    [move] = [op for r in mod.routines for op in ops(r) if isinstance(op, ir.Move)]
+    assert [t.value for _, t in move.targets] == [4000]
