@@ -15,7 +15,8 @@ written and refuses each one (G040) on its line, unless the two rules give the s
 
 The remainder `%` goes with the quotient (`a - (a / b) * b`, sim/values.py), so between `floor`
 and `truncate` it is checked the same way. An expression computed in floating point (assigned to
-a float64 variable, or reading one) is not an integer division and is left alone.
+a float64 variable, or reading one: MCode F1-F8) keeps the fraction as a decimal one does, so it
+follows the `exact` rule.
 
 Rewriting a division so that the target computes the source's rounding with its own operators
 (docs/CROSS.md, "Integer division") is not done: it needs statements inserted around an
@@ -128,24 +129,22 @@ def refusals(module: ir.Module, source_profile, target_profile, target: str) -> 
     compute otherwise than the source's product."""
     source_rule = rounding(source_profile, module.dialect)
     target_rule = rounding(target_profile, target)
-    if source_rule == target_rule:
+    if source_rule == target_rule and module.dialect == target:
         return []
     found: list[Refusal] = []
     for node, span, context, expr in divisions(module):
-        # a decimal source computes exactly whatever the variable; an integer source in floating
-        # point (MCode F1-F8) is not an integer division
-        if source_rule != EXACT and is_float(module, expr, context):
-            continue
-        if same_quotient(node, source_rule, target_rule):
+        # an expression in floating point (MCode F1-F8) keeps the quotient's fraction, as decimals do
+        rule = EXACT if is_float(module, expr, context) else source_rule
+        if same_quotient(node, rule, target_rule):
             continue
         what = "quotient" if node.op == "/" else "remainder"
-        exact = EXACT in (source_rule, target_rule)
+        exact = EXACT in (rule, target_rule)
         condition = "the quotient is not known to be a whole number" if exact else "an operand may be negative"
         advice = ("divide by 1 or by a constant that divides a constant exactly" if exact else
                   "make both operands non-negative, e.g. divide abs(...) and set the sign apart")
         found.append(Refusal(node.span or span, (
             f"this division's {what} is computed otherwise in {target} than in {module.dialect}: "
-            f"{module.dialect} gives -7/2 = {EXAMPLE[source_rule]}, {target} gives "
+            f"{module.dialect} gives -7/2 = {EXAMPLE[rule]}, {target} gives "
             f"{EXAMPLE[target_rule]}, and {condition}; nothing was written ({advice}, "
             f"or compile to {module.dialect})")))
     return found

@@ -104,3 +104,13 @@ def test_the_rule_comes_from_the_profile() -> None:
     assert division.rounding(load("lmd-c"), "mcode") == "floor"
     assert division.rounding(load("pmx-4ex-sa"), "arcus") == "truncate"
     assert division.rounding(load("x150-blhx"), "x150") == "exact"
+
+
+def test_a_float_quotient_into_an_integer_product_is_refused() -> None:
+    """An MCode float register keeps the fraction (F1-F8 are the exception to rounding down,
+    lexium-mcode.txt L1249): -7/2 is -3.5 in F1, while an Arcus variable would hold -3 (decision
+    0008): the fraction would be dropped, so it is refused like an X150 decimal quotient."""
+    text = "VA N1=0\nPG 100\nLB MN\n  N1=-7\n  F1=N1/2\n  N1=F1\n  E\nPG\n"
+    result = driver.compile_file("div.mxt", "mcode", "arcus", text=text)
+    assert [(d.code, d.span.line) for d in errors(result)] == [("G040", 5)]
+    assert "-3.5" in errors(result)[0].message
