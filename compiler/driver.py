@@ -371,6 +371,7 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         level = f"; optimization: -{stats.level}" + (f" (passes {passes})" if passes else "")
         listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)
+        refuse_divisions(module, result, target_profile, diags)
         result.listing = listing
         if verify and not diags.has_errors and (always_verify or migrating or needs_validation(result, stats)):
             verify_translation(result, target_profile, diags, scenarios,
@@ -379,6 +380,22 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         internal_error(diags, path, exc, f"generating {result.target} code")
     result.diagnostics = diags.items
     return result
+
+
+def refuse_divisions(module: ir.Module, result: FileResult, target_profile: Profile, diags: Diagnostics) -> bool:
+    """Refuse upfront (G040) each division the target product would round otherwise than the
+    source's (backends/division.py): the backends write a division as it is, and the validation
+    would only stop it late, when a scenario reaches a negative quotient."""
+    from mcc.backends.division import CODE, refusals
+
+    if result.target == result.dialect and module.profile == target_profile.name:
+        return False
+    source_profile = result.profile if result.profile is not None else profile_for(
+        dialects.get(result.dialect), None)
+    found = refusals(module, source_profile, target_profile, result.target)
+    for refusal in found:
+        diags.add(CODE, refusal.span or file_span(result.path), refusal.message)
+    return bool(found)
 
 
 def needs_validation(result: FileResult, stats) -> bool:
