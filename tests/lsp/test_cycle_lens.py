@@ -102,3 +102,17 @@ def test_carried_lenses_follow_their_text(text) -> None:
     assert [lens.line for lens in cycles.carried(before.cycles, moved).lenses] == [3]
     gone = analysis.analyze("file:///tmp/c.mxt", "/tmp/c.mxt", 3, text.replace("LB K1", "LB K2"))
     assert cycles.carried(before.cycles, gone).lenses == []
+
+
+def test_a_stale_run_stops_at_the_simulators_checkpoint() -> None:
+    """The run of a version a newer edit made stale stops (compiler/cancel.py): the simulator
+    checks every CANCEL_EVERY steps, so a loop of H 1 (1 ms, lexium-mcode.txt L3050), 30,000
+    passes in the 30 s bound, is abandoned rather than run to its end."""
+    from mcc.compiler import cancel
+    from mcc.lsp import cycles
+
+    text = "VA Np=0\nPG 1\nLB K1\n  H 1\n  IC Np\n  BR K1\nE\nPG\n"
+    snap = analysis.analyze("file:///tmp/stale.mxt", "/tmp/stale.mxt", 1, text)
+    assert snap.cycles is not None and snap.cycles.lenses[0].title == "cycle 0.001 s, 0 moves"
+    with cancel.stopping_when(lambda: True), pytest.raises(cancel.Cancelled):
+        cycles.cycles(snap)
