@@ -44,6 +44,7 @@ class Snapshot:
     complete: bool = False  # every step has run (lint rules, editor model, program memory)
     check_errors: bool = False  # the frontend's checks found errors (no program memory then)
     memory: object | None = None  # memory.Usage
+    cycles: object | None = None  # cycles.Cycles: the cycle time lenses
     config_diagnostics: list[tuple[str, list[Diagnostic]]] = field(default_factory=list)
     # milliseconds the analysis took: wall clock from the edit's arrival to the diagnostics, and the
     # analysis thread's CPU time in the checks and the rules (mcc/status reports them: on a loaded
@@ -127,11 +128,14 @@ class _Sink:
 
 
 def complete(snap: Snapshot) -> Snapshot:
-    """The snapshot with its program memory (last step): every feature has what it needs."""
-    from mcc.lsp import memory
+    """The snapshot with its program memory and cycle time (last step): every feature has what it
+    needs."""
+    from mcc.lsp import cycles, memory
 
     usage = memory.usage(snap)  # None when it cannot be priced: the figures carried stay (documents.py)
-    return Snapshot(**{**snap.__dict__, "complete": True, "memory": usage if usage is not None else snap.memory})
+    timed = cycles.cycles(snap)  # None when it cannot run: likewise
+    return Snapshot(**{**snap.__dict__, "complete": True, "memory": usage if usage is not None else snap.memory,
+                       "cycles": timed if timed is not None else snap.cycles})
 
 
 def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resolver | None = None,

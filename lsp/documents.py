@@ -7,7 +7,8 @@ document's previous version), then the lint rules, after which the diagnostics a
 seconds after the analysis started), then the editor model, and `memory_delay` seconds later,
 unless the document changed meanwhile, the program memory (Arcus and X150 programs are priced by
 their backend, which takes as long as the checks: done at once, it would hold up the next
-keystroke's checks).
+keystroke's checks) and the cycle time (a bounded simulation, cycles.py; the simulator stops at
+its next checkpoint when a newer edit arrives).
 
 An analysis that a newer edit made stale stops at the compiler's next checkpoint (every few
 hundred lines of lowering, between the checks, between lint rules, in the editor model:
@@ -28,7 +29,7 @@ from typing import Callable
 
 from mcc.compiler import cancel, config
 from mcc.compiler.config import Resolver
-from mcc.lsp import analysis, incremental, memory
+from mcc.lsp import analysis, cycles, incremental, memory
 from mcc.lsp.analysis import Snapshot
 
 log = logging.getLogger(__name__)
@@ -167,11 +168,14 @@ class Documents:
         indexed = analysis.with_index(linted)
         if stop():
             return
-        deferred = memory.priced(indexed) and self.memory_delay > 0
+        costly = memory.priced(indexed) or cycles.timed(indexed)  # the backend's work, a bounded simulation
+        deferred = costly and self.memory_delay > 0
+        previous = self.latest.get(uri)
         if deferred or not memory.priced(indexed):
             # until this version is priced (or, with errors, cannot be), the lenses show the last figures
-            previous = self.latest.get(uri)
             indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
+        if deferred or not cycles.timed(indexed):
+            indexed.cycles = cycles.carried(previous.cycles if previous is not None else None, indexed)
         # the editor model's own failure (G001) is one more diagnostic: published again then
         self.deliver(indexed, generation, publish=len(indexed.diagnostics) != len(linted.diagnostics))
         if stop():
@@ -214,7 +218,7 @@ class Documents:
                 return
             if queries or snap.uri not in self.latest:
                 self.latest[snap.uri] = snap
-            if snap.complete and snap.memory is not None and self.priced is not None:
+            if snap.complete and (snap.memory is not None or snap.cycles is not None) and self.priced is not None:
                 try:
                     self.priced(snap)
                 except Exception:  # noqa: BLE001

@@ -1,6 +1,7 @@
-"""Program memory in the editor: a code lens above each routine (and the whole program) with what
-it costs on the device against the budget, and the same as an inlay hint at the end of the
-routine's first line for editors that show hints rather than lenses."""
+"""Program memory and cycle time in the editor: a code lens above each routine (and the whole
+program) with what it costs on the device against the budget, and the same as an inlay hint at the
+end of the routine's first line for editors that show hints rather than lenses; a code lens with
+the cycle time on the main loop and each called subroutine (cycles.py)."""
 
 from __future__ import annotations
 
@@ -8,6 +9,19 @@ from lsprotocol import types as t
 
 
 def code_lenses(snap) -> list[t.CodeLens]:
+    return memory_lenses(snap) + cycle_lenses(snap)
+
+
+def cycle_lenses(snap) -> list[t.CodeLens]:
+    """The cycle time on the main loop's line and each called subroutine's first line (cycles.py)."""
+    found = snap.cycles
+    if found is None:
+        return []
+    return [t.CodeLens(range=t.Range(t.Position(lens.line - 1, 0), t.Position(lens.line - 1, 0)),
+                       command=t.Command(title=lens.title, command="")) for lens in found.lenses]
+
+
+def memory_lenses(snap) -> list[t.CodeLens]:
     usage = snap.memory
     if usage is None:
         return []

@@ -146,10 +146,13 @@ class MccServer(LanguageServer):
         return Units(str(getattr(encoding, "value", encoding) or "utf-16"))
 
     def refresh_lenses(self, snap) -> None:
-        """A document's program memory is priced (after a pause in the typing): ask the editor to
-        ask again for code lenses and inlay hints, when it supports being asked."""
-        self.refresh(("code_lens", self.workspace_code_lens_refresh),
-                     ("inlay_hint", self.workspace_inlay_hint_refresh))
+        """A document's program memory is priced or its cycle time run (after a pause in the
+        typing): ask the editor to ask again for code lenses, and for inlay hints when there is
+        program memory (the hints show nothing else), when it supports being asked."""
+        asks = [("code_lens", self.workspace_code_lens_refresh)]
+        if snap.memory is not None:
+            asks.append(("inlay_hint", self.workspace_inlay_hint_refresh))
+        self.refresh(*asks)
 
     def report_server_error(self, error, source) -> None:  # log; never pop up a message per failure
         log.warning("request failed (%s): %s", getattr(source, "__name__", source), error)

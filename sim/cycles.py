@@ -19,6 +19,10 @@ class Timing:
     cycles: list[float] = field(default_factory=list)  # seconds, each complete pass of the main loop
     calls: dict[str, list[float]] = field(default_factory=dict)  # routine -> seconds of each call
     moves_per_cycle: int = 0  # moves started in the first complete cycle
+    loop: str = ""  # the label of the main loop's header (empty: the main routine has no loop)
+    loop_entered: float | None = None  # when the main loop was first entered
+    ran: float = 0.0  # virtual seconds the run lasted (a cycle not complete by then is longer)
+    stopped: str = ""  # why the run stopped (Trace.stopped: "time-limit", "step-limit", "waiting", "end", ...)
 
     def summary(self) -> list[str]:
         lines = []
@@ -32,11 +36,12 @@ class Timing:
 
 
 def timing(trace: Trace) -> Timing:
-    out = Timing()
+    out = Timing(ran=trace.time, stopped=trace.stopped)
     marks = trace.cycle_marks
     if marks:
         outer = outermost(marks)
         times = [t for label, t in marks if label == outer]
+        out.loop, out.loop_entered = outer, times[0]
         out.cycles = [round(b - a, 9) for a, b in zip(times, times[1:])]
         if len(times) >= 2:
             out.moves_per_cycle = sum(1 for e in trace.events if e.kind == "move" and times[0] <= e.t < times[1])

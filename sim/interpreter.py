@@ -21,7 +21,7 @@ import math
 from dataclasses import dataclass
 from decimal import Decimal
 
-from mcc.compiler import ir, ir_names, ir_print, ir_verify
+from mcc.compiler import cancel, ir, ir_names, ir_print, ir_verify
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.span import Span
 from mcc.sim import values
@@ -43,6 +43,7 @@ HANDLER_CHAIN = {"error": ("error",), "fault": ("fault", "error"), "stall": ("st
 DEFAULT_CAPTURE_INPUT = 1  # MCode: the capture input is input 1 (L781, L5607)
 CONTINUOUS = frozenset({"position", "encoder", "velocity", "measured_velocity", "moving", "moving_to_position"})  # readings that change between events
 QUIET_KINDS = frozenset({"call", "return", "goto", "native"})
+CANCEL_EVERY = 4096  # steps between two cancellation checkpoints (compiler/cancel.py)
 POLL_RECHECK = 50  # steps without a change that show a loop is still polling after a poll
 ROUND_STATES = 256  # states a loop may cycle through and still count as changing nothing
 
@@ -513,6 +514,8 @@ class Simulator:
                 self.observer("step", frame, ops[frame.index] if frame.index < len(ops) else frame.block.terminator)
             self.went_back = False
             self.trace.steps += 1
+            if not self.trace.steps % CANCEL_EVERY:
+                cancel.checkpoint()  # the editor's run of a stale version stops (lsp/cycles.py)
             if polling:
                 self.poll_steps += 1
             if self.trace.steps - self.poll_steps > self.options.max_steps:

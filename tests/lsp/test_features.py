@@ -358,8 +358,10 @@ async def test_program_memory_as_code_lens_and_inlay_hints(client, dialect, unit
     # lenses (VS Code's capabilities declare that it can be asked for lenses, not for inlay hints)
     assert client.refreshed == ["codeLens"]
     lenses = await client.text_document_code_lens_async(t.CodeLensParams(doc.id()))
-    titles = [lens.command.title for lens in lenses]
-    assert all(unit in title and "% of" in title for title in titles)
+    # the lenses are the memory figures and, since issue 27, the cycle time of the main loop and
+    # of each called subroutine ("cycle ...", "call ...": tests/lsp/test_cycle_lens.py)
+    titles = [lens.command.title for lens in lenses if not lens.command.title.startswith(("cycle ", "call "))]
+    assert titles and all(unit in title and "% of" in title for title in titles)
     assert [title.split(":")[0] for title in titles[1:]] == routines
     hints = await client.text_document_inlay_hint_async(t.InlayHintParams(
         doc.id(), t.Range(t.Position(0, 0), t.Position(100, 0))))

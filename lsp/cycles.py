@@ -1,0 +1,119 @@
+"""Cycle time in the editor (issue 27): a code lens on the line of the loop that forms the main
+cycle ("cycle 1.600 s, 1 moves") and on each subroutine's first line ("call 0.250 s").
+
+The figures come from the same bounded run `mcc compile` prints its cycle from
+(`sim.cycles.bounded_timing`: 30 virtual seconds, every input low, at most 200,000 steps), run in
+the analysis worker after the pause in the typing that prices the program memory, and stopped at
+the simulator's next checkpoint when a newer edit arrives. A main loop entered but not closed
+within the run says "cycle > N s" (N the virtual seconds the loop ran); a loop that only polls an
+input the run keeps low says so; a main loop the program leaves, and a subroutine the run never
+called, have no lens. A file with errors cannot be simulated: the last figures stay, moved to
+the lines that now hold the same text (like the memory lenses, so they do not flicker while the
+user types).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass
+class Lens:
+    line: int  # 1-based
+    text: str  # the source line's text (stripped): where a carried lens goes in a later version
+    title: str
+
+
+@dataclass
+class Cycles:
+    lenses: list[Lens] = field(default_factory=list)
+
+
+def timed(snap) -> bool:
+    """Whether there is a program to simulate (no errors, a module)."""
+    return snap.module is not None and not snap.check_errors
+
+
+def cycles(snap) -> Cycles | None:
+    """The lenses of a bounded run of the snapshot's program (None when it cannot run)."""
+    if not timed(snap):
+        return None
+    from mcc.compiler import dialects, driver
+    from mcc.sim.cycles import bounded_timing
+
+    try:
+        profile = driver.profile_for(dialects.get(snap.dialect), snap.profile)
+    except Exception:  # noqa: BLE001 - the simulator runs without a profile
+        profile = None
+    try:
+        found = bounded_timing(snap.module, profile)
+    except Exception:  # noqa: BLE001 - no cycle figures is better than no editor
+        return None
+    if found is None:
+        return None
+    out = Cycles()
+    line = loop_line(snap.module, found.loop)
+    title = cycle_title(found)
+    if line is not None and title:
+        out.lenses.append(Lens(line, snap.source.line_text(line).strip(), title))
+    lines = {routine.name: first_line(snap, routine.span) for routine in snap.module.routines
+             if routine.span is not None}
+    for name, times in sorted(found.calls.items()):
+        if name in lines:
+            first = lines[name]
+            out.lenses.append(Lens(first, snap.source.line_text(first).strip(), f"call {max(times):.3f} s"))
+    return out
+
+
+def cycle_title(found) -> str:
+    """What the main loop's lens says: its first complete pass; "cycle > N s" when the run's bound
+    came before the loop closed; that it waits when it only polls an input that stays low; nothing
+    when the loop ended without closing (the program leaves it)."""
+    # a loop that only polls an input: passes of no time, then the simulator gives up waiting
+    polls = found.stopped == "waiting" and bool(found.cycles) and found.cycles[0] == 0 and found.moves_per_cycle == 0
+    if found.cycles and not polls:
+        return f"cycle {found.cycles[0]:.3f} s, {found.moves_per_cycle} moves"
+    if found.stopped == "waiting":
+        return "cycle: waits for an input (all inputs low)"
+    if found.stopped in ("time-limit", "step-limit") and found.loop_entered is not None:
+        return f"cycle > {found.ran - found.loop_entered:.1f} s"
+    return ""
+
+
+def first_line(snap, span) -> int:
+    """A subroutine's first line as the editor model (and the memory lens) has it: the routine of
+    the outline that starts within the IR routine's span (an X150 sequence's XD line, where the IR
+    routine starts at the XE that erases it first), else the IR routine's own first line."""
+    for routine in snap.index.routines:
+        if span.line <= routine.span.line <= span.end_line:
+            return routine.span.line
+    return span.line
+
+
+def loop_line(module, label: str) -> int | None:
+    """The source line of the main loop's header block."""
+    if not label:
+        return None
+    for routine in module.routines:
+        for block in routine.blocks:
+            if block.label == label and block.span is not None:
+                return block.span.line
+    return None
+
+
+def carried(previous: Cycles | None, snap) -> Cycles | None:
+    """The previous version's lenses on the lines of this version that hold the same text (the
+    nearest such line to where it was); a lens whose line is gone is dropped."""
+    if previous is None:
+        return None
+    lines = snap.text.split("\n")
+    where: dict[str, list[int]] = {}
+    for number, text in enumerate(lines, 1):
+        where.setdefault(text.strip(), []).append(number)
+    out = Cycles()
+    for lens in previous.lenses:
+        candidates = where.get(lens.text)
+        if candidates:
+            line = min(candidates, key=lambda n: abs(n - lens.line))
+            out.lenses.append(Lens(line, lens.text, lens.title))
+    return out
