@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from mcc.compiler import dialects, ir
+from mcc.compiler import ir
 from mcc.compiler.span import Span
 
 CODE = "G040"
@@ -38,14 +38,12 @@ EXAMPLE = {"floor": "-4 (rounded down)", "truncate": "-3 (truncated toward zero)
 
 def rounding(profile, dialect: str) -> str:
     """How the product rounds an integer quotient: the profile's `[machine.arithmetic]
-    integer_division`, else `exact` for a dialect whose variables are decimal (X150), else
-    `truncate` (the simulator's default, sim/interpreter.py)."""
+    integer_division` (`floor`, `truncate`, or `exact` for decimal variables, the X150's), else
+    `truncate` (the simulator's default, sim/interpreter.py). `dialect` names the product's
+    language for the messages; the rule itself is the profile's data."""
     table = profile.get("machine.arithmetic", {}) if profile is not None else {}
     rule = table.get("integer_division") if isinstance(table, dict) else None
-    known = dialects.DIALECTS.get(dialect)
-    if known is not None and known.variable_type == "decimal":
-        return EXACT
-    return str(rule) if rule in ("floor", "truncate") else "truncate"
+    return str(rule) if rule in ("floor", "truncate", EXACT) else "truncate"
 
 
 @dataclass(frozen=True)

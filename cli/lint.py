@@ -262,6 +262,8 @@ def exit_code(outcomes, failing: dict[str, str], override: str | None) -> int:
 
 def machine_report(entries, fmt: str, rules_url: str | None = None) -> bool:
     """The formats `mcc check` and `mcc lint` share (besides text and json): print and answer True."""
+    if fmt not in ("sarif", "github", "gitlab", "junit"):
+        return False  # text and json: the caller's (nothing here to import for them)
     from mcc.cli import render
     from mcc.compiler.lint import output
 

@@ -15,7 +15,6 @@ from typing import Any
 
 from mcc.compiler import dialects
 from mcc.compiler import ir
-from mcc.compiler.mcode import migrate
 from mcc.compiler.analysis import Analysis
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics
 from mcc.compiler.profiles import Profile
@@ -344,7 +343,11 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         own = result.target == result.dialect and result.profile is not None and source_profile is None
         target_profile = result.profile if own else profile_for(target_dialect, profile)
         module = analysis.module
-        migrating = source_profile is not None and migrate.differs(source_profile, target_profile)
+        migrating = False
+        if source_profile is not None:
+            from mcc.compiler.mcode import migrate  # only a migration needs it (and its imports)
+
+            migrating = migrate.differs(source_profile, target_profile)
         if migrating:
             module = migrate.migrate(module, source_profile, target_profile, diags)
             if diags.has_errors:
