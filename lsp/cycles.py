@@ -16,6 +16,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from mcc.sim.cycles import cycle_title  # the lens says what `mcc compile` prints
+
 
 @dataclass
 class Lens:
@@ -63,21 +65,6 @@ def cycles(snap) -> Cycles | None:
             first = lines[name]
             out.lenses.append(Lens(first, snap.source.line_text(first).strip(), f"call {max(times):.3f} s"))
     return out
-
-
-def cycle_title(found) -> str:
-    """What the main loop's lens says: its first complete pass; "cycle > N s" when the run's bound
-    came before the loop closed; that it waits when it only polls an input that stays low; nothing
-    when the loop ended without closing (the program leaves it)."""
-    # a loop that only polls an input: passes of no time, then the simulator gives up waiting
-    polls = found.stopped == "waiting" and bool(found.cycles) and found.cycles[0] == 0 and found.moves_per_cycle == 0
-    if found.cycles and not polls:
-        return f"cycle {found.cycles[0]:.3f} s, {found.moves_per_cycle} moves"
-    if found.stopped == "waiting":
-        return "cycle: waits for an input (all inputs low)"
-    if found.stopped in ("time-limit", "step-limit") and found.loop_entered is not None:
-        return f"cycle > {found.ran - found.loop_entered:.1f} s"
-    return ""
 
 
 def first_line(snap, span) -> int:

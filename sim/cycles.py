@@ -120,3 +120,18 @@ def bounded_timing(module, profile=None) -> Timing | None:
     trace, _ = simulate_module(module, module.path, None,
                                Options(until=BOUNDED_UNTIL, max_steps=BOUNDED_STEPS, samples=False), profile)
     return timing(trace) if trace is not None else None
+
+
+def cycle_title(found) -> str:
+    """What `mcc compile` and the language server's lens say of the main loop: its first complete pass; "cycle > N s" when the run's bound
+    came before the loop closed; that it waits when it only polls an input that stays low; nothing
+    when the loop ended without closing (the program leaves it)."""
+    # a loop that only polls an input: passes of no time, then the simulator gives up waiting
+    polls = found.stopped == "waiting" and bool(found.cycles) and found.cycles[0] == 0 and found.moves_per_cycle == 0
+    if found.cycles and not polls:
+        return f"cycle {found.cycles[0]:.3f} s, {found.moves_per_cycle} moves"
+    if found.stopped == "waiting":
+        return "cycle: waits for an input (all inputs low)"
+    if found.stopped in ("time-limit", "step-limit") and found.loop_entered is not None:
+        return f"cycle > {found.ran - found.loop_entered:.1f} s"
+    return ""
