@@ -19,47 +19,22 @@ import re
 import shutil
 import signal
 import subprocess
-import sys
 import time
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-EXTENSION = ROOT / "editors" / "vscode"
-VSIX = EXTENSION / "mcc-motion.vsix"
-INSTALL_SCRIPT = EXTENSION / "tests" / "codeserver" / "install.sh"
-CODE_SERVER = Path(os.environ.get(
-    "MCC_CODE_SERVER", EXTENSION / "tests" / "codeserver" / "node_modules" / "code-server" / "out" / "node" / "entry.js"))
-NODE20 = sorted((EXTENSION / "tests" / "codeserver" / "node20" / "node_modules").glob("node-linux-*/bin/node"))
-NODE = str(NODE20[0]) if NODE20 else shutil.which("node")
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-sync",
-                 "--disable-background-networking", "--disable-component-update"]
-MCC = Path(sys.executable).parent / "mcc"
+from codeserver_tools import (CHROMIUM, CHROMIUM_ARGS, CODE_SERVER, INSTALL_SCRIPT, MCC, NODE,  # noqa: F401
+                              ROOT, VSIX, missing_tools)
+
 FIXTURE = Path(__file__).parent / "fixtures" / "loop.mxt"
 WAIT = 45_000  # ms
 
 
-def missing() -> list[str]:
-    found = []
-    if NODE is None:
-        found.append("node")
-    if not CODE_SERVER.is_file():
-        found.append("code-server")
-    if not Path(CHROMIUM).is_file():
-        found.append("chromium")
-    try:
-        import playwright.sync_api  # noqa: F401
-    except ImportError:
-        found.append("playwright (Python)")
-    if not VSIX.is_file():
-        found.append("editors/vscode/mcc-motion.vsix (npm run ci)")
-    return found
 
 
 def require_tools() -> None:
-    absent = missing()
+    absent = missing_tools()
     if absent:
         message = f"the VS Code debugging test needs {', '.join(absent)}"
         if os.environ.get("CI") and INSTALL_SCRIPT.is_file():

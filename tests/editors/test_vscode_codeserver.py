@@ -18,55 +18,25 @@ import re
 import shutil
 import signal
 import subprocess
-import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[2]
-EXTENSION = ROOT / "editors" / "vscode"
-VSIX = EXTENSION / "mcc-motion.vsix"
-CODE_SERVER = Path(os.environ.get(
-    "MCC_CODE_SERVER", EXTENSION / "tests" / "codeserver" / "node_modules" / "code-server" / "out" / "node" / "entry.js"))
-CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
-# install.sh puts Node.js 20 (code-server's) in node20/ where the machine's node is another version
-NODE20 = sorted((EXTENSION / "tests" / "codeserver" / "node20" / "node_modules").glob("node-linux-*/bin/node"))
-NODE = str(NODE20[0]) if NODE20 else shutil.which("node")
+from codeserver_tools import CHROMIUM, CHROMIUM_ARGS, CODE_SERVER, MCC, NODE, ROOT, VSIX, missing_tools
+
 # The pictures in docs/EDITORS.md: written there with MCC_VSCODE_SCREENSHOTS=1, else beside the workspace.
 DOC_IMAGES = ROOT / "docs" / "images"
 INSTALL = ("bash editors/vscode/tests/codeserver/install.sh (code-server, Chromium, Playwright), then "
            "cd editors/vscode && npm ci && npm run ci (the .vsix)")
-# The flags the machine needs: without the background-networking ones Chromium keeps trying hosts
-# this closed network refuses.
-CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-sync",
-                 "--disable-background-networking", "--disable-component-update"]
-MCC = Path(sys.executable).parent / "mcc"
 WAIT = 45_000  # ms: the longest any one step may take (the first analysis starts the server)
 
 
-def _missing() -> list[str]:
-    missing = []
-    if NODE is None:
-        missing.append("node")
-    if not CODE_SERVER.is_file():
-        missing.append(f"code-server ({CODE_SERVER})")
-    if not Path(CHROMIUM).is_file():
-        missing.append("chromium")
-    try:
-        import playwright.sync_api  # noqa: F401
-    except ImportError:
-        missing.append("playwright (Python)")
-    if not VSIX.is_file():
-        missing.append(f"the extension package {VSIX.relative_to(ROOT)}")
-    if not MCC.is_file():
-        missing.append(f"mcc in this environment ({MCC})")
-    return missing
 
 
 def _require_tools() -> None:
-    missing = _missing()
+    missing = missing_tools()
     if missing:
         message = f"the VS Code test needs {', '.join(missing)}: run {INSTALL}"
         if os.environ.get("CI"):
