@@ -89,6 +89,7 @@ class X150Device(VirtualDevice):
         self.capacity = capacity
         self.sim = DeviceMachine("x150", run_limit)
         self.stepping: dict[str, Stepping] = {}   # address -> its sequence in single-step mode
+        self.running = ""                          # the address whose sequence is the device's program
         for unit in self.units.values():
             unit.saved = self.snapshot(unit)
 
@@ -239,7 +240,7 @@ class X150Device(VirtualDevice):
 
     def do_R(self, unit: Unit, arg: str) -> list[str]:
         function_error = unit.xsr == "2"
-        running = self.sim.status == "running" or unit.address in self.sim.moving
+        running = self.sim.status == "running" or self.sim.is_moving(unit.address)   # now, on the clock
         return [("*B" if running else "*R") if not function_error else ("*C" if running else "*S")]
 
     def do_PR(self, unit: Unit, arg: str) -> list[str]:
@@ -247,7 +248,9 @@ class X150Device(VirtualDevice):
         `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/neutral.py)."""
         module = module_of("x150", f"{unit.address}PR\n")
         outcome = self.sim.run(module, None, program=False) if module is not None else None
-        return [text.rstrip("\n") for text in outcome.prints] if outcome is not None else []
+        # the counter counts whole steps: read during a sequence's move it is a whole number too
+        return [re.sub(r"([+-]?\d+\.\d+)", lambda m: str(round(float(m.group(1)))), text.rstrip("\n"))
+                for text in outcome.prints] if outcome is not None else []
 
     def do_IS(self, unit: Unit, arg: str) -> list[str]:
         """Input status (L2173-L2178): the 7 dedicated inputs (none active on a virtual device),
@@ -292,6 +295,18 @@ class X150Device(VirtualDevice):
         return new
 
     # -- the simulator's machine ----------------------------------------------------------
+    def synchronise(self) -> None:
+        """The variables the running sequence changed are what `VARn` reads (on the unit that ran it)."""
+        unit = self.units.get(self.running)
+        if unit is not None and self.sim.generation != self.synced:
+            self.synced = self.sim.generation
+            self.take_variables(unit)
+
+    def take_variables(self, unit: Unit) -> None:
+        for name, value in self.sim.variables.items():
+            if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
+                unit.variables[int(name[3:])] = float(value)
+
     def on_machine(self, unit: Unit, text: str, word: str) -> list[str]:
         """Run a command on the machine, after the unit's context; a sequence run (XR, XG, GOSUB,
         GOTO) also compiles the unit's sequences and is the device's program. Returns the lines
@@ -336,9 +351,9 @@ class X150Device(VirtualDevice):
             self.sim.run(module, None, program=True, commands=0)
             return []
         outcome = self.sim.run(module, None, program=program)
-        for name, value in self.sim.variables.items():
-            if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
-                unit.variables[int(name[3:])] = float(value)
+        if program:
+            self.running = unit.address
+        self.take_variables(unit)
         if program and outcome.status == "error":
             unit.xsr = "2"
         return [line for text in outcome.prints for line in text.splitlines()]
