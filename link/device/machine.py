@@ -162,9 +162,11 @@ class DeviceMachine:
         self.slewing: dict[str, float] = {}   # axis -> velocity of every slew, live or frozen
         self.generation = 0                   # bumped each time a run went on: the devices' state to update
         self.outbox: list[str] = []           # what runs printed since the device last answered
+        self.begun: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # run -> the clock it started at
         self.sent: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # run -> its prints in the outbox
         self.busy_until = 0.0                 # when the last run's program, moves and delays ended
-        self.first_start: float | None = None  # when the first run started (a case's duration)
+        self.first_start: float | None = None  # when the first run started
+        self.first_program: float | None = None  # when the first program started (a case's duration)
         self.last: Trace | None = None       # the trace of the last run started
         self.traces: list[Trace] = []         # the trace of every run started (their output events)
         self.outcome: Outcome | None = None   # how the last run (a program or a command) ended
@@ -304,11 +306,14 @@ class DeviceMachine:
         simulator.slewing.update({a: v for a, v in self.slewing.items() if self.is_slewing(a)})
         self.last = simulator.trace
         self.traces.append(simulator.trace)
+        self.begun[simulator] = self.clock
         if self.first_start is None:
             self.first_start = self.clock
         if commands is None and self.live is not None and not self.live_program and not self.live.ended:
             self._wait_for(self.live)   # the command before it still runs: this one waits its turn
         if program:
+            if self.first_program is None:
+                self.first_program = self.clock
             self.moving.clear()   # a held program's frozen axes: the new program starts from rest
             self.status, self.reason = "running", ""
             self.live, self.live_program, self.started_at = simulator, True, self.clock
@@ -354,8 +359,11 @@ class DeviceMachine:
         sent = self.sent.get(simulator, 0)
         self.outbox += [text for _t, text in printed[sent:]]
         self.sent[simulator] = len(printed)
+        # busy: until the moves end, and while a run goes on past the time it began (a zero-time
+        # command, a query, is not busy)
         ends = [a.motion.t_end for a in self.machine.axes.values() if a.motion is not None and a.motion.t_end < INF]
-        self.busy_until = max(self.busy_until, simulator.now if not simulator.ended else simulator.end_time, *ends)
+        last = simulator.end_time if simulator.ended else simulator.now
+        self.busy_until = max(self.busy_until, last if last > self.begun.get(simulator, last) else 0.0, *ends)
         return stopped
 
     def _slews(self, axis: str) -> bool:
