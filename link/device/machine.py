@@ -276,14 +276,16 @@ class DeviceMachine:
         self.live, self.live_program = None, False
 
     def run(self, module: ir.Module, entry: tuple[str, str | None] | None = None, program: bool = True,
-            commands: int | None = None) -> Outcome:
+            commands: int | None = None, buffered: bool = False) -> Outcome:
         """Start `module` from `entry` (see `starting_at`) at the clock, on the device's machine and
         variables. `program`: this run is the device's program: it replaces the one running and
         goes on across commands (its end sets the program's status). Otherwise it is an immediate
         command: it runs until it ends, the device answering once it has (a move on a busy axis
         waits for the axis, L177 for the X150, decision 0010), and the moves it started go on; while
         a program runs, a command that would have to wait is not made. `commands`: single step,
-        the program runs that many of its commands and is held (X150 XST1)."""
+        the program runs that many of its commands and is held (X150 XST1). `buffered`: the
+        command waits in the device's buffer until the program running has ended (X150 buffered
+        commands "executed in sequential order", parker-x150.md L177; the catalog's `exec`)."""
         module = starting_at(module, entry)
         for name in variables_used(module):
             if name not in self.variables:
@@ -309,6 +311,8 @@ class DeviceMachine:
         self.begun[simulator] = self.clock
         if self.first_start is None:
             self.first_start = self.clock
+        if buffered and self.live_program and self.live is not None:
+            self._wait_for_program()
         if commands is None and self.live is not None and not self.live_program and not self.live.ended:
             self._wait_for(self.live)   # the command before it still runs: this one waits its turn
         if program:
@@ -380,6 +384,12 @@ class DeviceMachine:
         if stopped != "end":   # it never ends (a slew it waits for, a delay past the run limit)
             self.live = None
             self._freeze(keep=True)
+
+    def _wait_for_program(self) -> None:
+        """The clock moves on until the running program ends (or is held at its run limit)."""
+        live = self.live
+        stopped = self._drive(live, self.started_at + self.run_limit)
+        self.clock = max(self.clock, live.end_time if stopped == "end" else live.now)
 
     def _drive(self, simulator: Simulator, t: float) -> str | None:
         """The live run goes on to `t`; a program is held at its run limit, or when it waits for

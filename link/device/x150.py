@@ -39,6 +39,14 @@ def mnemonics() -> tuple[str, ...]:
 
 
 @lru_cache(maxsize=None)
+def buffered(word: str) -> bool:
+    """A buffered command (the catalog's `exec = "B"`): it waits for the sequence running to end
+    ("stored in the command buffer and executed in sequential order", L177); an immediate one runs
+    at once."""
+    return any(e.name == word and e.get("exec") == "B" for e in catalog.load("x150").entries)
+
+
+@lru_cache(maxsize=None)
 def device_specific() -> frozenset[str]:
     """Commands that "require a device address for execution" (L181: every report among them)."""
     return frozenset(e.name for e in catalog.load("x150").entries if e.get("address") == "D")
@@ -247,7 +255,7 @@ class X150Device(VirtualDevice):
         """The absolute position counter (L3141-L3144: `*-25600`, `*+4000`), as the simulator prints
         `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/neutral.py)."""
         module = module_of("x150", f"{unit.address}PR\n")
-        outcome = self.sim.run(module, None, program=False) if module is not None else None
+        outcome = self.sim.run(module, None, program=False, buffered=True) if module is not None else None
         # the counter counts whole steps: read during a sequence's move it is a whole number too
         return [re.sub(r"([+-]?\d+\.\d+)", lambda m: str(round(float(m.group(1)))), text.rstrip("\n"))
                 for text in outcome.prints] if outcome is not None else []
@@ -350,7 +358,7 @@ class X150Device(VirtualDevice):
             self.stepping[unit.address] = Stepping(module, self.sim.snapshot())
             self.sim.run(module, None, program=True, commands=0)
             return []
-        outcome = self.sim.run(module, None, program=program)
+        outcome = self.sim.run(module, None, program=program, buffered=buffered(word))
         if program:
             self.running = unit.address
         self.take_variables(unit)

@@ -32,7 +32,7 @@ def waited(device) -> float:
     """The host waits until every move has ended; how long the device was busy from its first run."""
     device.elapse(RUN_LIMIT)
     start = device.sim.first_start
-    return 0.0 if start is None else device.sim.busy_until - start
+    return 0.0 if start is None else max(device.sim.busy_until, start) - start
 
 
 def reply_lines(device, command: bytes) -> list[bytes]:
