@@ -10,6 +10,7 @@ import socket
 import time
 
 import pytest
+from linkhelpers import serve  # noqa: F401  (serve: fixture)
 
 from mcc.link.device.arcus import ArcusDevice
 from mcc.link.device.machine import timing
@@ -145,3 +146,19 @@ def test_the_server_lets_the_hosts_silence_pass_as_time():
             assert exchange(sock, b"PR MP\r") == b"PR MP\r\n1\r\n>" or device.sim.clock > 7.4
             time.sleep(0.5)
             assert exchange(sock, b"PR P\r") == b"PR P\r\n5120000\r\n>"
+
+
+def test_mcc_send_reads_its_reply_after_what_a_running_program_printed(serve):
+    """A drive sends a running program's PR output as it runs (lexium-mcode.txt L4895): a host's
+    next reply comes after those lines, and mcc's link reads its own reply past them."""
+    from linkhelpers import mcc
+
+    device = MCodeDevice()
+    for line in ["PG 1", "LB GO", "MR 100000", "H", "PR P", "E", "PG"]:
+        device.feed(f"{line}\r".encode())
+    server = serve(device)
+    assert mcc("send", "--port", server.url, "--dialect", "mcode", "EX GO").returncode == 0
+    device.elapse(2.0)   # the program's move ends and it prints while the host is silent
+    result = mcc("send", "--port", server.url, "--dialect", "mcode", "PR BY", "PR P")
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert result.stdout.splitlines() == ["PR BY: 0", "PR P: 100000"]
