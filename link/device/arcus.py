@@ -282,8 +282,10 @@ class ArcusDevice(VirtualDevice):
             self.run()
         elif code == "2" and self.state == "1":
             self.paused = True
+            self.sim.pause()    # the program stops where it is until SR=3 (L1626-L1632)
         elif code == "3" and self.state == "2":
             self.paused = False
+            self.sim.resume()
         return "OK"
 
     # -- the standalone program on the simulator's machine ------------------------------------

@@ -155,6 +155,7 @@ class DeviceMachine:
         self.live: Simulator | None = None    # the run that goes on across commands
         self.live_program = False             # `live` is the device's program
         self.started_at = 0.0                 # when the live program started (its run limit counts from there)
+        self.paused_at: float | None = None   # when the live program was paused
         self.motion_ids = 0                   # one numbering of moves for every run on the machine
         # a held program's machine is frozen: the axes that were moving, with their speed, and the
         # slews among them (reported moving until a stop)
@@ -181,9 +182,24 @@ class DeviceMachine:
         """The clock moves on to `t`; the live program runs on (its moves end, its delays pass)."""
         if t <= self.clock:
             return
+        if self.paused_at is not None and self.live_program:
+            self.clock = t   # a paused program does not go on (its moves do, on their own)
+            return
         if self.live is not None:
             self._drive(self.live, t)
         self.clock = max(self.clock, t)
+
+    def pause(self) -> None:
+        """The program stops executing where it is (Arcus SR=2); the moves under way go on."""
+        if self.live_program and self.paused_at is None:
+            self.paused_at = self.clock
+
+    def resume(self) -> None:
+        """The paused program goes on (Arcus SR=3): what was due while it was paused happens now,
+        and its run limit counts only the time it ran."""
+        if self.paused_at is not None:
+            self.started_at += self.clock - self.paused_at
+            self.paused_at = None
 
     def transmit(self, characters: int) -> None:
         """`characters` cross the serial line (a command in, a reply out) at the link's baud rate."""
@@ -254,7 +270,7 @@ class DeviceMachine:
     def stop(self) -> None:
         """The program is stopped (a stop command): it no longer runs and the axes stop where they
         are now."""
-        self.status, self.reason = "idle", "stopped"
+        self.status, self.reason, self.paused_at = "idle", "stopped", None
         self.live, self.live_program = None, False
         self._freeze(keep=False)
         self.moving.clear()
@@ -319,7 +335,7 @@ class DeviceMachine:
             if self.first_program is None:
                 self.first_program = self.clock
             self.moving.clear()   # a held program's frozen axes: the new program starts from rest
-            self.status, self.reason = "running", ""
+            self.status, self.reason, self.paused_at = "running", "", None
             self.live, self.live_program, self.started_at = simulator, True, self.clock
             # single step: the commands let run go to their end at once (the host waits for them)
             stopped = self._drive(simulator, self.clock + (self.run_limit if commands is not None else 0.0))

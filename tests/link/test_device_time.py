@@ -162,3 +162,17 @@ def test_mcc_send_reads_its_reply_after_what_a_running_program_printed(serve):
     result = mcc("send", "--port", server.url, "--dialect", "mcode", "PR BY", "PR P")
     assert result.returncode == 0, result.stdout + result.stderr
     assert result.stdout.splitlines() == ["PR BY: 0", "PR P: 100000"]
+
+
+def test_arcus_a_paused_program_does_not_go_on_until_it_is_continued():
+    """SR=2 pauses the standalone program and SR=3 continues it (arcus-pmx-4ex-sa.txt L1626-L1632;
+    SASTAT 2 while paused): paused longer than its DELAY, it has not gone on past it; continued,
+    it does."""
+    device = ArcusDevice()
+    device.load_program("V1=1\nDELAY=500\nV1=2\nEND\n")
+    assert answer(device, "SR=1") == "OK" and answer(device, "SR=2") == "OK"
+    device.elapse(2.0)
+    assert (answer(device, "SASTAT"), answer(device, "V1")) == ("2", "1")
+    assert answer(device, "SR=3") == "OK"
+    device.elapse(1.0)
+    assert (answer(device, "SASTAT"), answer(device, "V1")) == ("0", "2")
