@@ -147,7 +147,7 @@ class ArcusDevice(VirtualDevice):
             if match.group(2) is None:
                 return str(self.variables[n])
             self.variables[n] = int(match.group(2))
-            self.sim.variables[f"V{n}"] = self.variables[n]   # what the next run reads
+            self.sim.write(f"V{n}", self.variables[n])   # what the running program and the next run read
             return "OK"
         match = re.fullmatch(r"SR=([0-3])", upper)
         if match:

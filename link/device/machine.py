@@ -209,6 +209,13 @@ class DeviceMachine:
         """A command's execution time passes (the profile's `[device] command_time`, L6821)."""
         self.elapse(self.command_time)
 
+    def write(self, name: str, value) -> None:
+        """The host sets a variable: the device's table, and the running program's, hold it."""
+        self.variables[name] = values.plain(value) if not isinstance(value, str) else value
+        live = self.live
+        if live is not None and self.live_program and name in live.vars and live.vars[name] != value:
+            live.set_variable(name, value)
+
     def take_output(self) -> list[str]:
         """What the runs printed that the host has not received yet (sent with the next reply)."""
         out, self.outbox = self.outbox, []
@@ -343,6 +350,8 @@ class DeviceMachine:
             stopped = self._step(simulator, self.clock)   # no time passes for it: it does not wait
             if stopped == "end":
                 self.live.adopt()   # the program's run lets the moves this command started end
+            for name, value in simulator.vars.items():   # what it assigned, the program reads too
+                self.write(name, value)
         else:
             stopped = self._step(simulator, self.clock)
             if stopped in (None, "end"):

@@ -274,6 +274,7 @@ class X150Device(VirtualDevice):
         if match.group(2) is None:
             return [f"* {unit.variables.get(n, 0.0):.4f}"]
         unit.variables[n] = float(match.group(2))
+        self.sim.write(f"VAR{n}", unit.variables[n])   # the running sequence reads it too
         return []
 
     # -- single step --------------------------------------------------------------------------

@@ -176,3 +176,31 @@ def test_arcus_a_paused_program_does_not_go_on_until_it_is_continued():
     assert answer(device, "SR=3") == "OK"
     device.elapse(1.0)
     assert (answer(device, "SASTAT"), answer(device, "V1")) == ("0", "2")
+
+
+def test_a_variable_the_host_sets_is_what_the_running_program_reads():
+    """The host writes a standalone variable while the program runs (V[n]=value, arcus-pmx-4ex-sa.txt
+    L1705): the program, waiting for it in a loop, reads the new value and ends."""
+    device = ArcusDevice()
+    device.load_program("V1=0\nWHILE V1=0\nDELAY=10\nENDWHILE\nV2=7\nEND\n")
+    assert answer(device, "SR=1") == "OK"
+    device.elapse(1.0)
+    assert answer(device, "SASTAT") == "1"
+    assert answer(device, "V1=1") == "OK"
+    device.elapse(0.1)
+    assert (answer(device, "SASTAT"), answer(device, "V2")) == ("0", "7")
+
+
+def test_mcode_a_register_the_host_sets_is_what_the_running_program_reads():
+    """An immediate assignment while a program runs (R1=1; R1-R4, the user
+    registers, lexium-mcode.txt L5063) changes the register the program reads: it leaves its
+    waiting loop (BR, L805)."""
+    device = MCodeDevice()
+    for line in ["PG 1", "LB GO", "R1=0", "LB W1", "H 10", "BR W1, R1=0", "R2=7", "E", "PG"]:
+        assert device.feed(f"{line}\r".encode()).endswith(b">")
+    assert answer(device, "EX GO") == ""
+    device.elapse(1.0)
+    assert answer(device, "PR BY") == "1"
+    assert answer(device, "R1=1") == ""
+    device.elapse(0.1)
+    assert (answer(device, "PR BY"), answer(device, "PR R2")) == ("0", "7")
