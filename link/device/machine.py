@@ -303,9 +303,10 @@ class DeviceMachine:
         """Start `module` from `entry` (see `starting_at`) at the clock, on the device's machine and
         variables. `program`: this run is the device's program: it replaces the one running and
         goes on across commands (its end sets the program's status). Otherwise it is an immediate
-        command: it runs until it ends, the device answering once it has (a move on a busy axis
-        waits for the axis, L177 for the X150, decision 0010), and the moves it started go on; while
-        a program runs, a command that would have to wait is not made. `commands`: single step,
+        command: it runs at the clock and is answered at once; the moves it started go on, and if
+        it has to wait (a move on a busy axis, decision 0010; an X150 G waiting for its move) it
+        goes on too, the next command that runs on the machine waiting for it (L177 for the X150).
+        While a program runs, an immediate command that would have to wait is not made. `commands`: single step,
         the program runs that many of its commands and is held (X150 XST1). `buffered`: the
         command waits in the device's buffer until the program running has ended (X150 buffered
         commands "executed in sequential order", parker-x150.md L177; the catalog's `exec`)."""
@@ -406,9 +407,8 @@ class DeviceMachine:
         X150 runs buffered commands "in sequential order", L177): the clock moves on meanwhile."""
         stopped = self._step(simulator, self.clock + self.run_limit)
         self.clock = max(self.clock, simulator.now)
-        if stopped != "end":   # it never ends (a slew it waits for, a delay past the run limit)
-            self.live = None
-            self._freeze(keep=True)
+        if stopped != "end":   # it never ends (a slew it waits for, a delay past the run limit):
+            self.live = None   # given up; the moves under way go on (the next run adopts them)
 
     def _wait_for_program(self) -> None:
         """The clock moves on until the running program ends (or is held at its run limit)."""

@@ -204,3 +204,22 @@ def test_mcode_a_register_the_host_sets_is_what_the_running_program_reads():
     assert answer(device, "R1=1") == ""
     device.elapse(0.1)
     assert (answer(device, "PR BY"), answer(device, "PR R2")) == ("0", "7")
+
+
+def test_mcode_a_slew_runs_on_with_the_clock_until_sl_0():
+    """SL slews at the given speed until another SL changes it (lexium-mcode.txt L736-L739): from
+    VI 1000 at A 1,000,000 steps/s² (L662-L690) it reaches 2000 steps/s within a millisecond and
+    then covers 2000 steps a second; SL 0 ramps it down and it stays where it stopped."""
+    device = MCodeDevice()
+    assert answer(device, "SL 2000") == ""
+    device.elapse(1.0)
+    first, at = int(answer(device, "PR P")), device.sim.clock
+    assert 1950 < first < 2150 and answer(device, "PR V") == "2000" and answer(device, "PR MP") == "0"
+    device.elapse(1.0)
+    second = int(answer(device, "PR P"))
+    assert abs(second - first - 2000 * (device.sim.clock - at)) <= 2   # the queries' own time counts too
+    assert answer(device, "SL 0") == ""
+    device.elapse(0.1)
+    stopped = answer(device, "PR P")
+    device.elapse(1.0)
+    assert (answer(device, "PR MV"), answer(device, "PR P")) == ("0", stopped)
