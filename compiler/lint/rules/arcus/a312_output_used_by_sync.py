@@ -38,7 +38,9 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.arcus.helpers import AXES, forward_all, switch_state
+from mcc.compiler.lint.rules.arcus.helpers import forward_all, switch_state
+
+AXES = ("X", "Y", "Z", "U")  # SYNXO drives DO1, SYNYO DO2, ... (L756-L787)
 
 
 @rule

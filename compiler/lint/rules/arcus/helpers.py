@@ -14,15 +14,8 @@ from mcc.compiler.lint import flow
 
 
 ARCUS = "arcus"
-
-
 MOTION = (ir.Move, ir.Slew, ir.Home, ir.Arc)
-
-
 SETTING_KEYWORDS = {"speed_change": "SSPD", "compare_output": "SYNO"}  # neutral settings the rules follow
-
-
-AXES = ("X", "Y", "Z", "U")
 
 
 @lru_cache(maxsize=1)

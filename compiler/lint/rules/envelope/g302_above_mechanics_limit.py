@@ -59,7 +59,13 @@ import math
 from mcc.compiler import ir
 from mcc.compiler.diagnostics import Severity
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.envelope.helpers import SPEEDS, analysis, envelope_of
+from mcc.compiler.lint.rules.envelope.helpers import analysis, envelope_of
+
+# the setting -> (the envelope field that limits it, what it is called, its unit)
+SPEEDS = {ir.MotionParam.MAX_SPEED: ("max_speed", "speed", "steps/s"),
+          ir.MotionParam.INITIAL_SPEED: ("max_speed", "speed", "steps/s"),
+          ir.MotionParam.ACCEL: ("max_accel", "acceleration", "steps/s²"),
+          ir.MotionParam.DECEL: ("max_accel", "deceleration", "steps/s²")}
 
 
 @rule

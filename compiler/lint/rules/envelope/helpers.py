@@ -6,16 +6,9 @@ report nothing.
 
 from __future__ import annotations
 
-from mcc.compiler import ir
 from mcc.compiler.envelope.axes import AxisEnvelope, envelopes
 from mcc.compiler.envelope.intervals import Analyzer, Result
 from mcc.compiler.lint.rules import Context
-
-
-SPEEDS = {ir.MotionParam.MAX_SPEED: ("max_speed", "speed", "steps/s"),
-          ir.MotionParam.INITIAL_SPEED: ("max_speed", "speed", "steps/s"),
-          ir.MotionParam.ACCEL: ("max_accel", "acceleration", "steps/s²"),
-          ir.MotionParam.DECEL: ("max_accel", "deceleration", "steps/s²")}
 
 
 def envelope_of(ctx: Context) -> dict[str, AxisEnvelope]:

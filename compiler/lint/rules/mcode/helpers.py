@@ -15,8 +15,6 @@ from mcc.compiler.mcode.lower import TRIP_EVENTS
 
 
 EVENT_TRIP = {event: name for name, event in TRIP_EVENTS.items()}  # "input" -> "TI"
-
-
 SUBROUTINE_KINDS = (ir.RoutineKind.SUBROUTINE, ir.RoutineKind.HANDLER)
 
 

@@ -53,6 +53,7 @@ from mcc.compiler.lint.rules import Context, rule
 from mcc.compiler.lint.rules.mcode.helpers import line_of
 
 
+# Flags a program polls to wait for the end of a move instead of H (L4207, L4427).
 MOTION_FLAGS = ("moving", "moving_to_position")  # MV, MP
 
 

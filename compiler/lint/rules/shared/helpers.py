@@ -9,19 +9,9 @@ from typing import Any, Iterable
 from mcc.compiler import ir
 from mcc.compiler.lint import flow
 
-
-POSITION_READINGS = ("position", "encoder")
-
-
+# Readings of whether an axis still moves (polling one is a way of waiting).
 MOTION_FLAGS = ("moving", "moving_to_position", "motor_status")
-
-
-FINITE_MOTION = (ir.Move, ir.Home, ir.Arc)  # motion that ends by itself
-
-
 MOTION = (ir.Move, ir.Arc, ir.Slew, ir.Home)
-
-
 TERMINATORS = (ir.Branch, ir.Jump, ir.Return, ir.End, ir.FallOff, ir.GotoRoutine)
 
 

@@ -10,12 +10,14 @@ from __future__ import annotations
 from mcc.compiler import ir
 from mcc.compiler.lint import flow
 from mcc.compiler.lint.rules import Context
-from mcc.compiler.lint.rules.shared.helpers import (FINITE_MOTION, MOTION_FLAGS, POSITION_READINGS, motion_axes, reads,
-                                                   same_axis, walk)
+from mcc.compiler.lint.rules.shared.helpers import MOTION_FLAGS, motion_axes, reads, same_axis, walk
 from mcc.compiler.lint.rules.shared.voice import Voice
 
 
 NAME = "position-read-while-moving"
+# Readings of where an axis is (position counter, encoder).
+POSITION_READINGS = ("position", "encoder")
+FINITE_MOTION = (ir.Move, ir.Home, ir.Arc)  # motion that ends by itself
 
 
 class Motion:

@@ -35,11 +35,6 @@ def const(expr) -> float | None:
     return expr.value if isinstance(expr, ir.Const) else None
 
 
-def uses_distance(move: ir.Move) -> bool:
-    """A `G` moving by a D not known where it runs (the lowering reads the register %D<device>)."""
-    return any(isinstance(value, ir.Var) and value.name.startswith("%D") for _, value in move.targets)
-
-
 def is_go(item) -> bool:
     """A move: a preset Move, or a G that stays Native (continuous mode, L2498)."""
     return isinstance(item, (ir.Move, ir.Slew)) or native(item, "G")

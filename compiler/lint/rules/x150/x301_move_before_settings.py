@@ -48,7 +48,12 @@ from __future__ import annotations
 from mcc.compiler import ir
 from mcc.compiler.lint.rules.shared import move_before_speed
 from mcc.compiler.lint.rules.shared.voice import speak
-from mcc.compiler.lint.rules.x150.helpers import native, uses_distance
+from mcc.compiler.lint.rules.x150.helpers import native
+
+
+def uses_distance(move: ir.Move) -> bool:
+    """A `G` moving by a D not known where it runs (the lowering reads the register %D<device>)."""
+    return any(isinstance(value, ir.Var) and value.name.startswith("%D") for _, value in move.targets)
 
 
 def distance_facts(item) -> tuple:

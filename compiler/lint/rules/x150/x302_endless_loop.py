@@ -54,8 +54,6 @@ from mcc.compiler.x150 import syntax as st
 
 
 LOOP_EXIT_IRS = ("stop", "kill", "goto", "return")
-
-
 LOOP_EXIT_NAMES = ("Y", "HALT", "OFF")  # L5494, L1883, L2800
 
 
