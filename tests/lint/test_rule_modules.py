@@ -84,3 +84,16 @@ def test_a_check_imports_no_rule_and_a_lint_of_mcode_only_the_mcode_rules() -> N
     packages = {name.split(".")[4] for name in linted}
     assert packages == {"mcode", "envelope", "shared"}, packages
     assert not [name for name in linted if ".arcus" in name or ".x150" in name]
+
+
+def test_every_rule_package_is_shipped() -> None:
+    """pyproject.toml lists the packages explicitly: a rule package missing there is missing from
+    an installed mcc."""
+    from conftest import ROOT
+    from mcc.compiler import toml
+
+    project = toml.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    listed = set(project["tool"]["setuptools"]["packages"])
+    packages = {"mcc.compiler.lint.rules"} | {f"mcc.compiler.lint.rules.{p.parent.name}"
+                                              for p in (ROOT / "compiler" / "lint" / "rules").glob("*/__init__.py")}
+    assert packages <= listed, sorted(packages - listed)
