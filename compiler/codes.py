@@ -29,7 +29,7 @@ from mcc.compiler.diagnostics import Kind, Severity
 
 CODES_DIR = Path(__file__).parent / "codes"
 RULES_DIR = Path(__file__).parent / "lint" / "rules"  # one package per dialect, one module per rule
-RULE_MODULE = re.compile(r"^([a-z]\d{3})_([a-z0-9_]+)\.py$")  # m301_position_read_while_moving.py
+RULE_NAME = re.compile(r"^([a-z]\d{3})_([a-z0-9_]+)$")  # a rule's module: m301_position_read_while_moving
 
 
 @dataclass(frozen=True)
@@ -134,7 +134,7 @@ def rule_modules(root: Path = RULES_DIR) -> dict[str, Path]:
         return found
     for package in packages:
         for name in sorted(os.listdir(package)):
-            match = RULE_MODULE.match(name)
+            match = RULE_NAME.match(name[:-3]) if name.endswith(".py") else None
             if match:
                 code = match.group(1).upper()
                 if code in found:
@@ -158,7 +158,7 @@ def read_rule_page(path: Path) -> CodeInfo:
     """The CodeInfo of the rule in `path`, read from its docstring; its code and name must be the
     ones its file is named after (a test checks every module; this keeps a wrong one from loading)."""
     info = parse_page(module_docstring(path.read_text(encoding="utf-8")), str(path))
-    match = RULE_MODULE.match(path.name)
+    match = RULE_NAME.match(path.stem)
     if match is None or (info.code.lower(), info.name.replace("-", "_")) != match.groups():
         raise ValueError(f"{path}: the page is {info.code} {info.name}, the file name says otherwise")
     return info

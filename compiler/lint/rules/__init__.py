@@ -20,12 +20,11 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
-import re
 from dataclasses import dataclass, field
 from typing import Any, Callable
 
 from mcc.compiler import dialects
-from mcc.compiler.codes import CodeInfo, registry
+from mcc.compiler.codes import RULE_NAME, CodeInfo, registry
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Fix
 from mcc.compiler.analysis import Analysis
 from mcc.compiler.profiles import Profile
@@ -77,8 +76,8 @@ class Rule:
     @property
     def info(self) -> CodeInfo:
         info = registry().get(self.code)
-        if info is None:  # caught by tests/lint/test_registry.py
-            raise KeyError(f"lint rule {self.code} has no entry in compiler/codes/")
+        if info is None:  # caught by tests/lint/test_rule_modules.py
+            raise KeyError(f"lint rule {self.code} has no page (its module's docstring)")
         return info
 
     @property
@@ -88,13 +87,12 @@ class Rule:
 
 RULES: dict[str, Rule] = {}
 _LOADED: set[str] = set()
-RULE_MODULE = re.compile(r"^([a-z]\d{3})_[a-z0-9_]+$")  # the module of one rule: m302_branch_out_of_subroutine
 EVERY_DIALECT = "envelope"  # the package of the rules every dialect has
 
 
 def code_of(module_name: str) -> str:
     """The code of the rule a module holds, from its name (`...mcode.m302_branch_out_...` -> M302)."""
-    match = RULE_MODULE.match(module_name.rpartition(".")[2])
+    match = RULE_NAME.match(module_name.rpartition(".")[2])
     if match is None:
         raise ValueError(f"{module_name} is not a rule module: name it <code>_<name>, e.g. m302_branch_out_of_"
                          "subroutine")
@@ -123,7 +121,7 @@ def discover(package: str, path) -> None:
     """Import every rule module of a package (its `__init__` calls this): a rule is registered by
     adding its module, and nothing lists it elsewhere."""
     for found in sorted(pkgutil.iter_modules(path), key=lambda m: m.name):
-        if RULE_MODULE.match(found.name):
+        if RULE_NAME.match(found.name):
             importlib.import_module(f"{package}.{found.name}")
 
 
