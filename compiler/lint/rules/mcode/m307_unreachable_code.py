@@ -52,5 +52,5 @@ from mcc.compiler.lint.rules.shared.voice import speak
 speak(__name__, unreachable_code,
       messages={"unreachable-code": "this line can never run: the line before it always branches, returns or ends and "
                                     "no label leads here"},
-      # H and the program's flow exist only in programs (L4207): typed commands are not judged
+      # commands outside a program (typed, or downloaded outside PG) run one after the other: not judged
       options={"skip_immediate": True})
