@@ -77,7 +77,8 @@ class Field:
     of the closed set); `unit_by`: the units come from another field's value instead ("param":
     `ir.PARAM_UNITS`, "setting": `ir_names.SETTINGS`); `what`: how the verifier names the field
     ("{axis}" is the axis of an AXIS_EXPRS entry); `choices`: the values the contract allows,
-    `invalid` the verifier's message for another one ("{value}")."""
+    `invalid` the verifier's message for another one ("{value}"); `words`: a BOOL's spelling when true
+    and when false."""
 
     name: str
     kind: Kind
@@ -88,6 +89,7 @@ class Field:
     choices: object = None
     invalid: str = ""
     words: tuple[str, str] = ("", "")
+    optional: bool = False  # None is a value (written by leaving its optional group out)
 
 
 @dataclass(frozen=True)
@@ -151,22 +153,22 @@ OPERATIONS: tuple[OpDef, ...] = (
     OpDef(ir.Arc, "circular or arc interpolation about a centre (docs/IR.md, \"Arcs\")",
           "arc $clockwise $axes centre ($center){ angle $angle| full circle}",
           (_f("axes", K.AXIS_PAIR), _f("center", K.EXPR_PAIR, units=POSITION, what="arc centre"),
-           _f("clockwise", K.BOOL, words=("cw", "ccw")), _f("angle", K.EXPR, units=ANGLE, what="arc angle")),
+           _f("clockwise", K.BOOL, words=("cw", "ccw")), _f("angle", K.EXPR, optional=True, units=ANGLE, what="arc angle")),
           frozenset({T.MOVES_AXIS})),
     OpDef(ir.Slew, "run at a constant signed velocity, or jog in a direction at the maximum speed",
           "{slew $axis velocity $velocity^|jog $axis $direction}",
-          (_f("axis", K.AXIS), _f("velocity", K.EXPR, units=SPEED, what="slew velocity"),
+          (_f("axis", K.AXIS), _f("velocity", K.EXPR, optional=True, units=SPEED, what="slew velocity"),
            _f("direction", K.SIGN)), frozenset({T.MOVES_AXIS})),
     OpDef(ir.Home, "seek the home switch (docs/IR.md, \"Neutral names\"; docs/SIMULATOR.md, \"Homing\")",
           "home $axis $method direction $direction{ speed $speed}{ accel $accel}"
           "{ creep $creep^{ at $creep_speed}} zero $zero{$needs_input^ needs home input}{ mode $mode}",
-          (_f("axis", K.AXIS), _f("method", K.NAME), _f("direction", K.SIGNED), _f("mode", K.EXPR),
+          (_f("axis", K.AXIS), _f("method", K.NAME), _f("direction", K.SIGNED), _f("mode", K.EXPR, optional=True),
            _f("creep", K.SIGNED, choices=(-1, 0, 1), invalid="homing creep direction {value} is not +1, -1 or 0"),
-           _f("speed", K.EXPR, units=SPEED, what="homing speed"),
-           _f("creep_speed", K.EXPR, units=SPEED, what="homing creep speed"),
+           _f("speed", K.EXPR, optional=True, units=SPEED, what="homing speed"),
+           _f("creep_speed", K.EXPR, optional=True, units=SPEED, what="homing creep speed"),
            _f("zero", K.NAME, choices=ir.HOME_ZEROS,
               invalid="homing zero '{value}' is not one of " + ", ".join(ir.HOME_ZEROS)),
-           _f("accel", K.EXPR, units=ACCELERATION, what="homing acceleration"),
+           _f("accel", K.EXPR, optional=True, units=ACCELERATION, what="homing acceleration"),
            _f("needs_input", K.FLAG)),
           frozenset({T.MOVES_AXIS, T.READS_INPUTS})),
     OpDef(ir.Stop, "stop an axis, ramping down or at once", "stop $axis $ramp",
@@ -180,7 +182,7 @@ OPERATIONS: tuple[OpDef, ...] = (
           (_f("duration", K.EXPR, units=TIME, what="delay"),), frozenset({T.TAKES_TIME})),
     OpDef(ir.SetOutput, "set one output, or every output to a bit mask or pattern",
           "{output $index^|outputs} = $value",
-          (_f("index", K.INT), _f("value", K.EXPR)), frozenset({T.WRITES_OUTPUTS})),
+          (_f("index", K.INT, optional=True), _f("value", K.EXPR)), frozenset({T.WRITES_OUTPUTS})),
     OpDef(ir.WaitInput, "wait until a condition on the inputs holds", "wait until $cond",
           (_f("cond", K.COND),), frozenset({T.TAKES_TIME, T.READS_INPUTS})),
     OpDef(ir.Print, "send text and values to the host (docs/IR.md, \"Print formats\")",
@@ -190,16 +192,16 @@ OPERATIONS: tuple[OpDef, ...] = (
     OpDef(ir.DriveEnable, "enable or disable an axis's drive", "enable $axis = $on",
           (_f("axis", K.AXIS), _f("on", K.EXPR)), frozenset({T.CLOBBERS_SETTINGS})),
     OpDef(ir.Call, "call a routine, when a condition holds if it has one", "call $routine{ if $cond}",
-          (_f("routine", K.ROUTINE), _f("cond", K.COND)), frozenset({T.CALLS})),
+          (_f("routine", K.ROUTINE), _f("cond", K.COND, optional=True)), frozenset({T.CALLS})),
     OpDef(ir.SetHandler, "install (or, without a routine, remove) an event handler (docs/IR.md, \"Handlers\")",
           "on $event($args){ -> $routine^| off}{$once^ once}{$gated^ gated}{$takes_over^ takes-over}",
           (_f("event", K.NAME, choices=ir_names.EVENTS, invalid="event '{value}' is not a neutral event name"),
-           _f("routine", K.ROUTINE), _f("args", K.ARGS), _f("once", K.FLAG), _f("gated", K.FLAG),
+           _f("routine", K.ROUTINE, optional=True), _f("args", K.ARGS), _f("once", K.FLAG), _f("gated", K.FLAG),
            _f("takes_over", K.FLAG)), frozenset({T.CALLS})),
     OpDef(ir.Setting, "set a device setting named in ir_names.SETTINGS (of one input or output: index)",
           "setting $name{[$index]} $axis = $value",
           (_f("name", K.NAME, choices=ir_names.SETTINGS, invalid="setting '{value}' is not in ir_names.SETTINGS"),
-           _f("axis", K.AXIS), _f("value", K.EXPR, unit_by="setting"), _f("index", K.INT)),
+           _f("axis", K.AXIS), _f("value", K.EXPR, unit_by="setting"), _f("index", K.INT, optional=True)),
           frozenset({T.CLOBBERS_SETTINGS})),
     OpDef(ir.Save, "store the settings and program in non-volatile memory", "save", (), frozenset()),
     OpDef(ir.Pause, "wait here until the host resumes (docs/IR.md, \"Host control\")",
