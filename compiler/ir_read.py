@@ -247,6 +247,8 @@ _NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:[eE][+-]?\d+)?|-?inf|nan")
 _UNITS = sorted((u.value for u in ir.Unit if u.value), key=len, reverse=True)
 _IDENT = re.compile(r"[A-Za-z_%][A-Za-z0-9_%@#$]*(?:\.[A-Za-z_%][A-Za-z0-9_%@#$]*)?")
 _WORD = re.compile(r"[^\s,()\[\]]+")
+_TARGET_AXIS = re.compile(r"[^\s=,()\[\]]*")  # "" is MCode's "this drive"
+_NEXT_TARGET = re.compile(r" [^\s=,()\[\]]*=")
 _NAME = re.compile(r"[^\s,()\[\]]*")
 # A binary operator as the printer writes it, neutral or not (the verifier judges the names):
 # a run of operator characters that is not a comparison.
@@ -280,7 +282,7 @@ class _Line:
 
     def word(self, pattern: re.Pattern = _WORD, what: str = "a name") -> str:
         found = pattern.match(self.text, self.pos)
-        if found is None or not found[0] and pattern is not _NAME:
+        if found is None or not found[0] and pattern not in (_NAME, _TARGET_AXIS):
             raise _Fail(self.pos, f"expected {what}")
         self.pos = found.end()
         return found[0]
@@ -352,10 +354,10 @@ class _Line:
         if kind is Kind.AXIS_EXPRS:
             pairs = []
             while True:
-                axis = self.word(re.compile(r"[^\s=,()\[\]]+"), "an axis")
+                axis = self.word(_TARGET_AXIS, "an axis")
                 self.expect("=")
                 pairs.append((axis, self.expr()))
-                if not re.match(r" [^\s=]+=", self.rest):
+                if not _NEXT_TARGET.match(self.rest):
                     return tuple(pairs)
                 self.pos += 1
         if kind is Kind.VAR:

@@ -80,7 +80,7 @@ def axes():
 
 
 def axis_exprs(min_size: int):
-    return st.lists(st.tuples(st.sampled_from([a for a in AXES if a] + ["p2"]), expressions()),
+    return st.lists(st.tuples(st.sampled_from(AXES + ("p2",)), expressions()),
                     min_size=min_size, max_size=3).map(tuple)
 
 
