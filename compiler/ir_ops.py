@@ -335,3 +335,20 @@ def referenced(parts: tuple) -> list[str]:
 
 
 PIECES: dict[type, tuple] = {d.cls: pieces(d.syntax) for d in TABLE.values()}
+
+
+def markdown() -> str:
+    """The table as docs/IR.md prints it (tests/ir/test_ir_ops.py keeps the page equal to it)."""
+
+    def field_text(f: Field) -> str:
+        units = " ".join(sorted(repr(u.value or "plain") for u in f.units)).replace("'", "")
+        unit = f" [{units}]" if units else " [by param]" if f.unit_by == "param" else \
+            " [by setting]" if f.unit_by == "setting" else ""
+        return f"`{f.name}` {f.kind.value}{'?' if f.optional else ''}{unit}"
+
+    rows = ["| operation | syntax | fields (kind, `?` optional, [unit]) | traits |", "|---|---|---|---|"]
+    for d in OPERATIONS + TERMINATORS:
+        syntax = d.syntax.replace("|", "\\|")
+        traits = ", ".join(t.value for t in Trait if t in d.traits)
+        rows.append(f"| `{d.name}` | `{syntax}` | {'; '.join(field_text(f) for f in d.fields)} | {traits} |")
+    return "\n".join(rows) + "\n"

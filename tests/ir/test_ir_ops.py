@@ -102,3 +102,10 @@ def test_the_derived_printer_writes_every_sample_and_golden_program_as_before(di
             assert term_text(block.terminator) == printer_before.term_text(block.terminator), path
         compared += 1
     assert compared >= 10
+
+
+def test_docs_print_the_table():
+    from pathlib import Path
+
+    page = (Path(__file__).resolve().parents[2] / "docs" / "IR.md").read_text(encoding="utf-8")
+    assert ir_ops.markdown() in page, "docs/IR.md: paste ir_ops.markdown() into \"The operation table\""
