@@ -58,6 +58,10 @@ class Kind(str, Enum):
     QUOTED = "quoted text"  # a string printed as a JSON string
 
 
+# The kinds whose value is a string ("" counts as not set for an optional group).
+TEXTS = frozenset({Kind.AXIS, Kind.NAME, Kind.ROUTINE, Kind.LABEL, Kind.QUOTED})
+
+
 class Trait(str, Enum):
     """What an operation does that an analysis or a handler must know about."""
 
@@ -244,15 +248,6 @@ def definition(node) -> OpDef | None:
 def with_trait(trait: Trait) -> tuple[type, ...]:
     """The operation and terminator classes that have `trait`."""
     return tuple(d.cls for d in TABLE.values() if trait in d.traits)
-
-
-def is_set(node, name: str, default) -> bool:
-    """Whether field `name` of `node` is set, so that an optional group anchored on it is written:
-    not None, not "", and not the field's default (`dataclasses.MISSING`: no default)."""
-    value = getattr(node, name)
-    if value is None or value == "":
-        return False
-    return default is dataclasses.MISSING or value != default
 
 
 def units_of(node, f: Field) -> tuple[frozenset, str] | None:

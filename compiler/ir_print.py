@@ -66,65 +66,72 @@ def _items(op) -> str:
     return ", ".join(expr_text(item) + (f" as {spec}" if spec else "") for item, spec in zip(op.items, formats))
 
 
-# How each kind of field is written (the reader, compiler/ir_read.py, reads the same forms).
+# How each kind of field is written, as a Python expression of the field's value `{v}` (the reader,
+# compiler/ir_read.py, reads the same forms).
 FORMS = {
-    ir_ops.Kind.EXPR: lambda op, v: expr_text(v),
-    ir_ops.Kind.COND: lambda op, v: cond_text(v),
-    ir_ops.Kind.ARGS: lambda op, v: ", ".join(_any_text(a) for a in v),
-    ir_ops.Kind.ITEMS: lambda op, v: _items(op),
-    ir_ops.Kind.EXPR_PAIR: lambda op, v: ", ".join(expr_text(c) for c in v),
-    ir_ops.Kind.AXIS: lambda op, v: v,
-    ir_ops.Kind.AXIS_PAIR: lambda op, v: f"{v[0]},{v[1]}",
-    ir_ops.Kind.AXIS_EXPRS: lambda op, v: _axes(v),
-    ir_ops.Kind.VAR: lambda op, v: v.name,
-    ir_ops.Kind.ENUM: lambda op, v: v.value,
-    ir_ops.Kind.NAME: lambda op, v: v,
-    ir_ops.Kind.ROUTINE: lambda op, v: v,
-    ir_ops.Kind.LABEL: lambda op, v: v,
-    ir_ops.Kind.SIGN: lambda op, v: "+" if v >= 0 else "-",
-    ir_ops.Kind.SIGNED: lambda op, v: f"{v:+d}",
-    ir_ops.Kind.INT: lambda op, v: str(v),
-    ir_ops.Kind.QUOTED: lambda op, v: json.dumps(v),
+    ir_ops.Kind.EXPR: "expr_text({v})",
+    ir_ops.Kind.COND: "cond_text({v})",
+    ir_ops.Kind.ARGS: "', '.join([_any_text(a) for a in {v}])",
+    ir_ops.Kind.ITEMS: "_items(op)",
+    ir_ops.Kind.EXPR_PAIR: "', '.join([expr_text(c) for c in {v}])",
+    ir_ops.Kind.AXIS: "{v}",
+    ir_ops.Kind.AXIS_PAIR: "{v}[0] + ',' + {v}[1]",
+    ir_ops.Kind.AXIS_EXPRS: "_axes({v})",
+    ir_ops.Kind.VAR: "{v}.name",
+    ir_ops.Kind.ENUM: "{v}.value",
+    ir_ops.Kind.NAME: "{v}",
+    ir_ops.Kind.ROUTINE: "{v}",
+    ir_ops.Kind.LABEL: "{v}",
+    ir_ops.Kind.SIGN: "('+' if {v} >= 0 else '-')",
+    ir_ops.Kind.SIGNED: "format({v}, '+d')",
+    ir_ops.Kind.INT: "str({v})",
+    ir_ops.Kind.QUOTED: "json.dumps({v})",
 }
 
 
-def _writer(definition: ir_ops.OpDef):
-    """A function that writes an operation of `definition` by its template, built once."""
+def writer_source(definition: ir_ops.OpDef) -> str:
+    """The Python expression that writes an operation of `definition` (`op`) by its template.
+    Compiled once per operation: as quick as the hand-written cases it replaced."""
 
-    def parts(pieces) -> list:
+    def parts(pieces) -> str:
         out = []
         for piece in pieces:
             if isinstance(piece, ir_ops.Text):
-                out.append(piece.text)
+                out.append(repr(piece.text))
             elif isinstance(piece, ir_ops.Ref):
                 f = definition.field(piece.field)
                 if f.kind is ir_ops.Kind.BOOL:
-                    out.append((lambda name, yes, no: lambda op: yes if getattr(op, name) else no)(f.name, *f.words))
-                elif f.kind is ir_ops.Kind.FLAG:
-                    continue
-                else:
-                    out.append((lambda name, form: lambda op: form(op, getattr(op, name)))(f.name, FORMS[f.kind]))
+                    out.append(f"({f.words[0]!r} if op.{f.name} else {f.words[1]!r})")
+                elif f.kind is not ir_ops.Kind.FLAG:
+                    out.append(FORMS[f.kind].format(v=f"op.{f.name}"))
             else:
-                out.append(group(piece))
-        return out
+                # the group is written when its anchor is set: not None, not "", not its default
+                default = definition.default(piece.anchor)
+                value = f"op.{piece.anchor}"
+                test = f"{value} is not None"
+                if definition.field(piece.anchor).kind in ir_ops.TEXTS:
+                    test += f" and {value} != ''"
+                if default is not ir_ops.dataclasses.MISSING and default not in (None, ""):
+                    test += f" and {value} != {default!r}"
+                out.append(f"(({parts(piece.then)}) if {test} else ({parts(piece.otherwise)}))")
+        return " + ".join(out) or "''"
 
-    def group(piece: ir_ops.Group):
-        then, otherwise = parts(piece.then), parts(piece.otherwise)
-        default, anchor = definition.default(piece.anchor), piece.anchor
-
-        def write(op) -> str:
-            chosen = then if ir_ops.is_set(op, anchor, default) else otherwise
-            return "".join(p if isinstance(p, str) else p(op) for p in chosen)
-        return write
-
-    top = parts(ir_ops.PIECES[definition.cls])
-    if all(isinstance(p, str) for p in top):
-        text = "".join(top)
-        return lambda op: text
-    return lambda op: "".join(p if isinstance(p, str) else p(op) for p in top)
+    return parts(ir_ops.PIECES[definition.cls])
 
 
-_WRITERS = {cls: _writer(d) for cls, d in ir_ops.TABLE.items()}
+def _writer(definition: ir_ops.OpDef):
+    source = f"lambda op: {writer_source(definition)}"
+    names = {"expr_text": expr_text, "cond_text": cond_text, "_any_text": _any_text, "_items": _items,
+             "_axes": _axes, "json": json}
+    return eval(compile(source, f"<ir_ops {definition.name}>", "eval"), names)  # noqa: S307 - our own table
+
+
+_WRITERS: dict = {}
+
+
+def _writers() -> None:
+    """Compile the writers once the functions they call exist (below)."""
+    _WRITERS.update({cls: _writer(d) for cls, d in ir_ops.TABLE.items()})
 
 
 def _any_text(node) -> str:
@@ -248,3 +255,6 @@ def _node(value: Any) -> Any:
             out[f.name] = _node(item)
         return out
     return str(value)
+
+
+_writers()
