@@ -209,3 +209,25 @@ def test_branches_as_ir_text():
         d:
           end
     """)
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(data=st.data())
+def test_any_text_reads_or_is_refused_at_a_line(data):
+    """No Python exception but IRSyntaxError for any text: printed modules with characters cut,
+    doubled or replaced."""
+    text = to_text(data.draw(every_op.modules()))
+    for _ in range(data.draw(st.integers(1, 4))):
+        at = data.draw(st.integers(0, len(text)))
+        change = data.draw(st.sampled_from(["cut", "double", "replace"]))
+        piece = data.draw(st.sampled_from(list(" ()[],=:;%-+\"'{}|^$@.0123456789xXL\n") + ["9" * 5000, "\t"]))
+        if change == "cut":
+            text = text[:at] + text[at + data.draw(st.integers(1, 8)):]
+        elif change == "double":
+            text = text[:at] + text[at:at + 4] + text[at:]
+        else:
+            text = text[:at] + piece + text[at + 1:]
+    try:
+        read_text(text)
+    except IRSyntaxError as error:
+        assert error.line >= 1 and error.col >= 1
