@@ -12,7 +12,7 @@ found by the handler-coverage test (tests/ir/test_handlers.py). Decision record 
 Syntax templates (docs/IR.md, "The operation table"):
 
 - text is written as it is, spaces included;
-- `$field` writes the field, in the form its kind gives (`FORMS` below);
+- `$field` writes the field, in the form its kind gives (`ir_print.FORMS`; `ir_read` reads it);
 - `{...}` is an optional group, written when its anchor field (the one marked `^`, or the only
   field in it) is set: not None, not "" and not its dataclass default; `{...|...}` writes the
   part after `|` when it is not. A flag (a bool whose group's words say it) writes no text of
