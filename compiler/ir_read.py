@@ -13,8 +13,8 @@ variable a `var` line declares, else the reading of that name (`ir_names.STATUS`
 `ir_names.SETTINGS`), else a variable. Full-line comments start with `;`.
 
 A text that is not the IR's raises `IRSyntaxError` with the line and column (1-based) of the first
-problem. Every walk is iterative or bounded by the nesting of conditions, so a long expression
-(thousands of operators) reads without deep recursion.
+problem. Every walk is iterative or bounded by the nesting of conditions and function calls, so a
+long expression (thousands of operators) reads without deep recursion.
 """
 
 from __future__ import annotations
