@@ -822,6 +822,7 @@ class Writer:
                 self.emit(prefix + "A" + again, span)
         elif param in (ir.MotionParam.ACCEL, ir.MotionParam.ACCEL_TIME):
             text = self.rate(op.value, "acceleration") if param is ir.MotionParam.ACCEL else self.ramp(op)
+            self.decel_still_same(op)
             self.emit(prefix + "A" + text, span)
         elif param in (ir.MotionParam.DECEL, ir.MotionParam.DECEL_TIME):
             self.same_as_accel(op)
@@ -947,6 +948,22 @@ class Writer:
                 return
         raise CannotWrite("X150 decelerates at the acceleration A; a deceleration that differs from the "
                           "acceleration in force has no equivalent", "G003")
+
+    def decel_still_same(self, op: ir.SetMotion) -> None:
+        """A new acceleration is also X150's deceleration: refused when the source's deceleration in
+        force (set before, e.g. MCode `A=100000 D=100000 A=1000000`) stays another value. Not when
+        the deceleration is set next to the same value (how X150's own A lowers: ACCEL then DECEL),
+        and not when no deceleration is known here (the check at the DECEL or the validation has it)."""
+        decel_param = ir.MotionParam.DECEL if op.param is ir.MotionParam.ACCEL else ir.MotionParam.DECEL_TIME
+        follower = self.rest[0].op if self.rest and isinstance(self.rest[0], Simple) else None
+        if isinstance(follower, ir.SetMotion) and follower.param is decel_param and follower.axis == op.axis:
+            return  # the deceleration is set right after: same_as_accel checks it there
+        decel = lookup(self.forces.get(id(op), {}), decel_param, op.axis)
+        if isinstance(decel, ir.Const) and isinstance(op.value, ir.Const) and decel.value != op.value.value:
+            raise CannotWrite("X150 decelerates at the acceleration A: this acceleration would also change the "
+                              f"deceleration, which stays {number(decel.value)} in the source; set the "
+                              "deceleration to the same value after it in the source, or compile to a target with "
+                              "a deceleration of its own", "G003")
 
     def move(self, op: ir.Move) -> None:
         if len(op.targets) != 1:
