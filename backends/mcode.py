@@ -677,7 +677,8 @@ class Writer:
                 return ""
             if axis not in self.axis_map:
                 raise Unsupported(f"an operation on axis {axis} (an MCode drive moves one axis: this program's "
-                                  f"axis is {next(iter(self.axis_map), '?')})")
+                                  f"axis is {next(iter(self.axis_map), '?')}; compile the part of each axis on its "
+                                  "own, one drive per axis)")
             return self.axis_map[axis]
         if axis in ("", self.drive):
             return ""

@@ -211,3 +211,22 @@ def test_a_bank_read_whose_uses_keep_only_the_drive_bits_is_written_for_mcode() 
     levels of inputs 1-4): `V1=DI` used only as `V1&6` (inputs 2 and 3) has the same value on both."""
     out = written("V1=DI\nV2=V1&6\nIF V2=2\nDO=1\nENDIF\n", "mcode")
     assert any(line.endswith("=IN") for line in out)
+
+
+# -- what stays refused says what to do ------------------------------------------------------------
+
+def test_a_second_axis_on_mcode_says_to_compile_each_axis_on_its_own() -> None:
+    """arcus-pmx-4ex-sa.txt L570 (four axes); an MCode drive is one axis (lexium-mcode.txt, one
+    motor per drive): the refusal names the axis and says what to do."""
+    _, errors = convert("X1000\nY1000\n", "mcode")
+    assert [(code, line) for code, line, _ in errors] == [("G003", 2)]
+    assert "axis Y" in errors[0][2] and "each axis on its own" in errors[0][2]
+
+
+def test_an_output_x150_lacks_is_named() -> None:
+    """arcus-pmx-4ex-sa.txt L752 (DO1-DO8) and parker-x150.md L2779 (outputs 1-6): DO7=1 is refused
+    naming output 7; DO6=1 is O with X for outputs 1-5."""
+    _, errors = convert("DO7=1\nDO6=1\n", "x150")
+    assert [(code, line) for code, line, _ in errors] == [("G003", 1)]
+    assert "output 7" in errors[0][2]
+    assert "OXXXXX1" in written("DO6=1\n", "x150")

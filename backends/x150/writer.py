@@ -1249,6 +1249,9 @@ class Writer:
             return "X" * (op.index - 1) + str(int(value.value))
         if op.index is None and isinstance(value, ir.Const):
             return self.output_bank(value)
+        if op.index is not None and not 1 <= op.index <= neutral.OUTPUTS:
+            raise CannotWrite(f"output {op.index}: X150 has outputs 1-{neutral.OUTPUTS} (O, parker-x150.md L2731-L2753, "
+                              f"L2779): use one of those in the source", "G003")
         raise CannotWrite("X150 sets outputs 1-6 to 0 or 1 with a constant pattern (O); this output change has "
                           "no equivalent", "G003")
 
