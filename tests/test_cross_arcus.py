@@ -230,3 +230,13 @@ def test_an_output_x150_lacks_is_named() -> None:
     assert [(code, line) for code, line, _ in errors] == [("G003", 1)]
     assert "output 7" in errors[0][2]
     assert "OXXXXX1" in written("DO6=1\n", "x150")
+
+
+def test_an_mcode_input_bank_compared_with_a_number_is_tested_input_by_input_on_arcus() -> None:
+    """lexium-mcode.txt L3433-L3435: IN is the raw levels of inputs 1-4 (IN=5: inputs 1 and 3 high);
+    arcus-pmx-4ex-sa.txt L797, L1905: DI is eight levels, 255 with nothing connected, so `DI=5` would
+    never hold. The output tests DI1=1, DI2=0, DI3=1, DI4=0."""
+    out = written("PG 1\nBR L1,IN=5\nO1=1\nLB L1\nE\nPG\n", "arcus", source="mcode")
+    tests = [line for line in out if line.startswith("IF DI")]
+    assert tests == ["IF DI1=1", "IF DI2=0", "IF DI3=1", "IF DI4=0"]
+    assert not any("DI=" in line for line in out)
