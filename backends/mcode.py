@@ -25,7 +25,7 @@ from functools import lru_cache
 import string
 from fractions import Fraction
 
-from mcc.backends import resolution
+from mcc.backends import enable_outputs, resolution
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
@@ -155,6 +155,7 @@ class Writer:
         self.block_start = 0
         self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
         self.moving = moving_before(module, foreign=self.foreign)
+        self.masked_banks = masked_bank_reads(module, profile) if self.foreign else set()
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -202,11 +203,14 @@ class Writer:
         if not self.foreign:
             return {}
         used: list[str] = []
+        enables: list[str] = []  # an axis only enabled (Arcus EO2) is this drive only when nothing moves
         for _, block in self.module.blocks():
             for op in block.ops:
                 for axis in op_axes(op):
-                    if axis != ir.ALL_AXES and axis not in used:
-                        used.append(axis)
+                    found = enables if isinstance(op, ir.DriveEnable) else used
+                    if axis != ir.ALL_AXES and axis not in found:
+                        found.append(axis)
+        used = used or enables
         return {used[0]: ""} if used else {}
 
     # values in force (ramp times) ----------------------------------------------------------------
@@ -673,7 +677,8 @@ class Writer:
                 return ""
             if axis not in self.axis_map:
                 raise Unsupported(f"an operation on axis {axis} (an MCode drive moves one axis: this program's "
-                                  f"axis is {next(iter(self.axis_map), '?')})")
+                                  f"axis is {next(iter(self.axis_map), '?')}; compile the part of each axis on its "
+                                  "own, one drive per axis)")
             return self.axis_map[axis]
         if axis in ("", self.drive):
             return ""
@@ -686,6 +691,8 @@ class Writer:
             return self.assign(op)
         if isinstance(op, ir.SetMotion):
             return self.motion_setting(op)
+        if isinstance(op, ir.Setting) and op.name == "enable_outputs" and self.foreign:
+            return self.enable_outputs(op)
         if isinstance(op, ir.Setting):
             return self.setting(op)
         if isinstance(op, ir.Move):
@@ -733,6 +740,9 @@ class Writer:
             prefix = self.prefix(op.axis) if op.axis else ""
             return f"{prefix}PR {items}{'' if op.newline else ';'}"
         if isinstance(op, ir.DriveEnable):
+            if self.foreign and enable_outputs.undriven(self.module, op, set(self.axis_map)):
+                self.undriven_enable(op)
+                return None
             return f"{self.prefix(op.axis)}DE={self.expr(op.on)}"
         if isinstance(op, ir.Call):
             target = self.call_label(op.routine)
@@ -744,7 +754,10 @@ class Writer:
         if isinstance(op, ir.Stop):
             if op.ramp:
                 return f"{self.prefix(op.axis)}SL 0"
-            raise Unsupported("an abort without deceleration (MCode stops with ESC, not a statement)")
+            if self.foreign and id(op) in self.settled:
+                return None  # no move can run here: the source's abort stops nothing (docs/CROSS.md, "Abort")
+            raise Unsupported("an abort without deceleration while a move may run (MCode stops at once only with "
+                              "ESC from the host, not a statement; stop with a ramp, SL 0, or wait for the move)")
         if isinstance(op, ir.Pause):
             if not op.stop_motion and id(op) not in self.settled:
                 raise Unsupported("a pause that lets a move in progress run on (MCode's PS ramps the move down, "
@@ -756,6 +769,24 @@ class Writer:
             raise Unsupported("a single step sent by the host (MCode steps with a space typed in EX mode 2, which "
                               "a program cannot hold)")
         raise Unsupported(f"the operation {type(op).__name__}")
+
+    def enable_outputs(self, op: ir.Setting) -> str:
+        """Another product's enable outputs as one mask (Arcus `EO=3`, arcus-pmx-4ex-sa.txt L748):
+        the bit of this drive's axis as `DE` (0 or 1, lexium-mcode.txt L2362-L2378); the bits of axes
+        the program never uses are drives the target does not have (backends/enable_outputs.py)."""
+        axis = next(iter(self.axis_map), None) or enable_outputs.source_axes(self.module)[0]
+        bit = enable_outputs.bit_of(self.module, axis)
+        value = enable_outputs.enable_value(op.value, bit) if bit is not None else None
+        if value is None:
+            raise Unsupported(f"the enable outputs set to {self.expr(op.value)} (a mask of 0-15, axis {axis} in "
+                              f"bit {bit}),")
+        return f"DE={self.expr(value)}"
+
+    def undriven_enable(self, op: ir.DriveEnable) -> None:
+        span = op.span or self.fallback_span() or Span(self.module.path or "<ir>", 1, 1, 1, 1, 0, 0)
+        self.diags.add("G060", span, f"the enable of axis {op.axis} is left out: this program never moves axis "
+                                     f"{op.axis}, and the MCode drive is axis {next(iter(self.axis_map), '?')} "
+                                     "only (DE enables its own bridge, lexium-mcode.txt L2362)")
 
     def motion_setting(self, op: ir.SetMotion) -> str | None:
         if op.param in (ir.MotionParam.ACCEL_TIME, ir.MotionParam.DECEL_TIME):
@@ -1111,9 +1142,25 @@ class Writer:
         name = READINGS.get(node.meaning)
         if name is None:
             raise Unsupported(f"the reading {node.meaning}")
+        if self.foreign and node.meaning in ("inputs", "outputs") and id(node) not in self.masked_banks:
+            self.bank_width(node.meaning)
         if self.foreign and node.axis not in ("", ir.ALL_AXES):
             self.prefix(node.axis)  # refuses a reading of another axis
         return name
+
+    def bank_width(self, meaning: str) -> None:
+        """Refuses another product's reading of every input (or output) at once as one number when
+        its bank is not as wide as the drive's: IN is inputs 1-4 (lexium-mcode.txt L3433), OT outputs
+        1-3 (L851), Arcus DI and DO eight (arcus-pmx-4ex-sa.txt L752, L797): the number would differ.
+        A bank compared with a number is an input pattern by then (in_force.with_bank_patterns)."""
+        kind = "inputs" if meaning == "inputs" else "outputs"
+        source = in_force.source_profile(self.module, self.profile)
+        theirs = source.get(f"machine.{kind}.count", 0) if source is not None else 0
+        ours = self.profile.get(f"machine.{kind}.count", 0)
+        if theirs != ours or not theirs:  # (a bank whose every use is masked to the drive's bits: masked_bank_reads)
+            raise Unsupported(f"every {kind[:-1]} read at once as one number (the source's bank has "
+                              f"{theirs or 'an unknown number of'} {kind}, {READINGS[meaning]} has {ours or '?'}: the "
+                              f"value would differ; read the {kind} one by one, or keep the drive's with `&`, as V2=V1&6)")
 
     def cond(self, node) -> str:
         node = simplify(node)
@@ -1130,6 +1177,53 @@ def line_of(routine: ir.Routine) -> int:
         return routine.span.line
     spans = (op.span for block in routine.blocks for op in block.ops if op.span is not None)
     return next((span.line for span in spans), 0)
+
+
+def masked_bank_reads(module: ir.Module, profile: Profile) -> set[int]:
+    """The readings of every input (output) at once (by id) whose value only counts through an AND
+    with a number within the drive's bits: `V1=DI` where every use of V1 is `V1&6` (arcus
+    samples/sorting_station.prg), or `DI&6` itself. Such a value is the same on a bank of another
+    width (IN: inputs 1-4, lexium-mcode.txt L3433, raw levels as Arcus DI, L797), so it is written."""
+    widths = {"inputs": profile.get("machine.inputs.count", 0), "outputs": profile.get("machine.outputs.count", 0)}
+
+    def within(node, meaning) -> bool:
+        return isinstance(node, ir.BinOp) and node.op == "&" and isinstance(node.right, ir.Const) \
+            and isinstance(widths[meaning], int) and 0 <= node.right.value < 2 ** widths[meaning]
+
+    exprs = [e for _, b in module.blocks() for e in [*(x for op in b.ops for x in ir.op_exprs(op)),
+                                                      *ir.term_exprs(b.terminator)]]
+    found: set[int] = set()
+    for expr in exprs:
+        for node in ir.walk_expr(expr):
+            if within(node, "inputs") or within(node, "outputs"):
+                if isinstance(node.left, ir.Status) and node.left.meaning in widths and within(node, node.left.meaning):
+                    found.add(id(node.left))
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.Assign) and isinstance(op.value, ir.Status) and op.value.meaning in widths:
+                name, meaning = op.target.name, op.value.meaning
+                uses = [(n, parent) for e in exprs for parent in ir.walk_expr(e)
+                        for n in _children(parent) if isinstance(n, ir.Var) and n.name == name]
+                bare = [n for e in exprs if isinstance(e, ir.Var) and e.name == name for n in [e]]
+                if uses and not bare and all(parent.left is n and within(parent, meaning) for n, parent in uses):
+                    found.add(id(op.value))
+    return found
+
+
+def _children(node) -> tuple:
+    if isinstance(node, ir.BinOp):
+        return (node.left, node.right)
+    if isinstance(node, ir.UnOp):
+        return (node.operand,)
+    if isinstance(node, ir.Func):
+        return tuple(node.args)
+    if isinstance(node, (ir.Compare, ir.Logic)):
+        return (node.left, node.right)
+    if isinstance(node, ir.Truth):
+        return (node.expr,)
+    if isinstance(node, ir.Not):
+        return (node.cond,)
+    return ()
 
 
 def threaded(term, through):

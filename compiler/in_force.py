@@ -121,6 +121,7 @@ def with_input_polarity(module: ir.Module, source, target) -> ir.Module:
     when nothing differs."""
     if active_high(source) == active_high(target):
         return module
+    module = with_bank_patterns(module, source)
     set_here = {op.index for _, b in module.blocks() for op in b.ops
                 if isinstance(op, ir.Setting) and op.name == "input_active_high"}
     read = {n.index for _, b in module.blocks() for e in [*(x for op in b.ops for x in ir.op_exprs(op)),
@@ -138,6 +139,71 @@ def with_input_polarity(module: ir.Module, source, target) -> ir.Module:
         block.ops[:] = [_flip_op(op, flip) for op in block.ops]
         if isinstance(block.terminator, ir.Branch):
             block.terminator.cond = _flip_expr(block.terminator.cond, flip)
+    return copy
+
+
+def with_bank_patterns(module: ir.Module, source) -> ir.Module:
+    """Every input read at once and compared with a number (Arcus `IF DI=255`, MCode `BR L,IN=5`)
+    as the pattern of its inputs' logic states (`InputMatch`), which the polarity inversion above
+    then turns into the target's: the bank holds the source product's `[machine.inputs] count`
+    levels, input 1 in bit 0 (arcus-pmx-4ex-sa.txt L797, L1905; lexium-mcode.txt L3433-L3435), so
+    `DI=255` is "inputs 1-8 at level 1" and the other product tests those inputs one by one (or
+    refuses one it lacks) instead of its own bank, whose width and polarity differ. Done only where
+    the program sets no input's polarity (the level is then the logic state, or its inverse for a
+    low-active product); a copy, or the module itself when nothing is rewritten."""
+    count = source.get("machine.inputs.count", 0) if source is not None else 0
+    if not isinstance(count, int) or isinstance(count, bool) or not 0 < count <= 32:
+        return module
+    if any(isinstance(op, ir.Setting) and op.name == "input_active_high" for _, b in module.blocks() for op in b.ops):
+        return module
+    high = active_high(source)
+
+    def pattern(compare) -> ir.Pattern | None:
+        if not isinstance(compare, ir.Compare) or compare.op not in ("=", "!="):
+            return None
+        for bank, const in ((compare.left, compare.right), (compare.right, compare.left)):
+            if isinstance(bank, ir.Status) and bank.meaning == "inputs" and bank.index is None \
+                    and isinstance(const, ir.Const) and float(const.value).is_integer() \
+                    and 0 <= const.value < 2 ** count:
+                value = int(const.value)
+                return ir.Pattern("".join(str((value >> n & 1) if high else 1 - (value >> n & 1))
+                                          for n in range(count)), compare.span)
+        return None
+
+    def rewrite(cond):
+        if cond is None:
+            return cond
+        found = pattern(cond)
+        if found is not None:
+            match = ir.InputMatch(found, cond.span)
+            return match if cond.op == "=" else ir.Not(match, cond.span)
+        if isinstance(cond, ir.Logic):
+            left, right = rewrite(cond.left), rewrite(cond.right)
+            return cond if left is cond.left and right is cond.right else ir.Logic(cond.op, left, right, cond.span)
+        if isinstance(cond, ir.Not):
+            inner = rewrite(cond.cond)
+            return cond if inner is cond.cond else ir.Not(inner, cond.span)
+        return cond
+
+    fields = {ir.WaitInput: "cond", ir.Call: "cond"}
+    if not any(rewrite(cond) is not cond for _, b in module.blocks()
+               for cond in [*(getattr(op, fields[type(op)]) for op in b.ops if type(op) in fields),
+                            getattr(b.terminator, "cond", None) if isinstance(b.terminator, ir.Branch) else None]):
+        return module
+    import copy as copying
+
+    copy = ir.copy_module(module)
+    for _, block in copy.blocks():
+        for n, op in enumerate(block.ops):
+            name = fields.get(type(op))
+            if name is not None and getattr(op, name) is not None:
+                new = rewrite(getattr(op, name))
+                if new is not getattr(op, name):
+                    op = copying.copy(op)
+                    setattr(op, name, new)
+                    block.ops[n] = op
+        if isinstance(block.terminator, ir.Branch):
+            block.terminator.cond = rewrite(block.terminator.cond)
     return copy
 
 

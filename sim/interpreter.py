@@ -226,6 +226,10 @@ class Simulator:
         self.idle_level = idle if idle in (0, 1) and not isinstance(idle, bool) else None
         count = inputs.get("count", 0)
         self.input_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 <= count <= 64 else 0
+        # the outputs a value for every output at once sets (Arcus DO, MCode OT): the product's own
+        # (`[machine.outputs] count`), else every bit of the value up to the eighth
+        count = machine_table(self.product, "outputs").get("count", 0)
+        self.output_count = count if isinstance(count, int) and not isinstance(count, bool) and 0 < count <= 64 else 0
         self.active_high: dict[int, bool] = {}  # input -> its polarity, as the program set it
         self.machine.shared["sets"] = tuple(module.axis_sets)
         self.countdown_marks = countdown_marks(module)
@@ -1437,7 +1441,9 @@ class Simulator:
 
     def _levels(self) -> int:
         """Every input's level as a bit mask, input 1 in bit 0 (MCode IN, L3433-L3435)."""
-        top = max([self.input_count, *self.machine.inputs]) if self.machine.inputs or self.input_count else 0
+        # the product's own inputs: a scenario may drive more (the source's, in a conversion), which
+        # a device with fewer does not read (MCode IN: inputs 1-4, L3433; Arcus DI: 1-8, L797)
+        top = self.input_count or max(self.machine.inputs, default=0)
         return sum(1 << (n - 1) for n in range(1, top + 1) if self._level(n))
 
     def _set_input(self, index: int, value: int, **where) -> None:
@@ -1472,7 +1478,9 @@ class Simulator:
                     changed[n] = int(bit)
         else:
             mask = int(self._eval(op.value))
-            top = max([8, mask.bit_length(), *self.machine.outputs])
+            # a device sets the outputs it has: Arcus DO outputs 1-8 (arcus-pmx-4ex-sa.txt L757), MCode
+            # OT outputs 1-3 (lexium-mcode.txt L851, L4669); unknown: every bit up to the eighth
+            top = self.output_count or max([8, mask.bit_length(), *self.machine.outputs])
             for n in range(1, top + 1):
                 changed[n] = (mask >> (n - 1)) & 1
         for n, v in changed.items():

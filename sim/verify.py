@@ -225,7 +225,7 @@ def default_scenarios(module: ir.Module, profile=None, low: Trace | None = None,
     given; run with `options`, else the defaults): the input changes `TOGGLE_AFTER` after each point where that run let time pass (a wait
     started or ended, a move ended, the run stopped waiting), then every second, `MAX_TOGGLES`
     changes at least, so a wait for the input's rise and one for its fall are both released."""
-    read = inputs_read(module)
+    read = inputs_seen(module)  # a reading of every input at once (Arcus DI, MCode IN) sees the first eight
     # levels stated, not left to each product's idle state: an input no scenario drives is inactive
     # for the polarity in force, which is another level on another product (docs/SIMULATOR.md)
     lows = Scenario(inputs={n: 0 for n in read}, name="inputs low")
@@ -275,6 +275,7 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
             raise ContractError(problems[0])
     tol = within or tolerance(source, output, source_profile, output_profile)
     ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
+    shared = shared_outputs(source_profile, output_profile)
     known: dict[int, Trace] = {}
     idle = sorted(set(inputs_seen(source)) | set(inputs_seen(output)))  # stated at the source's idle level
     if scenarios is None:
@@ -296,12 +297,36 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
         runs = [_Run(source, scenario, source_profile, a, opts.max_steps),
                 _Run(output, moved, output_profile, b, opts.max_steps)]
         horizon = _same_horizon(runs, opts, tol, kinds)
-        a, b = runs[0].trace, runs[1].trace
+        a, b = (_within_outputs(run.trace, shared) for run in runs)
         found = compare_traces(a, b, ratio, scenario.name, kinds, by_count, tol, horizon)
         if found is not None and not _another_interleaving(source, scenario, opts, source_profile, b, ratio,
                                                             kinds, by_count, tol, horizon):
             return found
     return None
+
+
+def output_count(profile) -> int:
+    """The outputs the product has (`[machine.outputs] count`; 0: not known)."""
+    count = profile.get("machine.outputs.count", 0) if profile is not None and hasattr(profile, "get") else 0
+    return count if isinstance(count, int) and not isinstance(count, bool) and count > 0 else 0
+
+
+def shared_outputs(source_profile, output_profile) -> int:
+    """The outputs both products have (0: no limit). A value for every output at once (Arcus DO=1,
+    MCode OT=1, X150 O100000) sets each product's own outputs (docs/CROSS.md, "Output banks"): the
+    outputs only one product has are not compared. A program that turns one of them on is refused
+    by the backend, which knows the target's outputs."""
+    counts = [c for c in (output_count(source_profile), output_count(output_profile)) if c]
+    return min(counts) if len(counts) == 2 and counts[0] != counts[1] else 0
+
+
+def _within_outputs(trace: Trace, shared: int) -> Trace:
+    """`trace` without what it did to outputs above `shared` (the trace itself when 0)."""
+    if not shared:
+        return trace
+    events = [e for e in trace.events if not (e.kind == "output" and e.data.get("output", 0) > shared)]
+    outputs = {n: v for n, v in trace.outputs.items() if n <= shared}
+    return dataclasses.replace(trace, events=events, outputs=outputs)
 
 
 def _analog_counts(profile) -> int:
@@ -544,6 +569,8 @@ def _axis_map(a: Trace, b: Trace) -> dict[str, str]:
         for event in trace.events:
             if len(seen) >= len(trace.axes) and trace.axes:
                 break  # every axis named: the order is known
+            if event.kind == "drive":
+                continue  # an enable (Arcus EO2) of an axis a one-axis target leaves out does not pair it
             data = event.data
             names = list(data.get("to", ())) + ([data["axis"]] if "axis" in data else []) + list(data.get("axes", ()))
             seen += [n for n in names if n not in seen]
@@ -649,10 +676,10 @@ def check_translation(path: str, dialect: str, before: str | ir.Module, after_te
     written = driver.check_file(path, target, out_profile, after_text, memory=False)
     if written.analysis is None or written.analysis.module is None or written.has_errors:
         return "the written program has errors, so it cannot be simulated"
-    if source_profile is None and same_program(source, written.analysis.module):
+    if source_profile is None and source.dialect == target and same_program(source, written.analysis.module):
         return ""  # the same operations in the same order: nothing a run could tell apart
     # (not between two products: the same operations may read other numbers there, I5 on an
-    # MDrivePlus and on a Lexium drive)
+    # MDrivePlus and on a Lexium drive, Arcus DI = 255 and MCode IN = 255 on 8 and 4 inputs)
     src_profile = source_profile or (profile if profile is not None and profile.dialect == source.dialect else None)
     try:
         src_profile = src_profile or driver.profile_for(dialects.get(source.dialect), None)

@@ -144,14 +144,15 @@ def test_x150_direction_on_the_distance_is_written_with_an_if_on_arcus() -> None
 
 # -- a constant output bank on X150 --------------------------------------------------------------------
 
-def test_a_constant_output_bank_is_refused_on_x150_with_its_reason() -> None:
-    """lexium-mcode.txt L851-L853: OT=5 sets the outputs to 101; X150 O sets outputs 1-6 by pattern
-    (parker-x150.md L2731-L2753). The simulator's bank sets every output the source has, so the
-    conversion is refused on its line, naming the bank, until validation knows the outputs a device
-    lacks (docs/CROSS.md)."""
-    _, errors = convert("OT=5\n", "mcode", "x150")
-    assert [(code, line) for code, line, _ in errors] == [("G003", 1)]
-    assert "bank" in errors[0][2]
+def test_a_constant_output_bank_is_the_x150_pattern_of_the_source_outputs() -> None:
+    """lexium-mcode.txt L851-L853: OT=5 sets the outputs 1-3 to 101 (the drive has three); X150 O
+    sets outputs by pattern, X leaving one as it is (parker-x150.md L2731-L2753): `O101`, outputs
+    4-6 untouched. The validation compares the outputs both products have (the profiles'
+    `[machine.outputs] count`: 3 and 6; docs/CROSS.md, "Output banks"). This test expected a
+    refusal before the simulator knew each product's outputs."""
+    out = body(written("PG 1\nOT=5\nH 100\nOT=2\nE\nPG\n", "mcode", "x150"), "x150")
+    first = out.index("O101")
+    assert out[first:first + 3] == ["O101", "T0.1", "O010"]
 
 
 def test_x150_cur_is_the_unit_the_arcus_pulses_count_in() -> None:

@@ -29,13 +29,14 @@ import re
 from dataclasses import dataclass, field
 from fractions import Fraction
 
-from mcc.backends import resolution
+from mcc.backends import enable_outputs, resolution
 from mcc.backends.input_setup import InputSetup
 from mcc.backends.structure import EndNode, IfNode, RepeatNode, Simple, WhileNode, structure
 from mcc.compiler.x150 import naming, neutral
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
 from mcc.compiler.diagnostics import Diagnostics
+from mcc.compiler import in_force
 from mcc.compiler.in_force import InForce, lookup
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
@@ -161,6 +162,7 @@ class Writer:
         self.settled = ir.settled_ops(module)  # where no move can run: a pause means the same in both dialects
         self.source_spr = module.steps_per_rev or profile.steps_per_rev
         self.resolution = profile.steps_per_rev or self.source_spr
+        self.speed_var: int | None = None  # the VARn holding a speed in rev/s (speed_variable)
         self.cur = self.device_resolutions()
         self.chosen_cur = self.chosen_resolution()  # a CUR the output sets so positions convert exactly
         if self.chosen_cur is not None:
@@ -232,11 +234,14 @@ class Writer:
         if self.native:
             return {}
         found: list[str] = []
+        enables: list[str] = []  # an axis only enabled (Arcus EO2) takes a device only when nothing moves
         for _, block in self.module.blocks():
             for op in block.ops:
                 for axis in op_axes(op):
-                    if axis and axis != ir.ALL_AXES and axis not in found:
-                        found.append(axis)
+                    seen = enables if isinstance(op, ir.DriveEnable) else found
+                    if axis and axis != ir.ALL_AXES and axis not in seen:
+                        seen.append(axis)
+        found = found or enables
         targets = list(self.profile.axes) or ["1"]
         return {axis: targets[i] for i, axis in enumerate(found) if i < len(targets)}
 
@@ -695,6 +700,8 @@ class Writer:
                 self.emit(self.address(op.axis) + "SB", span)
             elif not self.in_sequence:
                 self.emit(self.address(op.axis) + "K", span)
+            elif not self.native and id(op) in self.settled:
+                pass  # no move can run here: the source's abort stops nothing (docs/CROSS.md, "Abort")
             else:
                 raise CannotWrite("X150 cannot store a kill in a sequence (K is never saved); stop with a "
                                   "ramp, or send K from the host", "G003")
@@ -714,6 +721,14 @@ class Writer:
                 self.emit(self.address(op.axis) + "TRIP", span)
         elif isinstance(op, ir.SetOutput):
             self.emit(self.address() + "O" + self.outputs(op), span)
+        elif isinstance(op, ir.DriveEnable) and not self.native \
+                and enable_outputs.undriven(self.module, op, set(self.axes)):
+            self.out.diagnostics.add("G060", span or self.fallback_span(),
+                                     f"the enable of axis {op.axis} is left out: this program never moves axis "
+                                     f"{op.axis}, which profile {self.profile.name} does not drive (ST enables "
+                                     "the drive itself, parker-x150.md L4010-L4031)")
+        elif isinstance(op, ir.Setting) and op.name == "enable_outputs" and not self.native:
+            self.enable_outputs(op, span)
         elif isinstance(op, ir.DriveEnable):
             if not isinstance(op.on, ir.Const):
                 raise CannotWrite("X150 enables (ST0) or shuts down (ST1) the drive with a constant only")
@@ -815,7 +830,13 @@ class Writer:
     def motion(self, op: ir.SetMotion) -> None:
         param, span = op.param, op.span
         prefix = self.address(op.axis)
-        if param is ir.MotionParam.MAX_SPEED:
+        if param is ir.MotionParam.MAX_SPEED and not self.native and isinstance(op.value, ir.Var) \
+                and self.var_number(op.value.name):
+            self.emit(prefix + "V" + self.speed_variable(op.value), span)
+            again = self.ramp_again(op)
+            if again is not None:
+                self.emit(prefix + "A" + again, span)
+        elif param is ir.MotionParam.MAX_SPEED:
             self.emit(prefix + "V" + self.rate(op.value, "speed"), span)
             again = self.ramp_again(op)
             if again is not None:
@@ -1211,6 +1232,19 @@ class Writer:
         raise CannotWrite(f"an X150 {what} is a number or (VARn) in rev/s; {describe(expr)} cannot be written here",
                           "X202")
 
+    def speed_variable(self, var: ir.Var) -> str:
+        """Another dialect's speed held in a variable, in steps/s (Arcus `HSPD=V1`, arcus-pmx-4ex-sa.txt
+        L2230-L2233): X150's V(VARn) takes rev/s (parker-x150.md L4542), so the speed goes through a
+        free VARn that holds it per revolution (`VAR2=VAR1/4000`, decimal: L4569-L4573), then V(VAR2).
+        That VARn is the program's no longer (refused when none is free)."""
+        if not self.free_vars:
+            raise CannotWrite(f"an X150 speed is a number or (VARn) in rev/s; the speed in {var.name} (steps/s) "
+                              "needs a free VARn to hold it in rev/s, and all 50 are in use", "X202")
+        if self.speed_var is None:
+            self.speed_var = self.free_vars.pop()
+        self.emit(f"VAR{self.speed_var}=VAR{self.var_number(var.name)}/{self.source_spr}", var.span)
+        return f"(VAR{self.speed_var})"
+
     def value(self, expr) -> str:
         if isinstance(expr, ir.Const) and isinstance(expr.value, (int, float)):
             return number(expr.value)
@@ -1231,12 +1265,51 @@ class Writer:
         if op.index is not None and isinstance(value, ir.Const) and value.value in (0, 1) and 1 <= op.index <= 6:
             return "X" * (op.index - 1) + str(int(value.value))
         if op.index is None and isinstance(value, ir.Const):
-            raise CannotWrite(f"the value {number(value.value)} sets every output of the source's bank at once "
-                              f"(Arcus DO, MCode OT); X150 O sets outputs 1-{neutral.OUTPUTS} by pattern only "
-                              "(L2731-L2753), and the validation compares every output the source sets, also "
-                              "those X150 lacks; set the outputs one by one in the source", "G003")
+            return self.output_bank(value)
+        if op.index is not None and not 1 <= op.index <= neutral.OUTPUTS:
+            raise CannotWrite(f"output {op.index}: X150 has outputs 1-{neutral.OUTPUTS} (O, parker-x150.md L2731-L2753, "
+                              f"L2779): use one of those in the source", "G003")
         raise CannotWrite("X150 sets outputs 1-6 to 0 or 1 with a constant pattern (O); this output change has "
                           "no equivalent", "G003")
+
+    def enable_outputs(self, op: ir.Setting, span) -> None:
+        """Another product's enable outputs as one mask (Arcus `EO=3`, arcus-pmx-4ex-sa.txt L748): for
+        each axis the profile drives, its bit as ST0 (1: enabled) or ST1 (0: shut down), parker-x150.md
+        L4010-L4031; the bits of axes the program never uses are drives X150 does not have
+        (backends/enable_outputs.py). ST takes a constant: a mask computed at run time is refused."""
+        driven = dict(self.axes) or {enable_outputs.source_axes(self.module)[0]: ""}
+        for axis, address in driven.items():
+            bit = enable_outputs.bit_of(self.module, axis)
+            value = enable_outputs.enable_value(op.value, bit) if bit is not None else None
+            if not isinstance(value, ir.Const):
+                raise CannotWrite(f"X150 enables (ST0) or shuts down (ST1) the drive with a constant only (L4010-"
+                                  f"L4031); this enable of axis {axis} (bit {bit} of the enable outputs) is known "
+                                  "only at run time: set it with a number (EO=1, EO1=0)", "G003")
+            self.emit((address if str(address).isdigit() else "") + ("ST0" if value.value else "ST1"), span)
+
+    def output_bank(self, value: ir.Const) -> str:
+        """A number for every output of the source at once (Arcus DO=7, MCode OT=5; output 1 in bit
+        0: arcus-pmx-4ex-sa.txt L752, L1951; lexium-mcode.txt L851) as the O pattern of the outputs
+        that source has (`[machine.outputs] count`, up to X150's 6: parker-x150.md L2731-L2753):
+        DO=7 is O111000 (the PMX-4EX-SA's outputs 4-6 go off too), OT=5 is O101 (X150's outputs
+        4-6 are left as they are, as the MCode drive has none). A value that turns on an output
+        X150 lacks (DO=64) is refused: nothing on X150 would do what it does."""
+        number_ = value.value
+        if not (isinstance(number_, int) or float(number_).is_integer()) or number_ < 0:
+            raise CannotWrite(f"the value {number(number_)} for every output at once is no pattern of outputs", "G003")
+        bits = int(number_)
+        source = in_force.source_profile(self.module, self.profile)
+        count = source.get("machine.outputs.count", 0) if source is not None else 0
+        if not isinstance(count, int) or isinstance(count, bool) or count <= 0:
+            raise CannotWrite(f"the value {bits} sets every output of the source's bank at once; the source "
+                              "product's outputs are not known (`[machine.outputs] count` in its profile), so "
+                              "X150's pattern (O, L2731-L2753) cannot be chosen: set the outputs one by one", "G003")
+        beyond = [n + 1 for n in range(neutral.OUTPUTS, max(bits.bit_length(), count)) if bits >> n & 1]
+        if beyond:
+            raise CannotWrite(f"the value {bits} turns on output {beyond[0]}, and X150 has outputs "
+                              f"1-{neutral.OUTPUTS} (O, L2731-L2753): use outputs 1-{neutral.OUTPUTS} in the source",
+                              "G003")
+        return "".join(str(bits >> n & 1) for n in range(min(count, neutral.OUTPUTS)))
 
     def wait(self, cond) -> str:
         """TRE (until the inputs match) or TRN (until they do not) with one X150 pattern."""
