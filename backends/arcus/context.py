@@ -50,6 +50,11 @@ class Context:
         return any(isinstance(op, ir.SetMotion) and op.param in rates and isinstance(op.value, ir.Const)
                    for _, block in self.module.blocks() for op in block.ops)
 
+    @cached_property
+    def settled_ops(self) -> set[int]:
+        """The operations (by id) before which no move can still be running (`ir.settled_ops`)."""
+        return ir.settled_ops(self.module)
+
     def in_force_before(self, op: ir.Op) -> in_force.State:
         """The motion settings in force just before `op` (constants known by data flow)."""
         if self._in_force is None:
