@@ -62,11 +62,13 @@ def test_general_input_setup_needs_no_arcus_statement_when_unread() -> None:
 
 def test_general_input_level_is_refused_when_the_program_reads_it() -> None:
     """The level decides what the program reads from the line (lexium-mcode.txt L6936: active
-    states); when the program reads input 2 itself, the PMX-4EX-SA (no level statement in a program)
-    refuses the set-up on its line rather than read another level."""
-    program = "IS=2,0,0\nPG 1\nLB A1\nBR A1, I2=0\nE\nPG\n"
+    states); when the program reads input 2 itself at a level that changes over the run, the
+    PMX-4EX-SA (no level statement in a program) refuses the set-up on its line rather than read
+    another level. (`IS=2,0,0` alone, once this test's program, sets the power-up level, L3500, and
+    now converts: tests/test_cross_from_mcode.py.)"""
+    program = "IS=2,0,0\nPG 1\nLB A1\nBR A1, I2=0\nIS=2,0,1\nLB B1\nBR B1, I2=0\nE\nPG\n"
     _, errors = convert(program, "mcode", "arcus")
-    assert [(code, line) for code, line, _ in errors] == [("G003", 1)], errors
+    assert [(code, line) for code, line, _ in errors] == [("G003", 1), ("G003", 5)], errors
     assert "level" in errors[0][2] and "DI2" in errors[0][2]
 
 
