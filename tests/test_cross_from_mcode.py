@@ -156,3 +156,23 @@ def test_save_while_the_program_runs_stays_refused_on_arcus() -> None:
     flash from the PC only (STORE, arcus-pmx-4ex-sa.txt L819), so it stays refused on line 2."""
     _, errors = convert("PG 100\nS\nE\nPG\n", "arcus")
     assert ("G003", 2) in [(code, line) for code, line, _ in errors], errors
+
+
+# -- MCode's power-up initial speed into X150 ---------------------------------------------------------
+
+def test_power_up_initial_speed_is_refused_at_the_first_move() -> None:
+    """An MCode program that sets no VI starts its moves at 1000 steps/s (lexium-mcode.txt L662-L666);
+    X150 starts every move from standstill (docs/dialects/x150.md; A ramps from 0, parker-x150.md
+    L195-L203), so at A=1000000 each move ends up to 2 ms later, more than `[x150] start_speed_drift`
+    (1 ms): refused (X216) at the first move, line 2, naming the VI that would convert, rather than
+    by the validation (S010) with no advice (lexium-mcode.txt L751-L759, the manual's H example)."""
+    _, errors = convert("PG 100\nMR 20000\nH\nMR -20000\nH\nE\nPG\n", "x150")
+    assert [(code, line) for code, line, _ in errors] == [("X216", 2)], errors
+    assert "500 steps/s or less" in errors[0][2]
+
+
+def test_low_initial_speed_set_by_the_program_converts() -> None:
+    """The same program with VI=400 (L662-L666): moves end at most 0.8 ms later, within the profile's
+    1 ms, and the conversion is written (warning X205: the initial speed is left out)."""
+    out = body(written("VI=400\nPG 100\nMR 20000\nH\nMR -20000\nH\nE\nPG\n", "x150"), "x150")
+    assert out[0] == "1CUR25600" and "1D10000" in out and "1D-10000" in out
