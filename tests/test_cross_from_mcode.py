@@ -176,3 +176,22 @@ def test_low_initial_speed_set_by_the_program_converts() -> None:
     1 ms, and the conversion is written (warning X205: the initial speed is left out)."""
     out = body(written("VI=400\nPG 100\nMR 20000\nH\nMR -20000\nH\nE\nPG\n", "x150"), "x150")
     assert out[0] == "1CUR25600" and "1D10000" in out and "1D-10000" in out
+
+
+# -- output set-up the PMX-4EX-SA needs none of -------------------------------------------------------
+
+def test_general_output_active_high_needs_no_arcus_statement() -> None:
+    """`OS=1,16,1` (lexium-mcode.txt L4602-L4640: output 1 general purpose user, HIGH active; the
+    manual's relay example L7109-L7118): the PMX-4EX-SA's DO1-DO8 are general outputs and one turned
+    on sources VS (arcus-pmx-4ex-sa.txt L357, L752), so the set-up is written as nothing and
+    `O1=1` is `DO1=1`."""
+    out = body(written("OS=1,16,1\nPG 100\nO1=1\nE\nPG\n", "arcus"), "arcus")
+    assert "DO1=1" in out and not [line for line in out if line.startswith("OS")]
+
+
+def test_low_active_or_other_output_function_stays_refused() -> None:
+    """`OS=1,16,0` (LOW active, L4620) is the opposite of what an Arcus output does when on, and
+    `OS=1,17,1` (moving, L4627) has no Arcus output function: both refused on line 1."""
+    for program in ("OS=1,16,0\nPG 100\nO1=1\nE\nPG\n", "OS=1,17,1\nPG 100\nMR 100\nH\nE\nPG\n"):
+        _, errors = convert(program, "arcus")
+        assert ("G003", 1) in [(code, line) for code, line, _ in errors], (program, errors)

@@ -466,6 +466,8 @@ class Legalizer:
         ctx = self.ctx
         if ctx.input_setup.needs_none(op):
             raise Skip  # a home/limit/general line: the PMX-4EX-SA's own input, nothing to set up
+        if op.name in ("output_function", "output_active_high") and op.index in ctx.plain_outputs:
+            raise Skip  # a general output, active high: what DOn is (ctx.plain_outputs)
         if op.name in ("clear_error", "compare_output"):
             axis = self.axis(op.axis, op)
             on = isinstance(op.value, ir.Const) and op.value.value != 0
