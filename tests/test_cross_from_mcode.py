@@ -195,3 +195,11 @@ def test_low_active_or_other_output_function_stays_refused() -> None:
     for program in ("OS=1,16,0\nPG 100\nO1=1\nE\nPG\n", "OS=1,17,1\nPG 100\nMR 100\nH\nE\nPG\n"):
         _, errors = convert(program, "arcus")
         assert ("G003", 1) in [(code, line) for code, line, _ in errors], (program, errors)
+
+
+def test_slew_after_a_move_sent_as_a_command_is_refused() -> None:
+    """`MA 5000` sent before the program, with no H after it (H is what waits for a move to end,
+    lexium-mcode.txt L3048), may still run when the program's `SL` starts: refused as above."""
+    program = "VI=1000\nVM=768000\nA=1000000\nD=1000000\nMA 5000\nPG 100\nSL 200000\nE\nPG\n"
+    _, errors = convert(program, "arcus")
+    assert ("G003", 7) in [(code, line) for code, line, _ in errors], errors

@@ -362,7 +362,10 @@ class Legalizer:
         if not isinstance(velocity, ir.Const) or velocity.value == 0:
             raise Refused("Arcus jogs at HSPD (JOGX+): a slew at a velocity computed at run time has no statement")
         self.check_unit(velocity, ir.Unit.STEPS_PER_S, "slew velocity")
-        if id(op) not in self.ctx.settled_ops:
+        others_move = any(isinstance(o, (ir.Move, ir.Arc, ir.Slew, ir.Home)) for r in self.ctx.module.routines
+                          if r.kind is ir.RoutineKind.IMMEDIATE and r.name != self.routine.name
+                          for b in r.blocks for o in b.ops)  # commands sent first may leave a move running
+        if id(op) not in self.ctx.settled_ops or others_move:
             raise Refused("the slew may change the speed of a motion still running, which Arcus does on the fly only "
                           "(SSPD, within a speed window); wait for the motion to end (H) before the slew")
         state = dict(self.state(op))
