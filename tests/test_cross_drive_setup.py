@@ -17,8 +17,9 @@ from mcc.compiler.ir_names import SETTINGS
 EXT = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}
 COMMENT = {"mcode": "'", "x150": ";", "arcus": ";"}
 
-# RC=75 and HC=10 as in lexium-mcode.txt L5147 (RC=75) and L3077-L3090 (HC 0-100 %)
-CURRENTS = "RC=75\nHC=10\nPG 100\nMR 5120\nH\nE\nPG\n"
+# RC=75 and HC=10 as in lexium-mcode.txt L5147 (RC=75) and L3077-L3090 (HC 0-100 %); VI=400 so
+# that X150, which starts moves from standstill, ends them within 1 ms of the source (X216, L662-L666)
+CURRENTS = "RC=75\nHC=10\nVI=400\nPG 100\nMR 5120\nH\nE\nPG\n"
 
 
 def compile_to(text: str, target: str, settings=None):
