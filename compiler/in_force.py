@@ -103,7 +103,42 @@ def with_source_power_up(module: ir.Module, target, lowest_initial: float = 0.0)
     source = source_profile(module, target)
     if source is None:
         return module
-    return with_input_polarity(with_power_up(module, source, target, lowest_initial), source, target)
+    # a setting read back is resolved before the power-up values (`D=A` after `A=...` then sets D before
+    # any motion, so D's power-up value is not needed) and again after (`D=A` reading a power-up value)
+    module = with_power_up(with_settings_read(module), source, target, lowest_initial)
+    return with_input_polarity(with_settings_read(module), source, target)
+
+
+def with_settings_read(module: ir.Module) -> ir.Module:
+    """A motion setting given the value of another read back (MCode `D=A` in the manual's applications, lexium-mcode.txt L7626;
+    D sets the deceleration, L2270) is the constant in force there when the data
+    flow knows it: a target that needs the value written (an X150 A, an Arcus ACC from the speeds)
+    then writes it, as it writes `D=1000000`. Only between settings of the same unit; readings not
+    known statically are left as they are (the backend refuses them). A copy; the module as it is
+    when no setting reads another."""
+    def reads_setting(op) -> bool:
+        return isinstance(op, ir.SetMotion) and isinstance(op.value, ir.Status) \
+            and op.value.meaning in SETTING_READINGS \
+            and ir.PARAM_UNITS.get(ir.MotionParam(op.value.meaning)) == ir.PARAM_UNITS.get(op.param)
+
+    if not any(reads_setting(op) for _, block in module.blocks() for op in block.ops):
+        return module
+    analysis = InForce(module)
+    known: dict[tuple[int, int, int], ir.Const] = {}
+    for r, routine in enumerate(module.routines):
+        blocks = {id(block): b for b, block in enumerate(routine.blocks)}
+        for block, index, op, state in analysis.walk(routine):
+            if reads_setting(op):
+                value = lookup(state, ir.MotionParam(op.value.meaning), op.value.axis or ALL)
+                if value is not None:
+                    known[(r, blocks[id(block)], index)] = value
+    if not known:
+        return module
+    copy = ir.copy_module(module)
+    for (r, b, index), value in known.items():
+        op = copy.routines[r].blocks[b].ops[index]
+        op.value = ir.Const(value.value, value.unit, op.value.span)
+    return copy
 
 
 def active_high(profile) -> bool:
@@ -124,6 +159,8 @@ def with_input_polarity(module: ir.Module, source, target) -> ir.Module:
     module = with_bank_patterns(module, source)
     set_here = {op.index for _, b in module.blocks() for op in b.ops
                 if isinstance(op, ir.Setting) and op.name == "input_active_high"}
+    module, as_power_up = without_plain_levels(module, source, target)
+    set_here -= as_power_up
     read = {n.index for _, b in module.blocks() for e in [*(x for op in b.ops for x in ir.op_exprs(op)),
                                                            *ir.term_exprs(b.terminator)]
             for n in ir.walk_expr(e) if isinstance(n, ir.Status) and n.meaning == "input"}
@@ -205,6 +242,47 @@ def with_bank_patterns(module: ir.Module, source) -> ir.Module:
         if isinstance(block.terminator, ir.Branch):
             block.terminator.cond = rewrite(block.terminator.cond)
     return copy
+
+
+def without_plain_levels(module: ir.Module, source, target) -> tuple[ir.Module, set[int]]:
+    """The input levels a program sets that need no statement on the target (issue 24): an input's
+    level set to the source's own power-up polarity everywhere it is set (MCode `IS=1,0,0`, active
+    low as at power-up, lexium-mcode.txt L3500) changes nothing, so the input reads as one the
+    program does not set (its reads are inverted for the target); an input's level set to the
+    target's polarity (`IS=1,0,1`, active high: what an Arcus DI reads, arcus-pmx-4ex-sa.txt
+    L1900-L1905) before the program does anything else is the target's own reading, so its reads
+    stay as they are. Returns the module without those settings (a copy) and the inputs of the
+    first kind; anything else is left for the backend to write or refuse."""
+    settings: dict[int, list[ir.Setting]] = {}
+    for _, block in module.blocks():
+        for op in block.ops:
+            if isinstance(op, ir.Setting) and op.name == "input_active_high" and op.index is not None:
+                settings.setdefault(op.index, []).append(op)
+    if not settings:
+        return module, set()
+    first = _first_run(module)
+    leading: set[int] = set()  # settings before anything else runs: the program's first statements
+    if first is not None and first.entry is not None:
+        for op in first.entry.ops:
+            if not isinstance(op, (ir.Setting, ir.SetMotion)):  # neither reads an input
+                break
+            leading.add(id(op))
+    ours, theirs = int(active_high(source)), int(active_high(target))
+    power_up: set[int] = set()
+    dropped: set[int] = set()
+    for index, ops in settings.items():
+        values = {op.value.value if isinstance(op.value, ir.Const) else None for op in ops}
+        if values == {ours}:
+            power_up.add(index)
+            dropped.update(id(op) for op in ops)
+        elif values == {theirs} and all(id(op) in leading for op in ops):
+            dropped.update(id(op) for op in ops)
+    if not dropped:
+        return module, set()
+    copy = ir.copy_module(module)
+    for (_, block), (_, original) in zip(copy.blocks(), module.blocks()):
+        block.ops[:] = [op for op, was in zip(block.ops, original.ops) if id(was) not in dropped]
+    return copy, power_up
 
 
 def _flip_op(op, flip: frozenset):

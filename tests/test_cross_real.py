@@ -62,11 +62,13 @@ def test_general_input_setup_needs_no_arcus_statement_when_unread() -> None:
 
 def test_general_input_level_is_refused_when_the_program_reads_it() -> None:
     """The level decides what the program reads from the line (lexium-mcode.txt L6936: active
-    states); when the program reads input 2 itself, the PMX-4EX-SA (no level statement in a program)
-    refuses the set-up on its line rather than read another level."""
-    program = "IS=2,0,0\nPG 1\nLB A1\nBR A1, I2=0\nE\nPG\n"
+    states); when the program reads input 2 itself at a level that changes over the run, the
+    PMX-4EX-SA (no level statement in a program) refuses the set-up on its line rather than read
+    another level. (`IS=2,0,0` alone, once this test's program, sets the power-up level, L3500, and
+    now converts: tests/test_cross_from_mcode.py.)"""
+    program = "IS=2,0,0\nPG 1\nLB A1\nBR A1, I2=0\nIS=2,0,1\nLB B1\nBR B1, I2=0\nE\nPG\n"
     _, errors = convert(program, "mcode", "arcus")
-    assert [(code, line) for code, line, _ in errors] == [("G003", 1)], errors
+    assert [(code, line) for code, line, _ in errors] == [("G003", 1), ("G003", 5)], errors
     assert "level" in errors[0][2] and "DI2" in errors[0][2]
 
 
@@ -90,22 +92,25 @@ def test_jog_input_is_still_refused() -> None:
 def test_x150_output_sets_a_cur_that_makes_mcode_positions_whole() -> None:
     """parker-x150.md L731-L747: CUR sets the user steps per revolution (1-32,767), the motor's travel
     unchanged. 20000 MCode steps (51200/rev, lexium-mcode.txt L645) fall between two steps at the
-    profile's CUR4000, and are 10000 user steps at CUR25600 (half the source's)."""
-    out = body(written("MA 20000\n", "mcode", "x150"), "x150")
+    profile's CUR4000, and are 10000 user steps at CUR25600 (half the source's). VI=400: X150 starts
+    moves from standstill, and at MCode's power-up VI of 1000 steps/s (lexium-mcode.txt L662-L666)
+    the move would end 2 ms later, which is refused (X216)."""
+    out = body(written("VI=400\nMA 20000\n", "mcode", "x150"), "x150")
     assert out[0] == "1CUR25600" and "1D10000" in out
 
 
 def test_x150_keeps_the_profile_cur_when_it_is_exact() -> None:
-    """25600 MCode steps are 2000 user steps at the profile's CUR4000 (x 5/64): no CUR is written."""
-    out = body(written("MA 25600\n", "mcode", "x150"), "x150")
+    """25600 MCode steps are 2000 user steps at the profile's CUR4000 (x 5/64): no CUR is written
+    (VI=400 as above, lexium-mcode.txt L662-L666)."""
+    out = body(written("VI=400\nMA 25600\n", "mcode", "x150"), "x150")
     assert not [line for line in out if "CUR" in line] and "1D2000" in out
 
 
 def test_mcode_resolution_fixed_by_the_program_is_not_chosen() -> None:
     """An MCode program that sets MS itself (lexium-mcode.txt L4282) fixes its resolution: no CUR is
-    chosen, and a position between two X150 steps is refused on its line."""
-    _, errors = convert("MS=256\nMA 20000\n", "mcode", "x150")
-    assert [(code, line) for code, line, _ in errors] == [("X207", 2)]
+    chosen, and a position between two X150 steps is refused on its line (VI=400 as above)."""
+    _, errors = convert("MS=256\nVI=400\nMA 20000\n", "mcode", "x150")
+    assert [(code, line) for code, line, _ in errors] == [("X207", 3)]
 
 
 def test_mcode_output_sets_a_legal_ms_for_a_computed_x150_distance() -> None:
@@ -126,7 +131,7 @@ def test_resolution_choice_can_be_turned_off_in_the_profile() -> None:
     from mcc.compiler import profiles
     base = profiles.load("x150-pdhx")
     fixed = dataclasses.replace(base, data={**base.data, "cross": {"choose_resolution": False}})
-    result = driver.compile_file("fixture.mxt", "mcode", "x150", profile=fixed, text="MA 20000\n")
+    result = driver.compile_file("fixture.mxt", "mcode", "x150", profile=fixed, text="VI=400\nMA 20000\n")
     assert [d.code for d in result.diagnostics if d.severity.value == "error"] == ["X207"]
 
 

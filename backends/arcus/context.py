@@ -50,6 +50,44 @@ class Context:
         return any(isinstance(op, ir.SetMotion) and op.param in rates and isinstance(op.value, ir.Const)
                    for _, block in self.module.blocks() for op in block.ops)
 
+    @cached_property
+    def plain_outputs(self) -> set[int]:
+        """The outputs whose set-up the PMX-4EX-SA needs no statement for: set up as general outputs
+        (what DO1-DO8 are, arcus-pmx-4ex-sa.txt L752), and, if given a level, active high (an Arcus
+        output turned on sources VS, L357, L752) before the program does anything else, everywhere
+        it is set. Another function or level is refused by the legalizer."""
+        functions: dict[int, set] = {}
+        levels: dict[int, list] = {}
+        for _, block in self.module.blocks():
+            for op in block.ops:
+                if isinstance(op, ir.Setting) and op.index is not None:
+                    if op.name == "output_function":
+                        functions.setdefault(op.index, set()).add(
+                            op.value.value if isinstance(op.value, ir.Text) else None)
+                    elif op.name == "output_active_high":
+                        levels.setdefault(op.index, []).append(op)
+        leading: set[int] = set()
+        first = next((r for kind in (ir.RoutineKind.IMMEDIATE, ir.RoutineKind.MAIN) for r in self.module.routines
+                      if r.kind is kind and r.blocks), None)
+        if first is not None:
+            for op in first.blocks[0].ops:
+                if not isinstance(op, (ir.Setting, ir.SetMotion)):
+                    break
+                leading.add(id(op))
+        plain = set()
+        for index in set(functions) | set(levels):
+            if not 1 <= index <= 8 or functions.get(index, {"general"}) != {"general"}:
+                continue
+            if all(isinstance(op.value, ir.Const) and op.value.value == 1 and id(op) in leading
+                   for op in levels.get(index, [])):
+                plain.add(index)
+        return plain
+
+    @cached_property
+    def settled_ops(self) -> set[int]:
+        """The operations (by id) before which no move can still be running (`ir.settled_ops`)."""
+        return ir.settled_ops(self.module)
+
     def in_force_before(self, op: ir.Op) -> in_force.State:
         """The motion settings in force just before `op` (constants known by data flow)."""
         if self._in_force is None:

@@ -340,11 +340,80 @@ class Legalizer:
         self.emit(ir.Arc(op.axes, center, op.clockwise, angle, op.span))
 
     def op_slew(self, op: ir.Slew) -> None:
-        if op.velocity is not None or op.direction not in (1, -1):
+        if op.velocity is not None:
+            self.slew_at(op)
+            return
+        if op.direction not in (1, -1):
             self.ctx.unsupported(op, "Arcus jogs at the current HSPD in a direction (JOGX+); a slew at a "
                                      "given velocity has no statement")
             raise Skip
         self.emit(ir.Slew(self.axis(op.axis, op), direction=op.direction, span=op.span))
+
+    def slew_at(self, op: ir.Slew) -> None:
+        """A slew at a constant velocity (MCode `SL v`: slew at v, accelerating at A, lexium-mcode.txt
+        L5393-L5404) as JOG (arcus-pmx-4ex-sa.txt L2302-L2310: jogging "using current high speed, low
+        speed, and acceleration"): HSPD = |v| and ACC the ramp from LSPD to |v| at the acceleration
+        in force, then JOG in v's direction, then HSPD and ACC in force written back, so what moves
+        after it keeps its speeds (the jog runs on at its own: a speed change while moving is SSPD's,
+        "On-The-Fly Speed Change", L509-L533). Only where no motion can run (`ir.settled_ops`):
+        changing a running motion's speed is an on-the-fly change. Refused when the velocity is computed at run time, not above
+        the initial speed, or the acceleration, the speeds or the deceleration do not allow it."""
+        velocity = op.velocity
+        if not isinstance(velocity, ir.Const) or velocity.value == 0:
+            raise Refused("Arcus jogs at HSPD (JOGX+): a slew at a velocity computed at run time has no statement")
+        self.check_unit(velocity, ir.Unit.STEPS_PER_S, "slew velocity")
+        others_move = any(isinstance(o, (ir.Move, ir.Arc, ir.Slew, ir.Home)) for r in self.ctx.module.routines
+                          if r.kind is ir.RoutineKind.IMMEDIATE and r.name != self.routine.name
+                          for b in r.blocks for o in b.ops)  # commands sent first may leave a move running
+        if id(op) not in self.ctx.settled_ops or others_move:
+            raise Refused("the slew may change the speed of a motion still running, which Arcus does on the fly only "
+                          "(SSPD, within a speed window); wait for the motion to end (H) before the slew")
+        state = dict(self.state(op))
+        speed = abs(float(velocity.value))
+        accel = lookup(state, ir.MotionParam.ACCEL, op.axis)
+        initial = lookup(state, ir.MotionParam.INITIAL_SPEED, op.axis)
+        top = lookup(state, ir.MotionParam.MAX_SPEED, op.axis)
+        if accel is None or initial is None or top is None or lookup(state, ir.MotionParam.ACCEL_TIME, op.axis):
+            raise Refused("Arcus jogs at HSPD with the ramp time ACC: the slew's acceleration and the speeds in force "
+                          "are not known here (set the initial speed, maximum speed and acceleration with constants)")
+        if speed <= max(float(initial.value), lowest_speed()):
+            raise Refused(f"the slew at {speed:g} steps/s is not above the initial speed {float(initial.value):g}, "
+                          "and Arcus jogs from LSPD up to HSPD")
+        own = any((param, op.axis) in state for param in (*SPEED_PARAMS, ir.MotionParam.ACCEL))
+        axis = self.axis(op.axis if own else ir.ALL_AXES, op, setting=True)
+        jog = dict(state)
+        jog[(ir.MotionParam.MAX_SPEED, op.axis if own else ir.ALL_AXES)] = ir.Const(speed, ir.Unit.STEPS_PER_S)
+        jog[(ir.MotionParam.MAX_SPEED, op.axis)] = ir.Const(speed, ir.Unit.STEPS_PER_S)
+        self.decel_known(jog, op.axis)
+        ramp, back = ramp_ms(accel.value, jog, op.axis), ramp_ms(accel.value, state, op.axis)
+        if ramp is None or back is None:
+            raise Refused("Arcus jogs at HSPD with the ramp time ACC, which the slew's acceleration does not give here")
+        changes = speed != float(top.value)
+        if changes:
+            hspd = self.ranged("HSPD", self.ctx.scale.rate(ir.Const(speed, ir.Unit.STEPS_PER_S)), op)
+            self.emit(ir.SetMotion(ir.MotionParam.MAX_SPEED, axis, hspd, op.span))
+            self.emit(ir.SetMotion(ir.MotionParam.ACCEL, axis, ir.Const(ramp), op.span))
+        self.emit(ir.Slew(self.axis(op.axis, op), direction=1 if velocity.value > 0 else -1, span=op.span))
+        if changes:
+            hspd = self.ranged("HSPD", self.ctx.scale.rate(top), op)
+            self.emit(ir.SetMotion(ir.MotionParam.MAX_SPEED, axis, hspd, op.span))
+            self.emit(ir.SetMotion(ir.MotionParam.ACCEL, axis, ir.Const(back), op.span))
+
+    def op_save(self, op: ir.Save) -> None:
+        """A save sent as a command (MCode `S` after the final PG saves the program on load,
+        lexium-mcode.txt L5250-L5263): the PMX-4EX-SA writes a standalone program to flash when it is
+        downloaded (arcus-pmx-4ex-sa.txt L844, L1032), and the output sets what the source set before
+        its program in the program itself, so nothing is left to save; written as nothing, with a
+        warning. A save inside a program (it keeps values the run computed) stays refused, and so
+        does an X150 `SV` for now: its stream's stretches of immediate commands are written as
+        programs of their own, which the save would no longer keep from being written."""
+        if self.routine.kind is not ir.RoutineKind.IMMEDIATE or self.ctx.module.dialect != "mcode":
+            raise Refused("saving to non-volatile memory while the program runs has no Arcus statement (the "
+                          "PMX-4EX-SA stores settings to flash from the PC only, STORE)")
+        self.ctx.unsupported(op, "the save is left out: the PMX-4EX-SA writes the program to flash when it is "
+                                 "downloaded (L844); store its settings to flash from the PC if it must keep them",
+                             severity_note=True)
+        raise Skip
 
     def op_home(self, op: ir.Home) -> None:
         modes = {int(k.get("home_mode")) for k in self.ctx.cat.keywords if k.ir == "home" and k.get("home_mode") is not None}
@@ -400,6 +469,8 @@ class Legalizer:
         ctx = self.ctx
         if ctx.input_setup.needs_none(op):
             raise Skip  # a home/limit/general line: the PMX-4EX-SA's own input, nothing to set up
+        if op.name in ("output_function", "output_active_high") and op.index in ctx.plain_outputs:
+            raise Skip  # a general output, active high: what DOn is (ctx.plain_outputs)
         if op.name in ("clear_error", "compare_output"):
             axis = self.axis(op.axis, op)
             on = isinstance(op.value, ir.Const) and op.value.value != 0

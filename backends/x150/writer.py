@@ -186,6 +186,7 @@ class Writer:
         self.forces: dict[int, dict] = {}  # id(op) -> the motion settings in force before it
         # id(value) of an initial speed setting -> why X150 cannot leave it out (X216)
         self.start_speeds_refused: dict[int, str] = {}
+        self.power_up_start = self.source_start_speed()  # the source product's own, when the program sets none
         self.previous: ir.Op | None = None  # the operation written last
         self.upcoming: ir.Op | None = None  # the operation written next in the same list, if simple
         self.rest: list = []  # the nodes after the one being written, in the same list
@@ -874,6 +875,8 @@ class Writer:
         at its own line (X216) rather than written as a program the validation then refuses (S010).
         The acceleration is the one in force, or a ramp time's with the speeds in force."""
         start = lookup(state, ir.MotionParam.INITIAL_SPEED, axis)
+        if start is None:
+            start = self.power_up_start
         if start is None or id(start) in self.start_speeds_refused or not isinstance(start.value, (int, float)) \
                 or start.value <= 0:
             return
@@ -896,13 +899,45 @@ class Writer:
                 "the initial speed to 0 (or its lowest) or the acceleration with a constant")
             return
         drift = 2 * v0 / rate
-        if drift > limit:
+        if drift > limit and start is self.power_up_start:
+            self.start_speeds_refused[id(start)] = (
+                f"the source starts its moves at its product's power-up initial speed, {speed} (the program sets "
+                f"none), and X150 from standstill: this move would end up to {drift * 1000:.3g} ms later (2 x "
+                f"initial speed / acceleration), more than the {limit * 1000:g} ms the profile allows ([x150] "
+                f"start_speed_drift); set the initial speed in the source to {number(round(rate * limit / 2, 3))} "
+                f"{start.unit.value} or less before the first move, or compile to a target with a start speed")
+        elif drift > limit:
             self.start_speeds_refused[id(start)] = (
                 f"X150 starts every move from standstill and has no initial speed: a move starting at {speed} "
                 f"would end up to {drift * 1000:.3g} ms later (2 x initial speed / acceleration), more than the "
                 f"{limit * 1000:g} ms the profile allows ([x150] start_speed_drift); lower the initial speed to "
                 f"{number(round(rate * limit / 2, 3))} {start.unit.value} or less, or compile to a target "
                 "with a start speed")
+
+    def first_move_refused(self) -> int | None:
+        """The first move (by id, in writing order) that starts at the refused power-up initial speed:
+        the refusal is reported there once (the speed has no line of its own)."""
+        if not hasattr(self, "_first_move_refused"):
+            self._first_move_refused = next((id(op) for _, _, op, _ in self.each_op() if isinstance(op, ir.Move)),
+                                            None)
+        return self._first_move_refused
+
+    def source_start_speed(self) -> ir.Const | None:
+        """The initial speed another product starts its moves at when the program sets none: its
+        profile's power-up value (MCode VI 1000 steps/s, lexium-mcode.txt L662-L666), which
+        `in_force.with_power_up` does not write for X150 (it has none, `in_force.FIXED`). The first
+        move it would make end later than `[x150] start_speed_drift` is refused (X216)."""
+        if self.native or any(isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.INITIAL_SPEED
+                              for _, block in self.module.blocks() for op in block.ops):
+            return None
+        from mcc.compiler.in_force import source_profile
+        from mcc.compiler.profiles import power_up
+
+        source = source_profile(self.module, self.profile) if self.profile is not None else None
+        if source is None:
+            return None
+        value = power_up(source, self.source_spr).get("initial_speed", 0.0)
+        return ir.Const(value, ir.Unit.STEPS_PER_S) if value > 0 else None
 
     def ranged(self, mnemonic: str, text: str, what: str, unit: str) -> str:
         """`text` when the catalog's range for `mnemonic` takes it (a (VARn) is checked on the device)."""
@@ -987,6 +1022,9 @@ class Writer:
                               "a deceleration of its own", "G003")
 
     def move(self, op: ir.Move) -> None:
+        start = self.power_up_start
+        if start is not None and id(start) in self.start_speeds_refused and id(op) == self.first_move_refused():
+            raise CannotWrite(self.start_speeds_refused[id(start)], "X216")
         if len(op.targets) != 1:
             raise CannotWrite(f"X150 moves one axis per device; a move of {len(op.targets)} axes together "
                               "(linear interpolation) has no equivalent", "X204")

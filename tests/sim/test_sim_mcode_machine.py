@@ -81,17 +81,19 @@ def test_a_conversion_writes_the_sources_power_up_settings_where_the_target_diff
 
 
 def test_a_validated_conversion_keeps_the_power_up_speeds():
-    """L671-L687 against parker-x150.md L4542 (V 1 rev/s): `MA 51200` with nothing set runs at VM
-    768000 steps/s = 15 rev/s and A 1e6 steps/s² = 19.53125 rev/s² at 51200 steps/rev; the X150
+    """L671-L687 against parker-x150.md L4542 (V 1 rev/s): `MA 51200` with nothing set but VI runs
+    at VM 768000 steps/s = 15 rev/s and A 1e6 steps/s² = 19.53125 rev/s² at 51200 steps/rev; the X150
     output states them, and the validation that runs both agrees (no S010). On the Arcus the same
-    speeds are HSPD=768000 and LSPD=1000."""
-    text = program("MA 51200", "H")
+    speeds are HSPD=768000 and (the axis's own) LSPDX=400. VI=400: at the power-up VI of 1000 steps/s (L662-L666)
+    the move, which X150 starts from standstill, would end 2 ms later, more than
+    `[x150] start_speed_drift`: refused (X216, tests/test_cross_from_mcode.py)."""
+    text = "VI=400\n" + program("MA 51200", "H")
     x150 = driver.compile_file("prog.mxt", "mcode", target="x150", text=text)
     assert not x150.has_errors, [(d.code, d.message) for d in x150.diagnostics]
     assert "V15" in x150.listing.text.splitlines() and "A19.5312" in x150.listing.text.splitlines()
     arcus = driver.compile_file("prog.mxt", "mcode", target="arcus", text=text)
     assert not arcus.has_errors, [(d.code, d.message) for d in arcus.diagnostics]
-    assert {"HSPD=768000", "LSPD=1000"} <= set(arcus.listing.text.splitlines())
+    assert {"HSPD=768000", "LSPDX=400"} <= set(arcus.listing.text.splitlines())
 
 
 def test_a_conversion_between_equal_products_adds_nothing():
