@@ -26,6 +26,7 @@ import string
 from fractions import Fraction
 
 from mcc.backends import resolution
+from mcc.backends.step_values import MIXED, STEPS, StepValues
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
@@ -69,6 +70,7 @@ HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+
 # operations MCode writes with a program-only statement (CL, BR loops, H): an immediate stream of
 # another dialect holding one runs as a program
 PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
+REPORT_VAR = "%report"  # the key of the signed report's variable in Writer.names (never a source name)
 OUTPUTS = 3  # O1-O3; OT sets them as a 3-bit value (L4669)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
@@ -155,6 +157,9 @@ class Writer:
         self.block_start = 0
         self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
         self.moving = moving_before(module, foreign=self.foreign)
+        # which values count steps, where the output's steps differ from the source's (step_values.py)
+        self.step_values = StepValues(module) if self.foreign and self.factor != 1 else None
+        self.report_var = self.allocate_report_var()
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -182,6 +187,16 @@ class Writer:
                 names[name] = self.fresh_name()
         return names
 
+    def allocate_report_var(self) -> str | None:
+        """The variable a signed report reads its value into (`signed_print`), declared with the
+        program's own: one for the whole program, allocated only when a report needs it."""
+        if not self.foreign or not any(isinstance(op, ir.Print) and op.signed
+                                       for _, block in self.module.blocks() for op in block.ops):
+            return None
+        name = self.fresh_name()
+        self.names[REPORT_VAR] = name
+        return name
+
     def variable_names(self) -> list[str]:
         seen = dict.fromkeys(self.module.variables)
         for _, block in self.module.blocks():
@@ -207,7 +222,12 @@ class Writer:
                 for axis in op_axes(op):
                     if axis != ir.ALL_AXES and axis not in used:
                         used.append(axis)
-        return {used[0]: ""} if used else {}
+        if not used:  # only universal commands move (X150 `G`): a reading addressed to one device
+            # (`1PR`) names the device the program runs on, which universal commands reach too
+            read = [node.axis for _, block in self.module.blocks() for op in block.ops for e in ir.op_exprs(op)
+                    for node in ir.walk_expr(e) if isinstance(node, ir.Status) and node.axis not in ("", ir.ALL_AXES)]
+            used = list(dict.fromkeys(read))
+        return {used[0]: ""} if len(used) == 1 else {}
 
     # values in force (ramp times) ----------------------------------------------------------------
     def uses_ramp_times(self) -> bool:
@@ -479,7 +499,8 @@ class Writer:
         address 1."""
         if not self.foreign or routine.kind is not ir.RoutineKind.IMMEDIATE:
             return False
-        return len(routine.blocks) > 1 or any(isinstance(op, PROGRAM_ONLY) for b in routine.blocks for op in b.ops)
+        return len(routine.blocks) > 1 or any(isinstance(op, PROGRAM_ONLY) or isinstance(op, ir.Print) and op.signed
+                                              for b in routine.blocks for op in b.ops)
 
     def program_order(self) -> list[ir.Routine]:
         """Routines in source order; in a converted program the one that runs first leads the
@@ -645,6 +666,8 @@ class Writer:
             return self.guarded_call(op)
         if isinstance(op, ir.SetOutput) and op.index is None:
             return self.all_outputs(op)
+        if isinstance(op, ir.Print) and op.signed and self.report_var is not None:
+            return self.signed_print(op)
         text = self.op_text(op)
         if isinstance(op, (ir.Move, ir.Home)) and text is not None:
             before = self.hold_first(op) + before
@@ -938,6 +961,65 @@ class Writer:
         self.jump_if(ir.Not(op.cond), here, op.span)
         return []
 
+    def signed_print(self, op: ir.Print) -> list[str]:
+        """A report that sends every number with its sign, `+` included (X150 `1PR` answers
+        `*+4000` and `*-25600`: "a number preceded by a sign", parker-x150.md L3141-L3143).
+        MCode's PR sends a negative number with its `-` and a positive one bare (L4880-L4906), so
+        the `+` is printed by a branch on the value, read once into a variable of its own (the
+        position read twice could change between the test and the print):
+
+            Z9=P                the value (in the source's steps: P/5 where the output counts 5
+            BR Z8,Z9<0          of its steps per source step, `step_values`)
+            PR "*+",Z9
+            BR Z7
+            LB Z8
+            PR "*",Z9
+            LB Z7
+
+        Each way is one whole PR, so the host receives the report in one piece as from the X150.
+
+        A program statement (BR, M112): an immediate stream that reports becomes the program
+        (`as_program`). Only a report of a position reading: X150 sends no other signed value
+        but TX, whose fixed-point format MCode has not."""
+        values = [i for i, item in enumerate(op.items) if not isinstance(item, ir.Text)]
+        if len(values) != 1 or any(op.formats) or op.traced or not isinstance(op.items[values[0]], ir.Status) \
+                or op.items[values[0]].meaning not in ("position", "encoder"):
+            raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
+                              "MCode prints positive numbers unsigned),")
+        if self.immediate:
+            raise Unsupported("a signed report among immediate commands (MCode prints the + by a branch, which "
+                              "runs only in a program, M112)")
+        at = values[0]
+        value, var = op.items[at], self.report_var
+        source = self.expr(value)
+        if self.factor != 1:
+            if any(isinstance(o, ir.Home) for _, b in self.module.blocks() for o in b.ops):
+                raise Unsupported(f"a position report where the output counts {self.profile.steps_per_rev} steps/rev "
+                                  f"and the source {self.module.steps_per_rev}, in a program that homes (the "
+                                  "switch may stop the drive between two source steps; give a target profile "
+                                  "with the source's steps_per_rev, --profile)")
+            if self.factor.denominator == 1:
+                source = f"{source}/{self.factor.numerator}"  # whole: every move lands on a multiple
+            elif self.factor.numerator == 1:
+                source = f"{source}*{self.factor.denominator}"
+            else:
+                raise Unsupported(f"a position report where the output counts {self.profile.steps_per_rev} "
+                                  f"steps/rev and the source {self.module.steps_per_rev} (not a whole ratio)")
+        prefix = self.prefix(op.axis) if op.axis else ""
+        end = "" if op.newline else ";"
+
+        def report(sign: str) -> str:
+            texts = [self.item(item) for item in op.items[:at]]
+            if sign and texts and texts[-1].endswith('"'):
+                texts[-1] = texts[-1][:-1] + sign + '"'
+            elif sign:
+                texts.append(f'"{sign}"')
+            return f"{prefix}PR {','.join(texts + [var] + [self.item(item) for item in op.items[at + 1:]])}{end}"
+
+        negative, done = self.fresh_name(), self.fresh_name()
+        return [f"{var}={source}", f"BR {negative},{var}<0", report("+"), f"BR {done}", f"LB {negative}",
+                report(""), f"LB {done}"]
+
     def guarded_call(self, op: ir.Call) -> list[str]:
         skip = self.fresh_name()
         self.jump_if(ir.Not(op.cond), skip, op.span)
@@ -953,9 +1035,16 @@ class Writer:
             raise Unsupported(f"a call of {name}, which is not in this program")
         return self.label(name)
 
+    def mixed_steps(self) -> str:
+        return (f"a value that adds a position in steps to a plain number (the output counts "
+                f"{self.profile.steps_per_rev} steps/rev where the source counts {self.module.steps_per_rev}: "
+                "the steps are scaled, the number is not; docs/CROSS.md, \"Steps in variables\")")
+
     def assign(self, op: ir.Assign) -> str:
         target = self.var(op.target.name)
         value = op.value
+        if self.step_values is not None and self.step_values.kind(value) == MIXED:
+            raise Unsupported(self.mixed_steps())
         if isinstance(value, ir.BinOp) and value.op in "+-" and value.left == op.target \
                 and isinstance(value.right, ir.Const) and value.right.value == 1:
             return f"{'IC' if value.op == '+' else 'DC'} {target}"
@@ -1020,6 +1109,11 @@ class Writer:
                                   f"falls between two steps of the target ({self.profile.steps_per_rev} steps/rev): "
                                   "give a profile whose steps_per_rev makes it exact (--profile)")
             return format_number(scaled.value)
+        kind = self.step_values.kind(value) if self.step_values is not None else None
+        if kind == STEPS:  # already in this drive's steps: its constants are scaled, P counts them
+            return self.expr(value)
+        if kind == MIXED:
+            raise Unsupported(self.mixed_steps())
         if self.factor.denominator == 1:
             return f"{self.expr(value)}*{self.factor.numerator}"
         raise Unsupported("a position computed at run time, which cannot be scaled exactly to this drive's steps")
@@ -1117,6 +1211,9 @@ class Writer:
 
     def cond(self, node) -> str:
         node = simplify(node)
+        if isinstance(node, ir.Compare) and self.step_values is not None \
+                and self.step_values.kind(node) == MIXED:
+            raise Unsupported(self.mixed_steps())
         if isinstance(node, ir.Compare):
             return f"{self.expr(node.left)}{COMPARE[node.op]}{self.expr(node.right)}"
         if isinstance(node, ir.Truth):

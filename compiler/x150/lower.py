@@ -211,7 +211,8 @@ class Lowering:
                 unit.name = naming.immediate_name(streams, unit.device())
 
     def routine_kinds(self) -> dict[str, ir.RoutineKind]:
-        """Sequences selected by XP are POWERUP, by XFK/XWHEN HANDLERs, run by XR/GOSUB SUBROUTINEs."""
+        """Sequences selected by XP are POWERUP, by XFK/XWHEN HANDLERs, run by XR/GOSUB (or reached
+        by GOTO/XG from another sequence or the stream) SUBROUTINEs."""
         kinds: dict[str, ir.RoutineKind] = {}
         for unit in self.units:
             device = unit.address if unit.is_sequence else None
@@ -226,12 +227,19 @@ class Lowering:
                             kinds[name] = ir.RoutineKind.SUBROUTINE
                     continue
                 kind = ROLE_KINDS.get(info.ir)
+                if info.ir == "goto":
+                    # a sequence that another one or the stream jumps to runs when that one gets
+                    # there (GOTO/XG, L1788), never on its own: not the program's main routine,
+                    # which the simulator would run once more after the stream (docs/SIMULATOR.md)
+                    kind = ir.RoutineKind.SUBROUTINE
                 if kind is None or not command.ok:
                     continue
                 number = sequence_number(command)
                 if not number:
                     continue
                 for name in self.resolve(number, command.address if command.address is not None else device):
+                    if info.ir == "goto" and name == unit.name:
+                        continue  # a sequence that starts itself again is still run by something else or main
                     if KIND_RANK[kind] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:
                         kinds[name] = kind
         return kinds

@@ -1,0 +1,97 @@
+"""X150 programs converted to MCode and to the Arcus PMX-4EX-SA (issue 24).
+
+Each conversion is written after the manuals' examples and validated in the simulator (the
+compile's `--verify`: a difference would be S010 and nothing written). Each test cites the lines of
+both manuals that make the two programs do the same thing."""
+
+from __future__ import annotations
+
+from mcc.compiler import driver
+from mcc.sim.interpreter import simulate
+
+
+def compile_x150(text: str, target: str):
+    return driver.compile_file("p.x150", "x150", target, text=text)
+
+
+def errors(result) -> list:
+    return [(d.code, d.span.line, d.message) for d in result.diagnostics if d.severity.value == "error"]
+
+
+def prints(dialect: str, text: str, name: str) -> list[str]:
+    result = driver.check_file(name, dialect, text=text)
+    assert result.analysis is not None, errors(result)
+    return [printed for _, printed in simulate(result.analysis.module, profile=result.profile).prints]
+
+
+# -- the position report into MCode ---------------------------------------------------------------
+
+def test_a_position_report_becomes_a_branch_that_prints_the_plus():
+    """parker-x150.md L3141-L3143: `1PR` answers `*` and the position "preceded by a sign"
+    (`*-25600`; `*+4000` for a positive one, docs/dialects/x150.md). lexium-mcode.txt L4880-L4906:
+    MCode's PR prints text and values, a negative number with its `-`, a positive one bare, and
+    ends the line unless `;`. So the output reads the position once into a variable and prints
+    `"*+",Z0` or `"*",Z0` by a BR on its sign (BR is a program statement, L1127, M112: the stream
+    becomes the program). Validated: the simulator prints the same characters on both sides."""
+    source = "1A10\n1V5\n1D-2000\n1G\n1PR\n1D6000\n1G\n1PR\n"
+    result = compile_x150(source, "mcode")
+    assert not errors(result), errors(result)
+    text = result.listing.text
+    assert 'PR "*+",' in text and 'PR "*",' in text and "BR " in text
+    assert prints("mcode", text, "out.mxt") == prints("x150", source, "p.x150") == ["*-2000\n", "*+4000\n"]
+
+
+def test_a_report_in_the_source_steps_where_the_output_counts_finer():
+    """The X150 counts 4000 user steps/rev here (CUR default, parker-x150.md L735); no MCode MS
+    gives 4000 (lexium-mcode.txt L4282-L4340), and a distance computed at run time asks for a
+    whole multiple: MS=100, 20000 steps/rev, 5 per X150 step. The report divides the drive's P by
+    5, which is exact: every position the output moves to is a multiple of 5 (`MR Z0` with Z0 in
+    the drive's steps, docs/CROSS.md "Steps in variables")."""
+    source = "XE5\nXD5\nA2\nV5\nD25000\nGOSUB2\nD50000\nGOSUB2\nXT\nXE2\nXD2\nG\n1PR\nXT\nXR5\n"
+    result = compile_x150(source, "mcode")
+    assert not errors(result), errors(result)
+    text = result.listing.text
+    assert "MS=100" in text and "=P/5" in text
+    assert prints("mcode", text, "out.mxt") == ["*+25000\n", "*+75000\n"]
+
+
+def test_a_report_after_a_homing_at_another_resolution_is_refused():
+    """A homing stops where the switch is found (parker-x150.md L1870ff.; lexium-mcode.txt HM),
+    possibly between two X150 steps of the finer MCode count: P/5 would round where the X150's own
+    counter holds a whole step. Refused on the report's line, naming the profile way out."""
+    result = compile_x150("XE1\nXD1\nGH+2\nVAR1=500\nD(VAR1)\nG\n1PR\nXT\nXR1\n", "mcode")
+    found = [e for e in errors(result) if e[0] == "G003" and "position report" in e[2]]
+    assert [e[1] for e in found] == [7]
+
+
+def test_a_variable_holding_a_distance_in_steps_is_not_scaled_twice():
+    """parker-x150.md L1349 (D sets the distance; GOSUB L1759-L1776 runs it from another
+    sequence): `D25000` is the distance register set to 25000 X150 steps. At MS=100 the output
+    writes it `Z0=125000` (5 drive steps per X150 step) and moves `MR Z0` (lexium-mcode.txt MR):
+    multiplying again at the move (`MR Z0*5`) would go five times as far."""
+    source = "XE5\nXD5\nA2\nV5\nD25000\nGOSUB2\nD50000\nGOSUB2\nXT\nXE2\nXD2\nG\nXT\nXR5\n"
+    result = compile_x150(source, "mcode")
+    assert not errors(result), errors(result)
+    lines = result.listing.text.splitlines()
+    assert "MS=100" in lines and "Z0=125000" in lines and "MR Z0" in lines
+
+
+def test_a_sum_of_a_position_and_a_plain_number_is_refused_where_the_steps_differ():
+    """parker-x150.md L4622-L4629: `VAR8=POS+50000` adds the position counter to a number. Where
+    the output counts 5 drive steps per X150 step the reading P is in drive steps and the number
+    is not, so neither writing gives the source's value: refused on its line (G003)."""
+    result = compile_x150("VAR8=POS+50000\nD(VAR8)\nG\n", "mcode")
+    assert 1 in [e[1] for e in errors(result) if "plain number" in e[2]]
+
+
+def test_a_sequence_reached_by_goto_runs_once():
+    """parker-x150.md L1788: GOTO "transfers program control to a designated sequence" (the GOTO
+    example, L1801-L1816: XR5 runs sequence 5, which goes to sequence 2, which moves and reports).
+    Sequence 2 is not a main program of its own: the X150 runs it once, when sequence 5 gets there.
+    The simulator moved it a second time before (it took the unreached-by-call sequence for the
+    main routine); the MCode output (`CL`, then its `RT`) moves once too."""
+    source = "XE5\nXD5\nA2\nV5\nD25000\nGOTO2\nXT\nXE2\nXD2\nG\n1PR\nXT\nXR5\n"
+    assert prints("x150", source, "p.x150") == ["*+25000\n"]
+    result = compile_x150(source, "mcode")
+    assert not errors(result), errors(result)
+    assert prints("mcode", result.listing.text, "out.mxt") == ["*+25000\n"]
