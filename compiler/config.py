@@ -38,7 +38,8 @@ LIST_KEYS = ("select", "extend-select", "ignore", "exclude")
 DEFAULT_FAIL_ON = "warning"  # `mcc lint` exits 1 on a warning, as ruff on any finding (docs/LINT.md)
 KNOWN_KEYS = ("target", *LIST_KEYS, "fail-on", "per-file-ignores", "severity", "per-file-profiles",
               "axes",  # axes: the machine's envelope (compiler/envelope/axes.py)
-              "extensions")
+              "extensions",
+              "cross")  # cross: conversions between dialects (drop-drive-setup, docs/CONFIGURATION.md)
 
 
 class ConfigError(Exception):
@@ -131,6 +132,9 @@ class Settings:
     # extension (lower case, no dot) -> dialect: `extensions = {lxt = "mcode"}`; wins over the
     # built-in extensions, loses to --dialect (docs/CONFIGURATION.md)
     extensions: tuple[tuple[str, str], ...] = ()
+    # `cross.drop-drive-setup`: a conversion leaves out the drive set-up the target configures outside
+    # the program (G051, backends/drive_setup.py); false refuses it as before (docs/decisions/0016)
+    drop_drive_setup: bool = True
 
     def dialect_for(self, path: str) -> str | None:
         """The dialect `extensions` gives `path` by its extension, or None."""
@@ -212,7 +216,8 @@ class Settings:
         # the command line's profile wins for its own dialect, over a directive and the file's keys
         return Settings(self.root, self.path, self.targets, Selection(layers), self.severity, self.per_file_ignores,
                         overrides.fail_on or self.fail_on, self.exclude, self.per_file_profiles,
-                        overrides.profile or self.cli_profile, self.axes, extensions=self.extensions)
+                        overrides.profile or self.cli_profile, self.axes, extensions=self.extensions,
+                        drop_drive_setup=self.drop_drive_setup)
 
 
 def relative_to(path: str, root: str) -> str:
@@ -388,7 +393,8 @@ class Reader:
                         fail_on=self.fail_on(table.get("fail-on")), exclude=self.strings(table, "exclude"),
                         per_file_profiles=self.per_file_profiles(table.get("per-file-profiles")),
                         axes=self.axes(table.get("axes")),
-                        extensions=self.extensions(table.get("extensions")))
+                        extensions=self.extensions(table.get("extensions")),
+                        drop_drive_setup=self.cross(table.get("cross")))
 
     def strings(self, table: dict, key: str) -> tuple[str, ...]:
         value = table.get(key)
@@ -534,6 +540,23 @@ class Reader:
         for keys, code, message in problems:
             self.error(code, keys, message)
         return tuple(sorted(found.items()))
+
+    def cross(self, value: Any) -> bool:
+        """`cross.drop-drive-setup = false` (or `[tool.mcc.cross]`): whether a conversion leaves out
+        the drive set-up the target configures outside the program; true unless set."""
+        if value is None:
+            return True
+        if not isinstance(value, dict):
+            self.error("G103", ("cross",), "'cross' must be a table: cross.drop-drive-setup = true or false")
+            return True
+        for key in value:
+            if key != "drop-drive-setup":
+                self.error("G102", ("cross", key), f"unknown configuration key 'cross.{key}' (known: drop-drive-setup)")
+        drop = value.get("drop-drive-setup", True)
+        if not isinstance(drop, bool):
+            self.error("G103", ("cross", "drop-drive-setup"), "'cross.drop-drive-setup' must be true or false")
+            return True
+        return drop
 
     def fail_on(self, value: Any) -> str:
         if value is None:

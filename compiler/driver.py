@@ -353,6 +353,14 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
             if diags.has_errors:
                 result.diagnostics = diags.items
                 return result
+        dropped = []
+        if result.target != result.dialect and (settings is None or settings.drop_drive_setup):
+            from mcc.backends import drive_setup  # a conversion only: docs/decisions/0016
+
+            module, dropped = drive_setup.drop(module, result.target)
+            for item in dropped:
+                diags.add(drive_setup.CODE, item.span or file_span(path),
+                          drive_setup.message(item, target_dialect.title))
         listing, stats = generate(module, target_dialect, target_profile, opt_level, passes)
         result.optimization = stats
         if any(p.changed for p in stats.passes):
@@ -374,6 +382,8 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         level = f"; optimization: -{stats.level}" + (f" (passes {passes})" if passes else "")
         listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)
+        if dropped:
+            drive_setup.with_comments(listing, dropped, target_dialect.comment)
         refuse_divisions(module, result, target_profile, diags)
         result.listing = listing
         if verify and not diags.has_errors and (always_verify or migrating or needs_validation(result, stats)):

@@ -191,11 +191,20 @@ class SettingInfo:
     # "text" (a text the device keeps, e.g. a format); every setting can be read back as a reading
     # `Status(name)`: the value the run set, else the module's `device_values` (the product's default)
     value_type: str = "int"
+    # drive set-up only (docs/decisions/0016): its one effect is on drive hardware that another
+    # product configures outside the program or does not have; it cannot change motion, outputs,
+    # prints, variables or timing, so a conversion to a dialect without it may leave it out with a
+    # warning (backends/drive_setup.py, G051)
+    drive_only: bool = False
 
 
 SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
-    SettingInfo("run_current", Unit.PERCENT, "motor current while moving, % of the maximum", ("mcode",)),
-    SettingInfo("hold_current", Unit.PERCENT, "motor current at rest, % of the maximum", ("mcode",)),
+    # RC and HC set the motor's current only (lexium-mcode.txt L5134, L3077); HT (hold_delay) is not
+    # drive-only: MP and MV stay active through the HT and MT delays (L4207, L4429)
+    SettingInfo("run_current", Unit.PERCENT, "motor current while moving, % of the maximum", ("mcode",),
+                drive_only=True),
+    SettingInfo("hold_current", Unit.PERCENT, "motor current at rest, % of the maximum", ("mcode",),
+                drive_only=True),
     SettingInfo("hold_delay", Unit.S, "time after a move before the hold current applies", ("mcode",)),
     SettingInfo("settle_time", Unit.S, "time the motor settles after a move before the next starts", ("mcode",)),
     SettingInfo("encoder_enable", Unit.NONE, "1: the encoder is used (closed loop), 0: open loop",
