@@ -95,3 +95,20 @@ def test_a_sequence_reached_by_goto_runs_once():
     result = compile_x150(source, "mcode")
     assert not errors(result), errors(result)
     assert prints("mcode", result.listing.text, "out.mxt") == ["*+25000\n"]
+
+
+# -- drive set-up the target has no panel for ------------------------------------------------------
+
+def test_panel_key_enables_are_left_out_where_there_is_no_panel():
+    """parker-x150.md L860-L885 (DCNT: the RP240's PAUSE and CONTINUE keys) and L1237-L1253
+    (DSTP: its STOP key); the DCNT example L889-L896. Neither the Lexium drive (lexium-mcode.txt
+    has no operator panel: its I/O is IS/OS, L6936ff.) nor the PMX-4EX-SA (arcus-pmx-4ex-sa.txt:
+    DI1-DI8 and the host, no keypad) has such keys, so no key press can pause or stop the
+    converted program: the settings are left out with warning G051 and listed at the top
+    (docs/decisions/0016-drive-setup-dropped.md)."""
+    source = "1XE10\n1XD10\n1DCNT1\n1DSTP1\n1XT\n"
+    for target in ("mcode", "arcus"):
+        result = compile_x150(source, target)
+        assert not errors(result), errors(result)
+        assert sorted(d.span.line for d in result.diagnostics if d.code == "G051") == [3, 4]
+        assert "panel_pause_keys" in result.listing.text and "panel_stop_key" in result.listing.text
