@@ -112,3 +112,34 @@ def test_panel_key_enables_are_left_out_where_there_is_no_panel():
         assert not errors(result), errors(result)
         assert sorted(d.span.line for d in result.diagnostics if d.code == "G051") == [3, 4]
         assert "panel_pause_keys" in result.listing.text and "panel_stop_key" in result.listing.text
+
+
+# -- S / STOP: a stop on receipt --------------------------------------------------------------------
+
+def test_a_stop_sent_while_nothing_waits_is_a_stop_with_deceleration():
+    """parker-x150.md L3667-L3674 (the S example: MC A10 V10 G S, "the motor will decelerate to a
+    stop at a rate of 10 revs/sec/sec as soon as S is entered"), STOP L4050-L4070 the same. S acts
+    on receipt and clears the buffer, which here holds nothing (MC's G does not wait, L2498):
+    the stop comes in its turn, like SB (L3694). MCode: `SL 0` decelerates the slew to a stop
+    at D (lexium-mcode.txt SL, L5393ff.); Arcus: `STOP` decelerates every axis to a stop
+    (arcus-pmx-4ex-sa.txt L696, L1661)."""
+    for mnemonic in ("S", "STOP"):
+        source = f"MC\nA10\nV10\nG\n{mnemonic}\n"
+        to_mcode = compile_x150(source, "mcode")
+        assert not errors(to_mcode), errors(to_mcode)
+        assert to_mcode.listing.text.splitlines()[-2:] == ["SL VM", "SL 0"]
+        to_arcus = compile_x150(source, "arcus")
+        assert not errors(to_arcus), errors(to_arcus)
+        assert "STOP" in to_arcus.listing.text.splitlines()
+
+
+def test_a_stop_that_may_arrive_before_its_turn_stays_refused():
+    """parker-x150.md L3660-L3664: S ends the move in progress and clears the buffer on receipt.
+    After an MN move (`G` waits for its end, L2522-L2529) or a delay, the S the host sends at once
+    would stop that move and clear what follows; a stop in its turn would not: refused at its line
+    in both targets."""
+    for source in ("A10\nV10\nD8000\nG\nS\n", "T2\nMC\nA10\nV10\nG\nS\n"):
+        lines = source.count("\n")
+        for target in ("mcode", "arcus"):
+            result = compile_x150(source, target)
+            assert lines in [e[1] for e in errors(result) if e[0] == "G003"], errors(result)

@@ -255,3 +255,35 @@ def identity_report_of(op: ir.Print) -> str | None:
             and all(_same_item(a, b) for a, b in zip(op.items, shape.items)):
         return op.items[1].axis
     return None
+
+
+# S and STOP act "as soon as S is entered" (parker-x150.md L3649-L3675, STOP L4050-L4070): the
+# motor decelerates at A, the buffer is cleared unless SSH1, a T delay ends, an XD download is
+# aborted. SB does the same stop in its turn in the buffer (L3694): the IR's `Stop` with a ramp.
+# The two are one where nothing sent before the S can still be waiting in the buffer: the stream so
+# far (every stretch sent before it) is straight-line code none of whose operations waits (a delay,
+# a wait, a call, a homing, a pause, the end of an MN move, a loop or a branch, a move queued behind
+# another, a command of the X150's own whose timing the IR does not know). Then there is nothing to
+# clear or end, and S is that `Stop`; anywhere else it stays the X150's own command, which the other
+# dialects refuse at its line. S is never in a sequence (not saveable, L3656).
+RECEIPT_STOPS = ("S", "STOP")
+WAITING_OPS = (ir.WaitMotion, ir.Delay, ir.WaitInput, ir.Call, ir.Home, ir.Pause, ir.Step, ir.Native)
+MOTION_OPS = (ir.Move, ir.Slew, ir.Arc)
+
+
+def stops_in_turn(module: ir.Module) -> None:
+    """Each `S`/`STOP` of the stream that nothing before can delay becomes `Stop(axis, ramp)`."""
+    moved = False
+    for routine in module.routines:
+        if routine.kind is not ir.RoutineKind.IMMEDIATE:
+            continue
+        if len(routine.blocks) != 1:
+            return  # a loop or a branch: what runs before a later S depends on time
+        block = routine.blocks[0]
+        for index, op in enumerate(block.ops):
+            if isinstance(op, ir.Native) and op.dialect == "x150" and op.mnemonic in RECEIPT_STOPS and not op.args:
+                block.ops[index] = ir.Stop(op.axis, True, op.span)
+                continue
+            if isinstance(op, WAITING_OPS) or isinstance(op, MOTION_OPS) and moved:
+                return
+            moved = moved or isinstance(op, MOTION_OPS)
