@@ -143,3 +143,29 @@ def test_a_stop_that_may_arrive_before_its_turn_stays_refused():
         for target in ("mcode", "arcus"):
             result = compile_x150(source, target)
             assert lines in [e[1] for e in errors(result) if e[0] == "G003"], errors(result)
+
+
+# -- Y: a loop ended at the end of the pass under way -------------------------------------------------
+
+def test_a_loop_that_y_ends_at_once_runs_one_pass():
+    """parker-x150.md L5484-L5506: Y is immediate and "terminates a loop at end of the current pass";
+    in its example (`L A10 V10 D8000 T2 G N Y`) the host sends Y right after N, during the first
+    pass (T2 waits 2 s, L4101ff.), so the loop runs once. The IR's loop counts one pass; MCode
+    writes the counter and `DC`/`BR` (lexium-mcode.txt L2325, L1779), Arcus a WHILE on a
+    variable (arcus-pmx-4ex-sa.txt L2109-L2117). One move of 8000 X150 steps on both sides."""
+    source = "L\nA10\nV10\nD8000\nT2\nG\nN\nY\n"
+    check = driver.check_file("p.x150", "x150", text=source)
+    trace = simulate(check.analysis.module, profile=check.profile)
+    assert trace.stopped == "end" and [e.data["to"] for e in trace.events if e.kind == "move"] == [{"1": 8000}]
+    for target in ("mcode", "arcus"):
+        result = compile_x150(source, target)
+        assert not errors(result), errors(result)
+
+
+def test_a_y_that_may_arrive_in_another_pass_stays_refused():
+    """parker-x150.md L5497: Y ends the pass "during which the Y command is entered". After a delay
+    sent before the loop (T1, L4101ff.) the Y arrives before the loop starts; in a loop that never
+    waits it arrives after an unknown number of passes: refused at its line."""
+    for source in ("T1\nL\nA10\nV10\nD8000\nG\nN\nY\n", "L\nO1\nO0\nN\nY\n"):
+        result = compile_x150(source, "mcode")
+        assert source.count("\n") in [e[1] for e in errors(result) if e[0] == "G003"], errors(result)

@@ -147,6 +147,7 @@ class Lowering:
         devices = {str(a) for a in self.profile.axes} | {str(a) for a in self.addresses}
         modes.resolve(self.module, self.diags, tuple(sorted(devices, key=lambda d: (len(d), d))))
         neutral.stops_in_turn(self.module)  # after the modes: only then is it known which G waits
+        neutral.loops_ended_on_receipt(self.module, LOOP_VAR)
         return self.module
 
     def resolution(self) -> int:
