@@ -299,7 +299,7 @@ class Writer:
         ends (its XT would return to the same caller, or stop the program, as the sequence reached)."""
         target = self.module.routine(term.routine)
         if target is None or target.entry is None:
-            raise Unsupported(f"a jump to {term.routine}, which is not in this program")
+            raise Unsupported(self.not_in_file("a jump to", term.routine))
         if routine is None or target is routine:
             self.line(f"BR {self.label(target.entry.label)}", span)
             return
@@ -1032,13 +1032,22 @@ class Writer:
         if routine is not None and routine.entry is not None:
             return self.label(routine.entry.label)
         if self.foreign:
-            raise Unsupported(f"a call of {name}, which is not in this program")
+            raise Unsupported(self.not_in_file("a call of", name))
         return self.label(name)
 
     def mixed_steps(self) -> str:
         return (f"a value that adds a position in steps to a plain number (the output counts "
                 f"{self.profile.steps_per_rev} steps/rev where the source counts {self.module.steps_per_rev}: "
                 "the steps are scaled, the number is not; docs/CROSS.md, \"Steps in variables\")")
+
+    def not_in_file(self, what: str, name: str) -> str:
+        """A routine the source calls that this file does not define (an X150 sequence stored on the
+        controller, `Module.externals`): the output cannot call what was never converted."""
+        if name in self.module.externals:
+            return (f"{what} {name}, which is stored on the source's controller and not defined in this file "
+                    "(a converted program has only what the file defines: add the definition of "
+                    f"{name} to the file, or compile a file that has it),")
+        return f"{what} {name}, which is not in this program"
 
     def assign(self, op: ir.Assign) -> str:
         target = self.var(op.target.name)

@@ -169,3 +169,17 @@ def test_a_y_that_may_arrive_in_another_pass_stays_refused():
     for source in ("T1\nL\nA10\nV10\nD8000\nG\nN\nY\n", "L\nO1\nO0\nN\nY\n"):
         result = compile_x150(source, "mcode")
         assert source.count("\n") in [e[1] for e in errors(result) if e[0] == "G003"], errors(result)
+
+
+# -- calls of sequences the file does not define -----------------------------------------------------
+
+def test_a_call_of_a_sequence_stored_on_the_controller_says_to_add_it_to_the_file():
+    """parker-x150.md L5125ff. (XR runs a stored sequence; the WHILE examples, L2711-L2730, call
+    sequences they do not define): the sequence is on the X150, not in the file, so the converted
+    program (MCode `CL` to a label of the program, lexium-mcode.txt L2106; Arcus `GOSUB n` to a
+    `SUB n` of the same program, arcus-pmx-4ex-sa.txt L2176-L2192) has nothing to call. Refused at the call's line, telling the
+    user to add the definition to the file."""
+    source = "VAR1=0\nWHILE(VAR1<5)\nXR1\nVAR1=VAR1+1\nNWHILE\n"
+    for target in ("mcode", "arcus"):
+        found = [e for e in errors(compile_x150(source, target)) if e[1] == 3]
+        assert found and "add the definition of SEQ1 to the file" in found[0][2], found
