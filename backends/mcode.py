@@ -786,6 +786,13 @@ class Writer:
             return None  # written as A=/D= before each move, from the speeds in force (ramp_lines)
         if op.param not in PARAM_NAMES:
             raise Unsupported(f"the motion setting {op.param.value}")
+        if op.param is ir.MotionParam.RESOLUTION and self.foreign:
+            self.prefix(op.axis)
+            if in_own_steps(op, self.module):
+                return None  # the unit of the source's positions, converted to this drive's
+            raise Unsupported(f"a resolution of {self.expr(op.value)} steps/rev where the program's positions count "
+                              f"{self.module.steps_per_rev} (the positions after it would change unit; set the "
+                              "resolution once, before the first move)")
         if op.param is ir.MotionParam.RESOLUTION:
             return f"{self.prefix(op.axis)}MS={self.resolution(op.value)}"
         if op.param is ir.MotionParam.MAX_SPEED and self.foreign:
@@ -1454,6 +1461,13 @@ def successors(term) -> tuple[str, ...]:
     return ()
 
 
+def in_own_steps(op: ir.SetMotion, module: ir.Module) -> bool:
+    """A resolution that sets the steps per revolution the IR already counts in (an X150 `CUR4000`
+    with the IR at 4000 steps/rev, parker-x150.md L731-L747): it names the unit of the source's
+    positions, which the output converts to its own, so it is written as nothing."""
+    return isinstance(op.value, ir.Const) and bool(module.steps_per_rev) and op.value.value == module.steps_per_rev
+
+
 def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
     """The MS code the output sets (lexium-mcode.txt L4282-L4340: microsteps per full step, one of
     the catalog's fixed codes, steps/rev = MS x full steps) when the profile's resolution would not
@@ -1468,8 +1482,12 @@ def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
     full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
     entry = cat.for_profile(profile).lookup("MS")
     codes = [int(v) for v in (entry.values or ()) if int(v) >= 10] if entry is not None else []
+    found = resolution.positions(module)
+    if found.fixed and all(in_own_steps(op, module) for _, b in module.blocks() for op in b.ops
+                           if isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.RESOLUTION):
+        found.fixed = False  # the source's resolution is the IR's step itself: it fixes nothing here
     chosen = resolution.choose(int(module.steps_per_rev), int(profile.steps_per_rev), [c * full for c in codes],
-                               resolution.positions(module))
+                               found)
     return chosen // full if chosen is not None else None
 
 

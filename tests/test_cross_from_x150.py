@@ -183,3 +183,18 @@ def test_a_call_of_a_sequence_stored_on_the_controller_says_to_add_it_to_the_fil
     for target in ("mcode", "arcus"):
         found = [e for e in errors(compile_x150(source, target)) if e[1] == 3]
         assert found and "add the definition of SEQ1 to the file" in found[0][2], found
+
+
+# -- a resolution that names the source's own steps ------------------------------------------------
+
+def test_a_cur_in_the_programs_own_steps_is_written_as_nothing_and_a_second_one_refused():
+    """parker-x150.md L731-L747: CUR sets the user steps per revolution, the unit of D (the
+    motor's travel per revolution is unchanged); the IR counts in the program's CUR. MCode counts in
+    MS x 200 steps/rev (lexium-mcode.txt L4282-L4340), a code list without 4000: the output never
+    writes `MS=20` (no such code) but converts the positions into the steps it uses. A second CUR
+    changes the unit of what follows (X143): refused at its line."""
+    result = compile_x150("1CUR4000\nA10\nV5\nD4000\nG\n", "mcode")
+    assert not errors(result), errors(result)
+    assert "MS=20" not in result.listing.text and "MR 51200" in result.listing.text
+    result = compile_x150("1CUR4000\n1D4000\n1CUR2000\n", "mcode")
+    assert [e[1] for e in errors(result)] == [3]
