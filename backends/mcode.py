@@ -34,6 +34,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler import in_force
 from mcc.compiler.in_force import FIXED, InForce, lookup, with_fixed_initial_speed, with_source_power_up
 from mcc.compiler.mcode import catalog as cat
+from mcc.compiler import profiles
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -745,6 +746,7 @@ class Writer:
             if op.traced:
                 raise Unsupported("a trace report of the command the device runs (a trace mode, X150 XTR, "
                                   "parker-x150.md L5384),")
+            op = self.with_known_address(op)
             formatted = [spec for spec in op.formats if spec]
             if formatted:
                 raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "
@@ -967,6 +969,48 @@ class Writer:
         self.line(f"LB {here}", op.span)
         self.jump_if(ir.Not(op.cond), here, op.span)
         return []
+
+    def with_known_address(self, op: ir.Print) -> ir.Print:
+        """`op` with the address of the device that runs it written out as text where the print
+        formats it (X150 `QS` answers `;*01!`, "an asterisk, a two digit device address, an
+        exclamation mark", parker-x150.md L3209-L3217). The converted program runs on the one drive
+        that stands for the source's device (`axis_map`; a universal command's device is the source
+        profile's first, as in the simulator): its address is a number known here, and the
+        drive sends the same characters. MCode has no such reading (its party name DN is a letter)."""
+        if not self.foreign or not any(isinstance(item, ir.Status) and item.meaning == "device_address"
+                                       for item in op.items):
+            return op
+        items, formats = list(op.items), list(op.formats) + [""] * (len(op.items) - len(op.formats))
+        for at, item in enumerate(items):
+            if not (isinstance(item, ir.Status) and item.meaning == "device_address"):
+                continue
+            device = item.axis if item.axis not in ("", ir.ALL_AXES) else next(iter(self.axis_map), "")
+            if device in ("", ir.ALL_AXES):
+                source = self.source_profile()
+                device = source.axes[0] if source is not None and source.axes else ""
+            if device not in self.axis_map and self.axis_map or not str(device).isdigit():
+                raise Unsupported(f"the address of device {device or '?'} (the drive stands for one device: "
+                                  f"{next(iter(self.axis_map), '?')})")
+            words = formats[at].split()
+            if words and (words[0] != "pad" or len(words) != 2):
+                continue  # another format: refused below as any formatted value
+            text = str(int(device)).rjust(int(words[1]) if words else 0, "0")  # `pad n`: leading zeros
+            items[at], formats[at] = ir.Text(text, item.span), ""
+        merged: list = []  # neighbouring texts as one string: `PR ";*01!"`
+        merged_formats: list[str] = []
+        for item, spec in zip(items, formats):
+            if isinstance(item, ir.Text) and merged and isinstance(merged[-1], ir.Text) and not spec:
+                merged[-1] = ir.Text(merged[-1].value + item.value, merged[-1].span)
+                continue
+            merged.append(item)
+            merged_formats.append(spec)
+        return dataclasses.replace(op, items=tuple(merged), formats=tuple(merged_formats))
+
+    def source_profile(self) -> Profile | None:
+        try:
+            return profiles.load(self.module.profile)
+        except Exception:  # a profile built in memory or a user's file: no device to name
+            return None
 
     def signed_print(self, op: ir.Print) -> list[str]:
         """A report that sends every number with its sign, `+` included (X150 `1PR` answers

@@ -198,3 +198,18 @@ def test_a_cur_in_the_programs_own_steps_is_written_as_nothing_and_a_second_one_
     assert "MS=20" not in result.listing.text and "MR 51200" in result.listing.text
     result = compile_x150("1CUR4000\n1D4000\n1CUR2000\n", "mcode")
     assert [e[1] for e in errors(result)] == [3]
+
+
+# -- QS: the identity of the device ---------------------------------------------------------------
+
+def test_the_identity_report_prints_the_address_of_the_device_the_drive_stands_for():
+    """parker-x150.md L3207-L3217: QS "responds with the identity of the echoing device": `;*`,
+    its address in two digits, `!` (`;*01!` for device 1). The MCode drive stands for device 1 (the
+    source profile's first, the one universal commands reach, as the simulator takes it): its PR
+    sends the same characters as text (lexium-mcode.txt L4880-L4906: quoted text is printed as it
+    is). Validated: both runs print `;*01!`."""
+    source = "MN\nD4000\nA100\nV50\nG\nQS\n"
+    result = compile_x150(source, "mcode")
+    assert not errors(result), errors(result)
+    assert 'PR ";*01!"' in result.listing.text.splitlines()
+    assert prints("x150", source, "p.x150") == [";*01!\n"]
