@@ -26,7 +26,7 @@ import string
 from fractions import Fraction
 
 from mcc.backends import resolution
-from mcc.backends.step_values import MIXED, STEPS, StepValues
+from mcc.backends.step_values import IN_STEPS, MIXED, PLAIN, STEPS, StepValues, step_readings
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
@@ -160,6 +160,7 @@ class Writer:
         self.moving = moving_before(module, foreign=self.foreign)
         # which values count steps, where the output's steps differ from the source's (step_values.py)
         self.step_values = StepValues(module) if self.foreign and self.factor != 1 else None
+        self.source_units = False  # writing an expression in the source's steps (in_source_steps)
         self.report_var = self.allocate_report_var()
 
     # names ---------------------------------------------------------------------------------------
@@ -1086,6 +1087,35 @@ class Writer:
             raise Unsupported(self.not_in_file("a call of", name))
         return self.label(name)
 
+    def in_source_steps(self, value) -> str:
+        """`value`, a sum of a position reading and plain numbers (X150 `VAR8=POS+50000`), in the
+        source's steps: the reading divided by the steps this drive counts per source step (`P/5`),
+        exact where every position the output moves to is a multiple of them (a homing may stop
+        between two: refused). MCode evaluates left to right (docs/dialects/mcode.md), so the
+        reading must come first: `P/5+50000`."""
+        readings = step_readings(value)
+        self.source_units = True  # constants in steps as the source wrote them
+        try:
+            text = self.expr(value)
+        finally:
+            self.source_units = False
+        if not readings:
+            return text
+        leftmost = value
+        while isinstance(leftmost, ir.BinOp):
+            leftmost = leftmost.left
+        if len(readings) != 1 or leftmost is not readings[0] or \
+                any(isinstance(o, ir.Home) for _, b in self.module.blocks() for o in b.ops):
+            raise Unsupported(self.mixed_steps())
+        head = self.expr(leftmost)
+        if self.factor.denominator == 1:
+            scaled = f"{head}/{self.factor.numerator}"
+        elif self.factor.numerator == 1:
+            scaled = f"{head}*{self.factor.denominator}"
+        else:
+            raise Unsupported(self.mixed_steps())
+        return scaled + text[len(head):]
+
     def mixed_steps(self) -> str:
         return (f"a value that adds a position in steps to a plain number (the output counts "
                 f"{self.profile.steps_per_rev} steps/rev where the source counts {self.module.steps_per_rev}: "
@@ -1103,8 +1133,14 @@ class Writer:
     def assign(self, op: ir.Assign) -> str:
         target = self.var(op.target.name)
         value = op.value
-        if self.step_values is not None and self.step_values.kind(value) == MIXED:
-            raise Unsupported(self.mixed_steps())
+        if self.step_values is not None:
+            kind = self.step_values.kind(value)
+            if kind == MIXED or self.step_values.vars.get(op.target.name) == MIXED:
+                raise Unsupported(self.mixed_steps())
+            if self.step_values.holds_plain(op.target.name):  # the variable holds the source's units
+                if kind == STEPS:
+                    raise Unsupported(self.mixed_steps())
+                return f"{target}={self.in_source_steps(value)}"
         if isinstance(value, ir.BinOp) and value.op in "+-" and value.left == op.target \
                 and isinstance(value.right, ir.Const) and value.right.value == 1:
             return f"{'IC' if value.op == '+' else 'DC'} {target}"
@@ -1170,7 +1206,7 @@ class Writer:
                                   "give a profile whose steps_per_rev makes it exact (--profile)")
             return format_number(scaled.value)
         kind = self.step_values.kind(value) if self.step_values is not None else None
-        if kind == STEPS:  # already in this drive's steps: its constants are scaled, P counts them
+        if kind in IN_STEPS:  # already in this drive's steps: its constants are scaled, P counts them
             return self.expr(value)
         if kind == MIXED:
             raise Unsupported(self.mixed_steps())
@@ -1206,7 +1242,7 @@ class Writer:
         if isinstance(node, ir.Const):
             if node.value == PI and node.unit is ir.Unit.NONE:
                 return "PI"  # the drive's PI, 3.141592654 (L6658)
-            if node.unit is ir.Unit.STEPS and self.factor != 1:
+            if node.unit is ir.Unit.STEPS and self.factor != 1 and not self.source_units:
                 return self.position(node)
             if node.unit in (ir.Unit.STEPS_PER_S, ir.Unit.STEPS_PER_S2) and self.factor != 1:
                 return self.rate(node)
@@ -1271,9 +1307,16 @@ class Writer:
 
     def cond(self, node) -> str:
         node = simplify(node)
-        if isinstance(node, ir.Compare) and self.step_values is not None \
-                and self.step_values.kind(node) == MIXED:
-            raise Unsupported(self.mixed_steps())
+        if isinstance(node, ir.Compare) and self.step_values is not None:
+            kind = self.step_values.kind(node)
+            if kind == MIXED or step_readings(node) and kind == PLAIN:
+                raise Unsupported(self.mixed_steps())
+            if kind == PLAIN:  # a variable in the source's units against constants as written
+                self.source_units = True
+                try:
+                    return f"{self.expr(node.left)}{COMPARE[node.op]}{self.expr(node.right)}"
+                finally:
+                    self.source_units = False
         if isinstance(node, ir.Compare):
             return f"{self.expr(node.left)}{COMPARE[node.op]}{self.expr(node.right)}"
         if isinstance(node, ir.Truth):

@@ -76,11 +76,19 @@ def test_a_variable_holding_a_distance_in_steps_is_not_scaled_twice():
     assert "MS=100" in lines and "Z0=125000" in lines and "MR Z0" in lines
 
 
-def test_a_sum_of_a_position_and_a_plain_number_is_refused_where_the_steps_differ():
-    """parker-x150.md L4622-L4629: `VAR8=POS+50000` adds the position counter to a number. Where
-    the output counts 5 drive steps per X150 step the reading P is in drive steps and the number
-    is not, so neither writing gives the source's value: refused on its line (G003)."""
-    result = compile_x150("VAR8=POS+50000\nD(VAR8)\nG\n", "mcode")
+def test_a_sum_of_a_position_and_a_plain_number_reads_the_position_in_the_source_steps():
+    """parker-x150.md L4622-L4629: `VAR8=POS+50000` adds the position counter (in X150 steps) to a
+    number. Where the output counts 5 drive steps per X150 step, P counts drive steps and the
+    number does not: the output reads `P/5` (exact, every position it moves to is a multiple of 5),
+    first, since MCode evaluates left to right (lexium-mcode.txt L1249; docs/dialects/mcode.md):
+    `Z0=P/5+50000`. With the number first (`50000+POS`) that division would apply to the sum:
+    refused on its line (G003)."""
+    result = compile_x150("VAR8=POS+50000\nD(VAR8)\nG\nD4000\nG\n", "mcode")
+    assert not errors(result), errors(result)
+    assert any(line.endswith("=P/5+50000") for line in result.listing.text.splitlines())
+    lines = result.listing.text.splitlines()
+    assert "Z1=4000" in lines  # the distance register holds X150 steps here (D(VAR8)): D4000 as written
+    result = compile_x150("VAR8=50000+POS\nD(VAR8)\nG\n", "mcode")
     assert 1 in [e[1] for e in errors(result) if "plain number" in e[2]]
 
 
