@@ -221,3 +221,19 @@ def test_the_identity_report_prints_the_address_of_the_device_the_drive_stands_f
     assert not errors(result), errors(result)
     assert 'PR ";*01!"' in result.listing.text.splitlines()
     assert prints("x150", source, "p.x150") == [";*01!\n"]
+
+
+# -- IV: a speed change that acts on receipt ------------------------------------------------------
+
+def test_an_iv_sent_during_a_move_is_not_a_speed_change_after_it():
+    """parker-x150.md L2192-L2216: IV is immediate, "during motion, the speed the motor is travelling
+    can be altered"; its example sends `IV20` after an MN `G` (which waits for the move's end in
+    the buffer, L2522-L2529): the X150 speeds the move up. Written in its turn (Arcus `SSPDX` after
+    the move: "on-the-fly speed change", arcus-pmx-4ex-sa.txt L512) it would change nothing: the IV stays the X150's own
+    command there and is refused at its line. Sent while a jog runs (MC `G`, L2498) receipt is its
+    turn: the speed change converts (Arcus `SSPDX=`), validated."""
+    result = compile_x150("MN\nMPA\nV5\nD-140000\nG\nIV20\n", "arcus")
+    assert 6 in [e[1] for e in errors(result) if e[0] == "G003"]
+    result = compile_x150("MC\nA10\nV10\nG\nIV20\n", "arcus")
+    assert not errors(result), errors(result)
+    assert "SSPDX=80000" in result.listing.text.splitlines()

@@ -267,26 +267,37 @@ def identity_report_of(op: ir.Print) -> str | None:
 # clear or end, and S is that `Stop`; anywhere else it stays the X150's own command, which the other
 # dialects refuse at its line. S is never in a sequence (not saveable, L3656).
 RECEIPT_STOPS = ("S", "STOP")
+# IV changes the speed of the move in progress "during motion" (L2192-L2216: `G` then `IV20`, "speed
+# up during move"): lowered to `speed_change` in its turn, exact only where receipt is the turn.
+ON_RECEIPT = ("IV",)
 WAITING_OPS = (ir.WaitMotion, ir.Delay, ir.WaitInput, ir.Call, ir.Home, ir.Pause, ir.Step, ir.Native)
 MOTION_OPS = (ir.Move, ir.Slew, ir.Arc)
 
 
-def stops_in_turn(module: ir.Module) -> None:
-    """Each `S`/`STOP` of the stream that nothing before can delay becomes `Stop(axis, ramp)`."""
-    moved = False
+def stops_in_turn(module: ir.Module, on_receipt: dict | None = None) -> None:
+    """Each `S`/`STOP` of the stream that nothing before can delay becomes `Stop(axis, ramp)`; each
+    immediate setting lowered in its turn (`IV`, in `on_receipt`: its op's id -> the command as
+    written) that something before may delay goes back to the X150's own command (see above)."""
+    on_receipt = on_receipt or {}
+    in_turn, moved = True, False
     for routine in module.routines:
         if routine.kind is not ir.RoutineKind.IMMEDIATE:
             continue
         if len(routine.blocks) != 1:
-            return  # a loop or a branch: what runs before a later S depends on time
-        block = routine.blocks[0]
-        for index, op in enumerate(block.ops):
-            if isinstance(op, ir.Native) and op.dialect == "x150" and op.mnemonic in RECEIPT_STOPS and not op.args:
-                block.ops[index] = ir.Stop(op.axis, True, op.span)
-                continue
-            if isinstance(op, WAITING_OPS) or isinstance(op, MOTION_OPS) and moved:
-                return
-            moved = moved or isinstance(op, MOTION_OPS)
+            in_turn = False  # a loop or a branch: what runs before a later command depends on time
+        for block in routine.blocks:
+            for index, op in enumerate(block.ops):
+                if isinstance(op, ir.Native) and op.dialect == "x150" and op.mnemonic in RECEIPT_STOPS \
+                        and not op.args and in_turn:
+                    block.ops[index] = ir.Stop(op.axis, True, op.span)
+                    continue
+                if id(op) in on_receipt:
+                    if not in_turn:
+                        block.ops[index] = on_receipt[id(op)]
+                    continue
+                if isinstance(op, WAITING_OPS) or isinstance(op, MOTION_OPS) and moved:
+                    in_turn = False
+                moved = moved or isinstance(op, MOTION_OPS)
 
 
 # Y "terminates a loop at end of the current pass" (parker-x150.md L5484-L5506); it is immediate, so
