@@ -1045,11 +1045,11 @@ class Writer:
         value, var = op.items[at], self.report_var
         source = self.expr(value)
         if self.factor != 1:
-            if any(isinstance(o, ir.Home) for _, b in self.module.blocks() for o in b.ops):
+            if self.stops_anywhere():
                 raise Unsupported(f"a position report where the output counts {self.profile.steps_per_rev} steps/rev "
-                                  f"and the source {self.module.steps_per_rev}, in a program that homes (the "
-                                  "switch may stop the drive between two source steps; give a target profile "
-                                  "with the source's steps_per_rev, --profile)")
+                                  f"and the source {self.module.steps_per_rev}, in a program that homes or runs at a "
+                                  "velocity (a switch or a stop may leave the drive between two source steps; give "
+                                  "a target profile with the source's steps_per_rev, --profile)")
             if self.factor.denominator == 1:
                 source = f"{source}/{self.factor.numerator}"  # whole: every move lands on a multiple
             elif self.factor.numerator == 1:
@@ -1104,8 +1104,7 @@ class Writer:
         leftmost = value
         while isinstance(leftmost, ir.BinOp):
             leftmost = leftmost.left
-        if len(readings) != 1 or leftmost is not readings[0] or \
-                any(isinstance(o, ir.Home) for _, b in self.module.blocks() for o in b.ops):
+        if len(readings) != 1 or leftmost is not readings[0] or self.stops_anywhere():
             raise Unsupported(self.mixed_steps())
         head = self.expr(leftmost)
         if self.factor.denominator == 1:
@@ -1115,6 +1114,12 @@ class Writer:
         else:
             raise Unsupported(self.mixed_steps())
         return scaled + text[len(head):]
+
+    def stops_anywhere(self) -> bool:
+        """Whether the drive may stop between two of the source's steps: after a homing (where the
+        switch is found) or a run at a velocity (where the stop comes). Every move of the output
+        lands on a whole source step, so elsewhere P divides exactly."""
+        return any(isinstance(o, (ir.Home, ir.Slew)) for _, b in self.module.blocks() for o in b.ops)
 
     def mixed_steps(self) -> str:
         return (f"a value that adds a position in steps to a plain number (the output counts "

@@ -55,13 +55,18 @@ def test_a_report_in_the_source_steps_where_the_output_counts_finer():
     assert prints("mcode", text, "out.mxt") == ["*+25000\n", "*+75000\n"]
 
 
-def test_a_report_after_a_homing_at_another_resolution_is_refused():
-    """A homing stops where the switch is found (parker-x150.md L1870ff.; lexium-mcode.txt HM),
-    possibly between two X150 steps of the finer MCode count: P/5 would round where the X150's own
-    counter holds a whole step. Refused on the report's line, naming the profile way out."""
+def test_a_report_after_a_homing_or_a_slew_at_another_resolution_is_refused():
+    """A homing stops where the switch is found (parker-x150.md L1711-L1734; lexium-mcode.txt
+    L3198-L3210), and a slew where its stop ramp ends, possibly between two X150 steps of the finer
+    MCode count: P/5 would round where the X150's own counter holds a whole step. Refused on the
+    report's line, naming the profile way out."""
     result = compile_x150("XE1\nXD1\nGH+2\nVAR1=500\nD(VAR1)\nG\n1PR\nXT\nXR1\n", "mcode")
     found = [e for e in errors(result) if e[0] == "G003" and "position report" in e[2]]
     assert [e[1] for e in found] == [7]
+    # a run at a velocity stopped by S (L3667-L3674) stops where the ramp ends, not on a source step
+    result = compile_x150("MC\nA10\nV10\nG\nS\nVAR1=500\nMN\nD(VAR1)\nG\n1PR\n", "mcode")
+    found = [e for e in errors(result) if e[0] == "G003" and "position report" in e[2]]
+    assert [e[1] for e in found] == [10], errors(result)
 
 
 def test_a_variable_holding_a_distance_in_steps_is_not_scaled_twice():
