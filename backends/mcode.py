@@ -26,6 +26,7 @@ import string
 from fractions import Fraction
 
 from mcc.backends import enable_outputs, resolution
+from mcc.backends.step_values import IN_STEPS, MIXED, PLAIN, STEPS, StepValues, step_readings
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
 from mcc.compiler import ir, ir_names, units
@@ -33,6 +34,7 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler import in_force
 from mcc.compiler.in_force import FIXED, InForce, lookup, with_fixed_initial_speed, with_source_power_up
 from mcc.compiler.mcode import catalog as cat
+from mcc.compiler import profiles
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
 
@@ -69,6 +71,7 @@ HOME_TYPES = {(-1, +1): 1, (-1, -1): 2, (+1, -1): 3, (+1, +1): 4, (-1, 0): 1, (+
 # operations MCode writes with a program-only statement (CL, BR loops, H): an immediate stream of
 # another dialect holding one runs as a program
 PROGRAM_ONLY = (ir.Call, ir.WaitInput, ir.WaitMotion, ir.Delay)
+REPORT_VAR = "%report"  # the key of the signed report's variable in Writer.names (never a source name)
 OUTPUTS = 3  # O1-O3; OT sets them as a 3-bit value (L4669)
 SAVE_TRAILER = "' end of program: this line ends the S above (L5269)"
 
@@ -156,6 +159,10 @@ class Writer:
         self.immediate = False  # writing lines outside any program (H cannot be written there, M112)
         self.moving = moving_before(module, foreign=self.foreign)
         self.masked_banks = masked_bank_reads(module, profile) if self.foreign else set()
+        # which values count steps, where the output's steps differ from the source's (step_values.py)
+        self.step_values = StepValues(module) if self.foreign and self.factor != 1 else None
+        self.source_units = False  # writing an expression in the source's steps (in_source_steps)
+        self.report_var = self.allocate_report_var()
 
     # names ---------------------------------------------------------------------------------------
     def fresh_name(self) -> str:
@@ -182,6 +189,16 @@ class Writer:
             if name not in names:
                 names[name] = self.fresh_name()
         return names
+
+    def allocate_report_var(self) -> str | None:
+        """The variable a signed report reads its value into (`signed_print`), declared with the
+        program's own: one for the whole program, allocated only when a report needs it."""
+        if not self.foreign or not any(isinstance(op, ir.Print) and op.signed
+                                       for _, block in self.module.blocks() for op in block.ops):
+            return None
+        name = self.fresh_name()
+        self.names[REPORT_VAR] = name
+        return name
 
     def variable_names(self) -> list[str]:
         seen = dict.fromkeys(self.module.variables)
@@ -210,6 +227,11 @@ class Writer:
                     found = enables if isinstance(op, ir.DriveEnable) else used
                     if axis != ir.ALL_AXES and axis not in found:
                         found.append(axis)
+        if not used and not enables:  # only universal commands move (X150 `G`): a reading addressed to one
+            # device (`1PR`) names the device the program runs on, which universal commands reach too
+            read = [node.axis for _, block in self.module.blocks() for op in block.ops for e in ir.op_exprs(op)
+                    for node in ir.walk_expr(e) if isinstance(node, ir.Status) and node.axis not in ("", ir.ALL_AXES)]
+            used = list(dict.fromkeys(read))
         used = used or enables
         return {used[0]: ""} if used else {}
 
@@ -283,7 +305,7 @@ class Writer:
         ends (its XT would return to the same caller, or stop the program, as the sequence reached)."""
         target = self.module.routine(term.routine)
         if target is None or target.entry is None:
-            raise Unsupported(f"a jump to {term.routine}, which is not in this program")
+            raise Unsupported(self.not_in_file("a jump to", term.routine))
         if routine is None or target is routine:
             self.line(f"BR {self.label(target.entry.label)}", span)
             return
@@ -483,7 +505,8 @@ class Writer:
         address 1."""
         if not self.foreign or routine.kind is not ir.RoutineKind.IMMEDIATE:
             return False
-        return len(routine.blocks) > 1 or any(isinstance(op, PROGRAM_ONLY) for b in routine.blocks for op in b.ops)
+        return len(routine.blocks) > 1 or any(isinstance(op, PROGRAM_ONLY) or isinstance(op, ir.Print) and op.signed
+                                              for b in routine.blocks for op in b.ops)
 
     def program_order(self) -> list[ir.Routine]:
         """Routines in source order; in a converted program the one that runs first leads the
@@ -649,6 +672,8 @@ class Writer:
             return self.guarded_call(op)
         if isinstance(op, ir.SetOutput) and op.index is None:
             return self.all_outputs(op)
+        if isinstance(op, ir.Print) and op.signed and self.report_var is not None:
+            return self.signed_print(op)
         text = self.op_text(op)
         if isinstance(op, (ir.Move, ir.Home)) and text is not None:
             before = self.hold_first(op) + before
@@ -729,6 +754,7 @@ class Writer:
             if op.traced:
                 raise Unsupported("a trace report of the command the device runs (a trace mode, X150 XTR, "
                                   "parker-x150.md L5384),")
+            op = self.with_known_address(op)
             formatted = [spec for spec in op.formats if spec]
             if formatted:
                 raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "
@@ -794,6 +820,13 @@ class Writer:
             return None  # written as A=/D= before each move, from the speeds in force (ramp_lines)
         if op.param not in PARAM_NAMES:
             raise Unsupported(f"the motion setting {op.param.value}")
+        if op.param is ir.MotionParam.RESOLUTION and self.foreign:
+            self.prefix(op.axis)
+            if in_own_steps(op, self.module):
+                return None  # the unit of the source's positions, converted to this drive's
+            raise Unsupported(f"a resolution of {self.expr(op.value)} steps/rev where the program's positions count "
+                              f"{self.module.steps_per_rev} (the positions after it would change unit; set the "
+                              "resolution once, before the first move)")
         if op.param is ir.MotionParam.RESOLUTION:
             return f"{self.prefix(op.axis)}MS={self.resolution(op.value)}"
         if op.param is ir.MotionParam.MAX_SPEED and self.foreign:
@@ -969,6 +1002,107 @@ class Writer:
         self.jump_if(ir.Not(op.cond), here, op.span)
         return []
 
+    def with_known_address(self, op: ir.Print) -> ir.Print:
+        """`op` with the address of the device that runs it written out as text where the print
+        formats it (X150 `QS` answers `;*01!`, "an asterisk, a two digit device address, an
+        exclamation mark", parker-x150.md L3209-L3217). The converted program runs on the one drive
+        that stands for the source's device (`axis_map`; a universal command's device is the source
+        profile's first, as in the simulator): its address is a number known here, and the
+        drive sends the same characters. MCode has no such reading (its party name DN is a letter)."""
+        if not self.foreign or not any(isinstance(item, ir.Status) and item.meaning == "device_address"
+                                       for item in op.items):
+            return op
+        items, formats = list(op.items), list(op.formats) + [""] * (len(op.items) - len(op.formats))
+        for at, item in enumerate(items):
+            if not (isinstance(item, ir.Status) and item.meaning == "device_address"):
+                continue
+            device = item.axis if item.axis not in ("", ir.ALL_AXES) else next(iter(self.axis_map), "")
+            if device in ("", ir.ALL_AXES):
+                source = self.source_profile()
+                device = source.axes[0] if source is not None and source.axes else ""
+            if device not in self.axis_map and self.axis_map or not str(device).isdigit():
+                raise Unsupported(f"the address of device {device or '?'} (the drive stands for one device: "
+                                  f"{next(iter(self.axis_map), '?')})")
+            words = formats[at].split()
+            if words and (words[0] != "pad" or len(words) != 2):
+                continue  # another format: refused below as any formatted value
+            text = str(int(device)).rjust(int(words[1]) if words else 0, "0")  # `pad n`: leading zeros
+            items[at], formats[at] = ir.Text(text, item.span), ""
+        merged: list = []  # neighbouring texts as one string: `PR ";*01!"`
+        merged_formats: list[str] = []
+        for item, spec in zip(items, formats):
+            if isinstance(item, ir.Text) and merged and isinstance(merged[-1], ir.Text) and not spec:
+                merged[-1] = ir.Text(merged[-1].value + item.value, merged[-1].span)
+                continue
+            merged.append(item)
+            merged_formats.append(spec)
+        return dataclasses.replace(op, items=tuple(merged), formats=tuple(merged_formats))
+
+    def source_profile(self) -> Profile | None:
+        try:
+            return profiles.load(self.module.profile)
+        except Exception:  # a profile built in memory or a user's file: no device to name
+            return None
+
+    def signed_print(self, op: ir.Print) -> list[str]:
+        """A report that sends every number with its sign, `+` included (X150 `1PR` answers
+        `*+4000` and `*-25600`: "a number preceded by a sign", parker-x150.md L3141-L3143).
+        MCode's PR sends a negative number with its `-` and a positive one bare (L4880-L4906), so
+        the `+` is printed by a branch on the value, read once into a variable of its own (the
+        position read twice could change between the test and the print):
+
+            Z9=P                the value (in the source's steps: P/5 where the output counts 5
+            BR Z8,Z9<0          of its steps per source step, `step_values`)
+            PR "*+",Z9
+            BR Z7
+            LB Z8
+            PR "*",Z9
+            LB Z7
+
+        Each way is one whole PR, so the host receives the report in one piece as from the X150.
+
+        A program statement (BR, M112): an immediate stream that reports becomes the program
+        (`as_program`). Only a report of a position reading: X150 sends no other signed value
+        but TX, whose fixed-point format MCode has not."""
+        values = [i for i, item in enumerate(op.items) if not isinstance(item, ir.Text)]
+        if len(values) != 1 or any(op.formats) or op.traced or not isinstance(op.items[values[0]], ir.Status) \
+                or op.items[values[0]].meaning not in ("position", "encoder"):
+            raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
+                              "MCode prints positive numbers unsigned),")
+        if self.immediate:
+            raise Unsupported("a signed report among immediate commands (MCode prints the + by a branch, which "
+                              "runs only in a program, M112)")
+        at = values[0]
+        value, var = op.items[at], self.report_var
+        source = self.expr(value)
+        if self.factor != 1:
+            if self.stops_anywhere():
+                raise Unsupported(f"a position report where the output counts {self.profile.steps_per_rev} steps/rev "
+                                  f"and the source {self.module.steps_per_rev}, in a program that homes or runs at a "
+                                  "velocity (a switch or a stop may leave the drive between two source steps; give "
+                                  "a target profile with the source's steps_per_rev, --profile)")
+            if self.factor.denominator == 1:
+                source = f"{source}/{self.factor.numerator}"  # whole: every move lands on a multiple
+            elif self.factor.numerator == 1:
+                source = f"{source}*{self.factor.denominator}"
+            else:
+                raise Unsupported(f"a position report where the output counts {self.profile.steps_per_rev} "
+                                  f"steps/rev and the source {self.module.steps_per_rev} (not a whole ratio)")
+        prefix = self.prefix(op.axis) if op.axis else ""
+        end = "" if op.newline else ";"
+
+        def report(sign: str) -> str:
+            texts = [self.item(item) for item in op.items[:at]]
+            if sign and texts and texts[-1].endswith('"'):
+                texts[-1] = texts[-1][:-1] + sign + '"'
+            elif sign:
+                texts.append(f'"{sign}"')
+            return f"{prefix}PR {','.join(texts + [var] + [self.item(item) for item in op.items[at + 1:]])}{end}"
+
+        negative, done = self.fresh_name(), self.fresh_name()
+        return [f"{var}={source}", f"BR {negative},{var}<0", report("+"), f"BR {done}", f"LB {negative}",
+                report(""), f"LB {done}"]
+
     def guarded_call(self, op: ir.Call) -> list[str]:
         skip = self.fresh_name()
         self.jump_if(ir.Not(op.cond), skip, op.span)
@@ -981,12 +1115,68 @@ class Writer:
         if routine is not None and routine.entry is not None:
             return self.label(routine.entry.label)
         if self.foreign:
-            raise Unsupported(f"a call of {name}, which is not in this program")
+            raise Unsupported(self.not_in_file("a call of", name))
         return self.label(name)
+
+    def in_source_steps(self, value) -> str:
+        """`value`, a sum of a position reading and plain numbers (X150 `VAR8=POS+50000`), in the
+        source's steps: the reading divided by the steps this drive counts per source step (`P/5`),
+        exact where every position the output moves to is a multiple of them (a homing may stop
+        between two: refused). MCode evaluates left to right (docs/dialects/mcode.md), so the
+        reading must come first: `P/5+50000`."""
+        readings = step_readings(value)
+        self.source_units = True  # constants in steps as the source wrote them
+        try:
+            text = self.expr(value)
+        finally:
+            self.source_units = False
+        if not readings:
+            return text
+        leftmost = value
+        while isinstance(leftmost, ir.BinOp):
+            leftmost = leftmost.left
+        if len(readings) != 1 or leftmost is not readings[0] or self.stops_anywhere():
+            raise Unsupported(self.mixed_steps())
+        head = self.expr(leftmost)
+        if self.factor.denominator == 1:
+            scaled = f"{head}/{self.factor.numerator}"
+        elif self.factor.numerator == 1:
+            scaled = f"{head}*{self.factor.denominator}"
+        else:
+            raise Unsupported(self.mixed_steps())
+        return scaled + text[len(head):]
+
+    def stops_anywhere(self) -> bool:
+        """Whether the drive may stop between two of the source's steps: after a homing (where the
+        switch is found) or a run at a velocity (where the stop comes). Every move of the output
+        lands on a whole source step, so elsewhere P divides exactly."""
+        return any(isinstance(o, (ir.Home, ir.Slew)) for _, b in self.module.blocks() for o in b.ops)
+
+    def mixed_steps(self) -> str:
+        return (f"a value that adds a position in steps to a plain number (the output counts "
+                f"{self.profile.steps_per_rev} steps/rev where the source counts {self.module.steps_per_rev}: "
+                "the steps are scaled, the number is not; docs/CROSS.md, \"Steps in variables\")")
+
+    def not_in_file(self, what: str, name: str) -> str:
+        """A routine the source calls that this file does not define (an X150 sequence stored on the
+        controller, `Module.externals`): the output cannot call what was never converted."""
+        if name in self.module.externals:
+            return (f"{what} {name}, which is stored on the source's controller and not defined in this file "
+                    "(a converted program has only what the file defines: add the definition of "
+                    f"{name} to the file, or compile a file that has it),")
+        return f"{what} {name}, which is not in this program"
 
     def assign(self, op: ir.Assign) -> str:
         target = self.var(op.target.name)
         value = op.value
+        if self.step_values is not None:
+            kind = self.step_values.kind(value)
+            if kind == MIXED or self.step_values.vars.get(op.target.name) == MIXED:
+                raise Unsupported(self.mixed_steps())
+            if self.step_values.holds_plain(op.target.name):  # the variable holds the source's units
+                if kind == STEPS:
+                    raise Unsupported(self.mixed_steps())
+                return f"{target}={self.in_source_steps(value)}"
         if isinstance(value, ir.BinOp) and value.op in "+-" and value.left == op.target \
                 and isinstance(value.right, ir.Const) and value.right.value == 1:
             return f"{'IC' if value.op == '+' else 'DC'} {target}"
@@ -1051,6 +1241,11 @@ class Writer:
                                   f"falls between two steps of the target ({self.profile.steps_per_rev} steps/rev): "
                                   "give a profile whose steps_per_rev makes it exact (--profile)")
             return format_number(scaled.value)
+        kind = self.step_values.kind(value) if self.step_values is not None else None
+        if kind in IN_STEPS:  # already in this drive's steps: its constants are scaled, P counts them
+            return self.expr(value)
+        if kind == MIXED:
+            raise Unsupported(self.mixed_steps())
         if self.factor.denominator == 1:
             return f"{self.expr(value)}*{self.factor.numerator}"
         raise Unsupported("a position computed at run time, which cannot be scaled exactly to this drive's steps")
@@ -1083,7 +1278,7 @@ class Writer:
         if isinstance(node, ir.Const):
             if node.value == PI and node.unit is ir.Unit.NONE:
                 return "PI"  # the drive's PI, 3.141592654 (L6658)
-            if node.unit is ir.Unit.STEPS and self.factor != 1:
+            if node.unit is ir.Unit.STEPS and self.factor != 1 and not self.source_units:
                 return self.position(node)
             if node.unit in (ir.Unit.STEPS_PER_S, ir.Unit.STEPS_PER_S2) and self.factor != 1:
                 return self.rate(node)
@@ -1164,6 +1359,16 @@ class Writer:
 
     def cond(self, node) -> str:
         node = simplify(node)
+        if isinstance(node, ir.Compare) and self.step_values is not None:
+            kind = self.step_values.kind(node)
+            if kind == MIXED or step_readings(node) and kind == PLAIN:
+                raise Unsupported(self.mixed_steps())
+            if kind == PLAIN:  # a variable in the source's units against constants as written
+                self.source_units = True
+                try:
+                    return f"{self.expr(node.left)}{COMPARE[node.op]}{self.expr(node.right)}"
+                finally:
+                    self.source_units = False
         if isinstance(node, ir.Compare):
             return f"{self.expr(node.left)}{COMPARE[node.op]}{self.expr(node.right)}"
         if isinstance(node, ir.Truth):
@@ -1442,6 +1647,13 @@ def successors(term) -> tuple[str, ...]:
     return ()
 
 
+def in_own_steps(op: ir.SetMotion, module: ir.Module) -> bool:
+    """A resolution that sets the steps per revolution the IR already counts in (an X150 `CUR4000`
+    with the IR at 4000 steps/rev, parker-x150.md L731-L747): it names the unit of the source's
+    positions, which the output converts to its own, so it is written as nothing."""
+    return isinstance(op.value, ir.Const) and bool(module.steps_per_rev) and op.value.value == module.steps_per_rev
+
+
 def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
     """The MS code the output sets (lexium-mcode.txt L4282-L4340: microsteps per full step, one of
     the catalog's fixed codes, steps/rev = MS x full steps) when the profile's resolution would not
@@ -1456,8 +1668,12 @@ def chosen_microsteps(module: ir.Module, profile: Profile) -> int | None:
     full = int(profile.get("full_steps_per_rev", FULL_STEPS_PER_REV))
     entry = cat.for_profile(profile).lookup("MS")
     codes = [int(v) for v in (entry.values or ()) if int(v) >= 10] if entry is not None else []
+    found = resolution.positions(module)
+    if found.fixed and all(in_own_steps(op, module) for _, b in module.blocks() for op in b.ops
+                           if isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.RESOLUTION):
+        found.fixed = False  # the source's resolution is the IR's step itself: it fixes nothing here
     chosen = resolution.choose(int(module.steps_per_rev), int(profile.steps_per_rev), [c * full for c in codes],
-                               resolution.positions(module))
+                               found)
     return chosen // full if chosen is not None else None
 
 

@@ -270,8 +270,10 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
                 "0: it runs freely", ("x150",)),
     SettingInfo("trace", Unit.NONE, "1: the device reports each program command to the host as it runs it, 0: off",
                 ("x150",)),
+    # the RP240 panel's keys (parker-x150.md L860-L885, L1237-L1253): on a target without the panel
+    # no key can be pressed, so enabling one changes nothing the program does (drive-only, G051)
     SettingInfo("panel_pause_keys", Unit.NONE, "1: the operator panel's PAUSE and CONTINUE keys pause and resume "
-                "the program, 0: they are ignored", ("x150",)),
+                "the program, 0: they are ignored", ("x150",), drive_only=True),
     SettingInfo("limit_decel", Unit.STEPS_PER_S2, "deceleration of a stop at a limit switch", ("x150",)),
     SettingInfo("position_error_limit", Unit.NONE, "position error, in motor steps, beyond which a servo faults; "
                 "0: no limit", ("x150",)),
@@ -289,7 +291,7 @@ SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     SettingInfo("servo_filter_time", Unit.S, "time constant of the servo loop's output filter", ("x150",)),
     SettingInfo("following_filter_time", Unit.S, "time constant of the filter on a following input", ("x150",)),
     SettingInfo("panel_stop_key", Unit.NONE, "1: the operator panel's STOP key stops motion and ends every loop "
-                "and program, 0: it is ignored", ("x150",)),
+                "and program, 0: it is ignored", ("x150",), drive_only=True),
     # Drive registers the program may set and read back, whose effect the simulator does not model
     # (it keeps their value: docs/SIMULATOR.md, "Drive registers"); MCode's spelling in the catalog's
     # `setting` key (compiler/catalogs/mcode.toml)

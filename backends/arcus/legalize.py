@@ -780,6 +780,10 @@ class Legalizer:
     def sub_number(self, routine: str, op, span: Span | None = None) -> int | None:
         if routine not in self.ctx.sub_numbers:
             why = f"the call target '{routine}' is not a subroutine of this program"
+            if routine in self.ctx.module.externals:  # stored on the source's controller (an X150 sequence)
+                why = (f"the call target '{routine}' is stored on the source's controller and not defined in this "
+                       f"file (a converted program has only what the file defines: add the definition of "
+                       f"{routine} to the file)")
             if op is None:
                 self.ctx.unsupported_at(span, why)
             else:

@@ -135,6 +135,7 @@ class Lowering:
         self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
         self.module.steps_per_rev = self.resolution()
         self.units = split_units(self.tree, self.diags)
+        self.on_receipt: dict[int, ir.Native] = {}  # an immediate setting's op -> the command as written
         # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them; they
         # also mark where each command starts, which single step (XST, L5330-L5345) counts
         self.tracing = any(c.mnemonic in ("XTR", "XST") for c in self.tree.commands())
@@ -149,6 +150,8 @@ class Lowering:
         self.module.externals = external_routines(self.module)
         devices = {str(a) for a in self.profile.axes} | {str(a) for a in self.addresses}
         modes.resolve(self.module, self.diags, tuple(sorted(devices, key=lambda d: (len(d), d))))
+        neutral.stops_in_turn(self.module, self.on_receipt)  # after the modes: only then is it known which G waits
+        neutral.loops_ended_on_receipt(self.module, LOOP_VAR)
         return self.module
 
     def resolution(self) -> int:
@@ -214,7 +217,8 @@ class Lowering:
                 unit.name = naming.immediate_name(streams, unit.device())
 
     def routine_kinds(self) -> dict[str, ir.RoutineKind]:
-        """Sequences selected by XP are POWERUP, by XFK/XWHEN HANDLERs, run by XR/GOSUB SUBROUTINEs."""
+        """Sequences selected by XP are POWERUP, by XFK/XWHEN HANDLERs, run by XR/GOSUB (or reached
+        by GOTO/XG from another sequence or the stream) SUBROUTINEs."""
         kinds: dict[str, ir.RoutineKind] = {}
         for unit in self.units:
             device = unit.address if unit.is_sequence else None
@@ -229,12 +233,19 @@ class Lowering:
                             kinds[name] = ir.RoutineKind.SUBROUTINE
                     continue
                 kind = ROLE_KINDS.get(info.ir)
+                if info.ir == "goto":
+                    # a sequence that another one or the stream jumps to runs when that one gets
+                    # there (GOTO/XG, L1788), never on its own: not the program's main routine,
+                    # which the simulator would run once more after the stream (docs/SIMULATOR.md)
+                    kind = ir.RoutineKind.SUBROUTINE
                 if kind is None or not command.ok:
                     continue
                 number = sequence_number(command)
                 if not number:
                     continue
                 for name in self.resolve(number, command.address if command.address is not None else device):
+                    if info.ir == "goto" and name == unit.name:
+                        continue  # a sequence that starts itself again is still run by something else or main
                     if KIND_RANK[kind] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:
                         kinds[name] = kind
         return kinds
@@ -460,7 +471,10 @@ class Lowering:
                 value = units.to_ir(self.expr(arg), neutral.SCALES[name], unit)
             else:
                 value = self.value(arg, info, unit) if unit is not ir.Unit.NONE else self.expr(arg)
-            self.emit(ir.Setting(setting, axis, value, span))
+            op = ir.Setting(setting, axis, value, span)
+            self.emit(op)
+            if name in neutral.ON_RECEIPT and not self.unit.is_sequence:  # IV: exact only in its turn
+                self.on_receipt[id(op)] = self.native(command)
         elif name in ("IN", "OUT") and isinstance(arg, st.IoFunction) and self.settable(command) \
                 and arg.function.upper() in (neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS):
             table = neutral.INPUT_FUNCTIONS if name == "IN" else neutral.OUTPUT_FUNCTIONS

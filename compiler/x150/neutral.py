@@ -255,3 +255,94 @@ def identity_report_of(op: ir.Print) -> str | None:
             and all(_same_item(a, b) for a, b in zip(op.items, shape.items)):
         return op.items[1].axis
     return None
+
+
+# S and STOP act "as soon as S is entered" (parker-x150.md L3649-L3675, STOP L4050-L4070): the
+# motor decelerates at A, the buffer is cleared unless SSH1, a T delay ends, an XD download is
+# aborted. SB does the same stop in its turn in the buffer (L3694): the IR's `Stop` with a ramp.
+# The two are one where nothing sent before the S can still be waiting in the buffer: the stream so
+# far (every stretch sent before it) is straight-line code none of whose operations waits (a delay,
+# a wait, a call, a homing, a pause, the end of an MN move, a loop or a branch, a move queued behind
+# another, a command of the X150's own whose timing the IR does not know). Then there is nothing to
+# clear or end, and S is that `Stop`; anywhere else it stays the X150's own command, which the other
+# dialects refuse at its line. S is never in a sequence (not saveable, L3656).
+RECEIPT_STOPS = ("S", "STOP")
+# IV changes the speed of the move in progress "during motion" (L2192-L2216: `G` then `IV20`, "speed
+# up during move"): lowered to `speed_change` in its turn, exact only where receipt is the turn.
+ON_RECEIPT = ("IV",)
+WAITING_OPS = (ir.WaitMotion, ir.Delay, ir.WaitInput, ir.Call, ir.Home, ir.Pause, ir.Step, ir.Native)
+MOTION_OPS = (ir.Move, ir.Slew, ir.Arc)
+
+
+def stops_in_turn(module: ir.Module, on_receipt: dict | None = None) -> None:
+    """Each `S`/`STOP` of the stream that nothing before can delay becomes `Stop(axis, ramp)`; each
+    immediate setting lowered in its turn (`IV`, in `on_receipt`: its op's id -> the command as
+    written) that something before may delay goes back to the X150's own command (see above)."""
+    on_receipt = on_receipt or {}
+    in_turn, moved = True, False
+    for routine in module.routines:
+        if routine.kind is not ir.RoutineKind.IMMEDIATE:
+            continue
+        if len(routine.blocks) != 1:
+            in_turn = False  # a loop or a branch: what runs before a later command depends on time
+        for block in routine.blocks:
+            for index, op in enumerate(block.ops):
+                if isinstance(op, ir.Native) and op.dialect == "x150" and op.mnemonic in RECEIPT_STOPS \
+                        and not op.args and in_turn:
+                    block.ops[index] = ir.Stop(op.axis, True, op.span)
+                    continue
+                if id(op) in on_receipt:
+                    if not in_turn:
+                        block.ops[index] = on_receipt[id(op)]
+                    continue
+                if isinstance(op, WAITING_OPS) or isinstance(op, MOTION_OPS) and moved:
+                    in_turn = False
+                moved = moved or isinstance(op, MOTION_OPS)
+
+
+# Y "terminates a loop at end of the current pass" (parker-x150.md L5484-L5506); it is immediate, so
+# it acts when it is received, not in its turn. Its example: `L A10 V10 D8000 T2 G N Y`: the loop
+# runs "continuously", and Y, sent right after N, ends it "at the end of the pass during which the Y
+# command is entered": the first pass. That is the IR's counted loop run once, and the Y nothing
+# more, when the pass is surely under way when Y arrives: the loop is in the stream and everything
+# sent before it is straight-line code that never waits (as for S, `stops_in_turn`), its pass is one
+# block that waits (a delay, the end of a move, an input: a pass that never waits would spin through
+# passes while the Y is on its way), its count is a constant, and the Y is the first thing sent after
+# its N. Anywhere else Y stays the X150's own command, refused by the other dialects at its line.
+LOOP_ENDS = ("Y",)
+PASS_WAITS = (ir.WaitMotion, ir.Delay, ir.WaitInput)
+
+
+def loops_ended_on_receipt(module: ir.Module, counter_prefix: str) -> None:
+    """Each stream loop that a `Y` sent after it ends in its first pass runs once (see above)."""
+    for routine in module.routines:
+        if routine.kind is not ir.RoutineKind.IMMEDIATE:
+            continue
+        blocks = routine.blocks
+        if len(blocks) == 3 and _loop_ended_by_y(blocks, counter_prefix):
+            start, _, after = blocks
+            init = start.ops[-1]
+            start.ops[-1] = ir.Assign(init.target, ir.Const(1, ir.Unit.NONE, init.value.span), init.span)
+            del after.ops[0]
+        if len(blocks) != 1 or any(isinstance(op, WAITING_OPS) for op in blocks[0].ops):
+            return  # what follows may be received before its turn: left as it is
+
+
+def _loop_ended_by_y(blocks: list, counter_prefix: str) -> bool:
+    start, head, after = blocks
+    if not start.ops or not isinstance(start.terminator, ir.Jump) or start.terminator.target != head.label:
+        return False
+    init = start.ops[-1]
+    if not (isinstance(init, ir.Assign) and init.target.name.startswith(counter_prefix)
+            and isinstance(init.value, ir.Const) and init.value.value >= 0):
+        return False
+    if any(isinstance(op, WAITING_OPS) for op in start.ops) or sum(isinstance(op, MOTION_OPS) for op in start.ops) > 1:
+        return False
+    term = head.terminator
+    if not (isinstance(term, ir.Branch) and term.then == head.label and term.otherwise == after.label
+            and any(isinstance(op, PASS_WAITS) for op in head.ops)
+            and not any(isinstance(op, (ir.Call, ir.Native)) for op in head.ops)
+            and any(isinstance(node, ir.Var) and node.name == init.target.name for node in ir.walk_expr(term.cond))):
+        return False
+    first = after.ops[0] if after.ops else None
+    return isinstance(first, ir.Native) and first.dialect == "x150" and first.mnemonic in LOOP_ENDS and not first.args
