@@ -139,9 +139,6 @@ class Lowering:
         # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them; they
         # also mark where each command starts, which single step (XST, L5330-L5345) counts
         self.tracing = any(c.mnemonic in ("XTR", "XST") for c in self.tree.commands())
-        # Y, or an input set up to end loops (IN<n>M, L2089): an L loop can end, so it keeps its counter
-        self.terminates_loops = any(c.mnemonic == "Y" or (c.mnemonic == "IN" and getattr(c.arg, "function", "") == "M")
-                                    for c in self.tree.commands())
         self.name_units()
         self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
         kinds = self.routine_kinds()
@@ -610,15 +607,7 @@ class Lowering:
                            f"(L2011, L2332): move the inner part to its own sequence")
         span = command.span
         frame = Frame(kind, command)
-        if kind == "L" and self.endless(command):
-            # L / L0 repeats without end (L2328): a plain jump back, no counter that would change at
-            # every round (a polling loop then repeats its state, as its source's BR loop does) or
-            # run out after 2^32 rounds; a traced loop keeps its counter for the report's LOOP COUNT
-            head = self.label()
-            self.terminate(ir.Jump(head, span))
-            self.new_block(span, head)
-            frame.head = head
-        elif kind == "L":
+        if kind == "L":
             self.counters += 1
             counter = f"{LOOP_VAR}{self.counters}"
             self.module.variables[counter] = ir.Variable(counter, ir.VarType.INT32, ir.Const(0), "local", span)
@@ -647,15 +636,6 @@ class Lowering:
             self.new_block(span, head)
             frame.head = head
         self.frames.append(frame)
-
-    def endless(self, command: st.Command) -> bool:
-        """`L` or `L0` (repeated continuously, L2328) in a program that neither traces (the report
-        counts the rounds) nor terminates loops (`Y`, L5484-L5495, or an
-        input set up to, IN<n>M, L2089: the loop then ends after its pass)."""
-        if self.tracing or self.terminates_loops:
-            return False
-        arg = command.arg
-        return arg is None or (isinstance(arg, st.Number) and arg.value == 0)
 
     def close(self, command: st.Command, role: str) -> None:
         kind = CLOSERS[role]
@@ -702,10 +682,7 @@ class Lowering:
 
     def finish(self, frame: Frame, command: st.Command | None) -> None:
         span = command.span if command is not None else frame.opener.span
-        if frame.kind == "L" and not frame.counter:  # endless (`endless`)
-            self.terminate(ir.Jump(frame.head, span))
-            self.new_block(span, self.label())
-        elif frame.kind == "L":
+        if frame.kind == "L":
             var = ir.Var(frame.counter, span)
             self.emit(ir.Assign(var, ir.BinOp("-", var, ir.Const(1)), span))
             after = self.label()

@@ -77,6 +77,11 @@ VARIANTS = {
 WRITES_NOTHING = {
     ("x150", "Print", 2): "a trace report (Print.traced): an X150 in trace mode sends it by itself "
                           "(parker-x150.md L5384-L5433; docs/IR.md, \"Trace reports\")",
+    # the example's abort is the module's first operation: no move can run there, so it stops nothing
+    # (arcus-pmx-4ex-sa.txt L694) and a target without a stored abort writes nothing for it
+    # (docs/CROSS.md, "Abort"; refused while a move may run: tests/test_cross_arcus.py)
+    ("mcode", "Stop", 1): "an abort where no move can run (MCode stops at once only with ESC, from the host)",
+    ("x150", "Stop", 1): "an abort where no move can run (X150 never saves K in a sequence)",
 }
 OP_LINE, TERM_LINE = 10, 11
 CASES = [(name, 0) for name in EXAMPLES] + [(name, n) for name, more in VARIANTS.items() for n in range(1, len(more) + 1)]

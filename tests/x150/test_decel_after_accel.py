@@ -18,15 +18,15 @@ def compile_mcode(tmp_path, text: str):
 
 
 def test_an_acceleration_that_leaves_another_deceleration_is_refused_on_its_line(tmp_path) -> None:
-    result = compile_mcode(tmp_path, "PG 100\nA=100000\nD=100000\nA=1000000\nMA -25600\nH\nE\nPG\n")
+    result = compile_mcode(tmp_path, "PG 100\nVI=100\nA=100000\nD=100000\nA=1000000\nMA -25600\nH\nE\nPG\n")
     errors = [d for d in result.diagnostics if d.severity.value == "error"]
-    assert [(d.code, d.span.line) for d in errors] == [("G003", 4)], [(d.code, d.message) for d in errors]
+    assert [(d.code, d.span.line) for d in errors] == [("G003", 5)], [(d.code, d.message) for d in errors]
     assert "decelerates at the acceleration" in errors[0].message and "100000" in errors[0].message
 
 
 def test_an_acceleration_followed_by_the_same_deceleration_is_written_and_validated(tmp_path) -> None:
     """A=D again after the change: X150's single A is exact (and the validation agrees)."""
-    result = compile_mcode(tmp_path, "PG 100\nA=100000\nD=100000\nA=1000000\nD=1000000\nMA -25600\nH\nE\nPG\n")
+    result = compile_mcode(tmp_path, "PG 100\nVI=100\nA=100000\nD=100000\nA=1000000\nD=1000000\nMA -25600\nH\nE\nPG\n")
     assert not [d for d in result.diagnostics if d.severity.value == "error"], \
         [(d.code, d.message) for d in result.diagnostics]
     assert result.listing is not None and "A" in result.listing.text
