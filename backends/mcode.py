@@ -25,7 +25,7 @@ from functools import lru_cache
 import string
 from fractions import Fraction
 
-from mcc.backends import enable_outputs, resolution
+from mcc.backends import enable_outputs, int32, resolution
 from mcc.backends.step_values import IN_STEPS, MIXED, PLAIN, STEPS, StepValues, step_readings
 from mcc.backends.listing import Listing, axis_sets_written
 from mcc.compiler import homing
@@ -1169,6 +1169,9 @@ class Writer:
     def assign(self, op: ir.Assign) -> str:
         target = self.var(op.target.name)
         value = op.value
+        too_big = int32.overflow(self.module, op) if self.foreign else None
+        if too_big:
+            raise Unsupported(too_big + ",")
         if self.step_values is not None:
             kind = self.step_values.kind(value)
             if kind == MIXED or self.step_values.vars.get(op.target.name) == MIXED:

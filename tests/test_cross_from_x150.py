@@ -242,3 +242,16 @@ def test_an_iv_sent_during_a_move_is_not_a_speed_change_after_it():
     result = compile_x150("MC\nA10\nV10\nG\nIV20\n", "arcus")
     assert not errors(result), errors(result)
     assert "SSPDX=80000" in result.listing.text.splitlines()
+
+
+# -- a constant a 32-bit variable cannot hold ------------------------------------------------------
+
+def test_a_constant_beyond_32_bits_is_refused_at_its_line():
+    """parker-x150.md L4569-L4573: an X150 variable holds a decimal; MCode's user variables
+    (lexium-mcode.txt L1249, VA) and the PMX-4EX-SA's V1-V100 are 32-bit whole numbers, which wrap.
+    `VAR4=46341+2147483000` (the fuzz finding of docs/CROSS.md) is 2147529341 on the X150 and a
+    negative number on the targets: refused at its line (G003) instead of by the validation."""
+    source = "VAR4=46341+2147483000\nIF(VAR4>34)\nO1\nNIF\n"
+    for target in ("mcode", "arcus"):
+        found = [e for e in errors(compile_x150(source, target)) if e[1] == 1]
+        assert found and found[0][0] == "G003" and "2147529341" in found[0][2], found

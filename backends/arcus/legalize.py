@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import functools
 
+from mcc.backends import int32
 from mcc.backends.arcus import convert
 from mcc.backends.arcus.context import Context
 from mcc.backends.arcus.convert import Refused
@@ -98,6 +99,8 @@ class Legalizer:
         temps.live = base
 
     def op_assign(self, op: ir.Assign) -> None:
+        if self.ctx.module.dialect != DIALECT and (too_big := int32.overflow(self.ctx.module, op)):
+            raise Refused(too_big)
         target = self.ctx.var(op.target)
         magnitude = signed_abs(op.value)
         if magnitude is not None:
