@@ -162,13 +162,26 @@ COMMENT = re.compile(r"[;'`].*$")
 def matches(source: SourceFile, detector: Detector) -> list[int]:
     """The first line each of the detector's markers occurs on (a marker that occurs nowhere adds
     nothing), when at least `minimum` of them occur; else []."""
-    lines = [COMMENT.sub("", line).upper() for line in source.text.split("\n")]
-    evidence = []
-    for marker in detector.markers:
-        hit = next((n for n, text in enumerate(lines, 1) if marker.search(text)), None)
-        if hit is not None:
-            evidence.append(hit)
+    first: list[int | None] = [None] * len(detector.markers)
+    missing = len(first)
+    for number, text in enumerate(source.text.split("\n"), 1):
+        for index in line_markers(text, detector.markers):
+            if first[index] is None:
+                first[index] = number
+                missing -= 1
+        if not missing:
+            break
+    evidence = [hit for hit in first if hit is not None]
     return sorted(set(evidence)) if len(evidence) >= detector.minimum else []
+
+
+@lru_cache(maxsize=1 << 16)
+def line_markers(text: str, markers: tuple[re.Pattern, ...]) -> tuple[int, ...]:
+    """The indices of the markers that occur in one line (comment removed, upper-cased). Kept per
+    line text: the editor server asks again after every keystroke of a file with an error, and
+    all but the edited line are the same (20 ms a keystroke on 3,000 Arcus lines, without it)."""
+    clean = COMMENT.sub("", text).upper()
+    return tuple(index for index, marker in enumerate(markers) if marker.search(clean))
 
 
 def suggest(source: SourceFile, dialect: str, current: Profile, errors: int, analyze) -> Diagnostic | None:
