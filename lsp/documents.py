@@ -171,20 +171,19 @@ class Documents:
         indexed = analysis.with_index(linted)
         if stop():
             return
-        costly = memory.priced(indexed) or cycles.timed(indexed)  # the backend's work, a bounded simulation
-        deferred = costly and self.memory_delay > 0
+        # until this version is priced and run (or, with errors, for as long as it has them: see
+        # analysis.figures_wanted), the lenses show the last figures, on this version's lines
         previous = self.latest.get(uri)
-        if deferred or not memory.priced(indexed):
-            # until this version is priced (or, with errors, cannot be), the lenses show the last figures
-            indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
-        if deferred or not cycles.timed(indexed):
-            indexed.cycles = cycles.carried(previous.cycles if previous is not None else None, indexed)
+        indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
+        indexed.cycles = cycles.carried(previous.cycles if previous is not None else None, indexed)
+        costly = analysis.figures_wanted(indexed)  # the backend's work, a bounded simulation
+        deferred = costly and self.memory_delay > 0
         # the editor model's own failure (G001) is one more diagnostic: published again then
         self.deliver(indexed, generation, publish=len(indexed.diagnostics) != len(linted.diagnostics))
         if stop():
             return
         if not deferred:
-            self.deliver(analysis.complete(indexed), generation, publish=False)
+            self.deliver(analysis.complete(indexed, costly), generation, publish=False)
         elif self.loop is not None and not self.loop.is_closed():
             # pricing the program (the backend's work) waits for a pause in the typing, so that it
             # never holds up the checks of the next keystroke
