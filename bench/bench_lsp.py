@@ -47,6 +47,7 @@ import random
 import statistics
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -260,12 +261,12 @@ class RawClient:
     def __init__(self, argv: list[str]) -> None:
         import queue
         import subprocess
-        import threading
 
         self.process = subprocess.Popen(argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE)
         self.messages: queue.Queue = queue.Queue()
         # (uri, version) -> each publication's (arrival, the server's CPU time then, diagnostic keys)
         self.publications: dict[tuple[str, int], list[tuple[float, float, list]]] = {}
+        self.published = threading.Condition()
         self.next_id = 0
         self.lock = threading.Lock()
         threading.Thread(target=self.read, daemon=True).start()
@@ -293,8 +294,10 @@ class RawClient:
                 self.send({"jsonrpc": "2.0", "id": message["id"], "result": None})
             if message.get("method") == "textDocument/publishDiagnostics":
                 params = message["params"]
-                self.publications.setdefault((params["uri"], params.get("version")), []).append(
-                    (arrived, cpu, sorted(diagnostic_key(d) for d in params["diagnostics"])))
+                with self.published:
+                    self.publications.setdefault((params["uri"], params.get("version")), []).append(
+                        (arrived, cpu, sorted(diagnostic_key(d) for d in params["diagnostics"])))
+                    self.published.notify_all()
                 continue
             self.messages.put((arrived, message))
 
@@ -319,6 +322,14 @@ class RawClient:
             _, message = self.messages.get(timeout=max(0.0, deadline - time.perf_counter()))
             if message.get("id") == ident and "method" not in message:
                 return message.get("result")
+
+    def wait_for(self, uri: str, version: int, expected: list, timeout: float = 120.0) -> None:
+        """Until a publication of `version` equal to `expected` arrives (without asking the server
+        anything meanwhile: the requests would cost it CPU time that is measured)."""
+        with self.published:
+            if not self.published.wait_for(lambda: any(keys == expected for _, _, keys in
+                                                       self.publications.get((uri, version), [])), timeout):
+                raise AssertionError(f"no publication of version {version} equal to mcc lint's in {timeout} s")
 
     def final(self, uri: str, version: int, expected: list) -> tuple[float, float]:
         """The arrival of the publication from which on the editor shows `expected` (code and range
@@ -420,6 +431,7 @@ def raw_dialect(root: Path, dialect: str, lines: int, edits: int) -> dict:
         expected = expected_diagnostics(path, "\n".join(content))  # before the edit is sent: not timed
         before = process_cpu_ms(pid)
         sent = change(edit)
+        client.wait_for(uri, version, expected)
         settle()
         arrived, spent = client.final(uri, version, expected)
         full.append((arrived - sent) * 1000)
@@ -435,6 +447,7 @@ def raw_dialect(root: Path, dialect: str, lines: int, edits: int) -> dict:
         for edit in keystrokes:
             sent = change(edit)
             time.sleep(0.04)
+        client.wait_for(uri, version, expected)
         settle()
         typing.append((client.final(uri, version, expected)[0] - sent) * 1000)
     client.close()
