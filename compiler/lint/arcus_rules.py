@@ -147,8 +147,17 @@ def switch_state(name_on: str, name_off: str | None, on_value=lambda v: v != 0):
     return transfer
 
 
+def keywords_in(module: ir.Module) -> set[str]:
+    """The catalog names of the module's operations (`keyword`). A rule about keywords the program
+    never uses has nothing to find: it skips its walk of every routine (the editor server runs the
+    rules on every keystroke; a 3,000-line program does not use SCV, SSPDM or SYNO)."""
+    return {keyword(op)[0] for _, _, op in flow.ops(module)}
+
+
 @rule("A304", ARCUS)
 def speed_change_with_s_curve(ctx: Context) -> None:
+    if not {"SCV", "SSPD"} <= keywords_in(ctx.module):  # an S-curve switched on, and a speed change
+        return
     transfer = switch_state("SCV", None)
     for _, item, on in forward_all(ctx.module, transfer):
         name, axis = keyword(item)
@@ -161,6 +170,8 @@ def speed_change_with_s_curve(ctx: Context) -> None:
 def speed_mode_not_reset(ctx: Context) -> None:
     """The state holds ("armed", axis) after SSPDM<axis> != 0 and ("used", axis) once an SSPD ran
     in that mode; the move that SSPD changes is fine, a move after it is not."""
+    if not {"SSPDM", "SSPD"} <= keywords_in(ctx.module):  # the mode armed, and a speed change in it
+        return
 
     def transfer(state: frozenset, item) -> frozenset:
         name, axis = keyword(item)
@@ -182,6 +193,8 @@ def speed_mode_not_reset(ctx: Context) -> None:
 
 @rule("A312", ARCUS)
 def output_used_by_sync(ctx: Context) -> None:
+    if "SYNO" not in keywords_in(ctx.module):  # no synchronisation output switched on
+        return
     transfer = switch_state("SYNO", None)
     for _, item, on in forward_all(ctx.module, transfer):
         if not isinstance(item, ir.SetOutput) or not on:
