@@ -513,6 +513,8 @@ def reversed_comparison(ctx: Context) -> None:
 
 @rule("M314", MCODE)
 def move_after_slew_without_hold(ctx: Context) -> None:
+    if not any(isinstance(op, ir.Slew) for _, _, op in flow.ops(ctx.module)):
+        return  # no SL: nothing may still be running (and no walk of every routine)
     motion = Motion(ctx.module, (ir.Slew,))
 
     def transfer(state: frozenset, item) -> frozenset:

@@ -226,8 +226,18 @@ def left_to_right_arithmetic(ctx: Context) -> None:
 
 # X310 / X311 / X313 — motion state -----------------------------------------------------------------
 
+def any_op(module: ir.Module, wanted) -> bool:
+    """Whether an operation of the module is `wanted`: a rule whose state only an operation of
+    that kind starts has nothing to find without one, and skips its walk of every routine (the
+    editor server runs the rules on every keystroke)."""
+    return any(wanted(op) for _, _, op in flow.ops(module))
+
+
 @rule("X310", X150)
 def move_while_disabled(ctx: Context) -> None:
+    if not any_op(ctx.module, lambda op: isinstance(op, ir.DriveEnable) or native(op, "ST") or native(op, "OFF")):
+        return  # the drive is never shut down
+
     def transfer(off: frozenset, item) -> frozenset:
         if isinstance(item, ir.DriveEnable):  # ST0 / ST1 (the lowering's neutral form)
             on = const(item.on)
@@ -250,6 +260,9 @@ def move_while_disabled(ctx: Context) -> None:
 
 @rule("X311", X150)
 def repeated_absolute_move(ctx: Context) -> None:
+    if not any_op(ctx.module, lambda op: isinstance(op, ir.Move) and op.mode is ir.MoveMode.ABSOLUTE):
+        return  # no absolute move: nothing is reached
+
     def target(item) -> tuple:
         value = item.targets[0][1] if item.targets else None
         return (axis_of(item), value.value if isinstance(value, ir.Const) else getattr(value, "name", None))
@@ -275,6 +288,10 @@ def repeated_absolute_move(ctx: Context) -> None:
 
 @rule("X313", X150)
 def zero_velocity_move(ctx: Context) -> None:
+    if not any_op(ctx.module, lambda op: isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.MAX_SPEED
+                  and const(op.value) == 0):
+        return  # V0 is never set
+
     def transfer(zero: frozenset, item) -> frozenset:
         if isinstance(item, ir.SetMotion) and item.param is ir.MotionParam.MAX_SPEED:
             return zero | {item.axis} if const(item.value) == 0 else zero - {item.axis}
