@@ -80,7 +80,8 @@ def deselectable(code: str) -> bool:
 
 @lru_cache(maxsize=None)
 def opt_in(code: str) -> bool:
-    """An opt-in rule (compiler/codes/*.toml `opt_in = true`) is enabled only by its own code."""
+    """An opt-in rule (`- opt-in:` on its page, `opt_in = true` in compiler/codes/*.toml) is enabled
+    only by its own code."""
     info = registry().get(code)
     return info is not None and info.opt_in
 
@@ -277,7 +278,7 @@ def overrides(select=(), extend_select=(), ignore=(), profile: str | None = None
 
 @lru_cache(maxsize=None)
 def valid_prefix(prefix: str) -> bool:
-    return prefix == "ALL" or any(info.code.startswith(prefix) for info in registry())
+    return prefix == "ALL" or any(code.startswith(prefix) for code in registry().names())
 
 
 # ---------------------------------------------------------------------------------------------

@@ -72,12 +72,19 @@ class Dialect:
     routine_numbers: RoutineNumbers = RoutineNumbers(named=32)
     cost_key: str = ""
     resolution: Resolution = Resolution()
+    # the module that moves a program between two product families of this dialect (differs() and
+    # migrate(), e.g. MDrivePlus -> Lexium MCode), or "" when the dialect has one family
+    migration: str = ""
 
     def load_frontend(self):
         return importlib.import_module(self.frontend)
 
     def load_backend(self):
         return importlib.import_module(self.backend)
+
+    def load_migration(self):
+        """The migration module, imported only when a compile names a source profile."""
+        return importlib.import_module(self.migration) if self.migration else None
 
 
 DIALECTS: dict[str, Dialect] = {
@@ -86,7 +93,7 @@ DIALECTS: dict[str, Dialect] = {
     # so outlining stays modest (32 new labels at most)
     "mcode": Dialect("mcode", "Lexium MCode", (".mxt", ".ixt", ".mcode"),
                      "mcc.compiler.mcode.frontend", "mcc.backends.mcode", "lmd-c", ".mxt", "'",
-                     writes_jumps=True, program_regions=True,
+                     writes_jumps=True, program_regions=True, migration="mcc.compiler.mcode.migrate",
                      # VM/VI/A/D in whole steps/s (steps/s^2) when converted, H in ms
                      resolution=Resolution(1.0, False, 0.001)),
     # X150: VARn hold decimals (parker-x150.md VAR); a host may start any sequence with XR/XG; the

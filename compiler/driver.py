@@ -316,7 +316,7 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
 
     `source_profile` is the product the program was written for when it is not `profile`'s: the
     file is checked with it, and an MCode program moved to another MCode family (MDrivePlus ->
-    Lexium) is converted on the way (compiler/mcode/migrate.py) and always validated."""
+    Lexium) is converted on the way (the dialect's `migration` module, compiler/mcode/migrate.py) and always validated."""
     result = check_file(path, dialect, source_profile or profile, text, memory=False, settings=settings)
     result.target = target or result.dialect
     analysis = result.analysis
@@ -344,9 +344,8 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         target_profile = result.profile if own else profile_for(target_dialect, profile)
         module = analysis.module
         migrating = False
-        if source_profile is not None:
-            from mcc.compiler.mcode import migrate  # only a migration needs it (and its imports)
-
+        migrate = target_dialect.load_migration() if source_profile is not None else None
+        if migrate is not None:
             migrating = migrate.differs(source_profile, target_profile)
         if migrating:
             module = migrate.migrate(module, source_profile, target_profile, diags)

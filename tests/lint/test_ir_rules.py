@@ -1,9 +1,11 @@
-"""The lint rules written once over the IR (compiler/lint/ir_rules.py): one rule, each dialect's
+"""The lint rules written once over the IR (compiler/lint/rules/shared/): one rule, each dialect's
 code and words; and the symbol table and def-use chains the analysis keeps (compiler/symbols.py)."""
 
 from __future__ import annotations
 
+import importlib
 import string
+from pathlib import Path
 
 import pytest
 from hypothesis import given, settings
@@ -12,12 +14,14 @@ from hypothesis import strategies as st
 from helpers import codes, lint
 from mcc.compiler import driver
 from mcc.compiler.codes import registry
-from mcc.compiler.lint import ir_rules
 from mcc.compiler.lint.rules import RULES, load_all
+from mcc.compiler.lint.rules.shared import voice as voices
 
 load_all()
-VOICES = {name: __import__(f"mcc.compiler.lint.{name}_rules", fromlist=["VOICE"]).VOICE
-          for name in ("mcode", "arcus", "x150")}
+SPOKEN = {code: rule.voice for code, rule in RULES.items() if rule.voice is not None}
+SHARED_DIR = Path(voices.__file__).parent
+SHARED = {path.stem: importlib.import_module(f"mcc.compiler.lint.rules.shared.{path.stem}")
+          for path in sorted(SHARED_DIR.glob("*.py")) if path.stem not in ("__init__", "helpers", "voice")}
 
 
 def analysis(text: str, path: str):
@@ -26,29 +30,31 @@ def analysis(text: str, path: str):
 
 # the tables -----------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("dialect", sorted(VOICES))
-def test_each_dialect_maps_shared_rules_to_its_own_registered_codes(dialect: str) -> None:
-    voice = VOICES[dialect]
-    for name, code in voice.codes.items():
-        assert name in ir_rules.SHARED, name
-        info = registry().get(code)
-        assert info is not None and info.dialects == (dialect,) or list(info.dialects) == [dialect], code
-        assert RULES[code].dialects == (dialect,)
-        assert RULES[code].check.__doc__ == ir_rules.SHARED[name].__doc__
-        variants = ir_rules.VARIANTS.get(name)
-        if variants is None:
-            assert name in voice.messages, f"{dialect} has no message for {name}"
-        for variant in variants or ():
-            assert f"{name}.{variant}" in voice.messages, f"{dialect} has no message for {name}.{variant}"
+@pytest.mark.parametrize("code", sorted(SPOKEN))
+def test_each_dialect_gives_a_shared_rule_its_own_registered_code_and_every_message(code: str) -> None:
+    voice = SPOKEN[code]
+    [(name, spoken_code)] = voice.codes.items()
+    assert spoken_code == code
+    shared = SHARED[name.replace("-", "_")]
+    info = registry().get(code)
+    assert info is not None and info.dialects == (voice.dialect,), code
+    assert RULES[code].dialects == (voice.dialect,)
+    assert RULES[code].check.__doc__ == voices.check_of(shared).__doc__
+    variants = getattr(shared, "VARIANTS", None)
+    if variants is None:
+        assert name in voice.messages, f"{code} has no message for {name}"
+    for variant in variants or ():
+        assert f"{name}.{variant}" in voice.messages, f"{code} has no message for {name}.{variant}"
 
 
 def test_a_shared_rule_has_one_code_per_dialect_and_codes_are_not_shared() -> None:
-    seen: dict[str, str] = {}
-    for voice in VOICES.values():
-        for name, code in voice.codes.items():
-            assert code[0] == {"mcode": "M", "arcus": "A", "x150": "X"}[voice.dialect]
-            assert code not in seen, (code, seen.get(code), name)
-            seen[code] = name
+    seen: dict[tuple[str, str], str] = {}
+    for code, voice in SPOKEN.items():
+        [name] = voice.codes
+        assert code[0] == {"mcode": "M", "arcus": "A", "x150": "X"}[voice.dialect]
+        assert (name, voice.dialect) not in seen, (code, seen.get((name, voice.dialect)))
+        seen[(name, voice.dialect)] = code
+    assert {name for name, _ in seen} == {shared.NAME for shared in SHARED.values()}, "a shared rule no dialect has"
 
 
 # one meaning, three spellings ---------------------------------------------------------------------

@@ -1,5 +1,6 @@
-"""Each MCode lint rule with cases beyond its documented bad/good pair (those run in
-test_lint_registry.py): the situations that make a rule wrong when it is too simple."""
+"""MCode lint rules with cases beyond their documented bad/good pair (those run in
+test_lint_registry.py) and beyond their fixture (tests/lint/fixtures/, test_rule_fixtures.py,
+which every rule must have): the situations that make a rule wrong when it is too simple."""
 
 from __future__ import annotations
 
@@ -539,13 +540,6 @@ CASES = [
 def test_rule_reports_bad_and_accepts_good(code: str, bad: str, good: str) -> None:
     assert code in codes(bad), lint(bad)
     assert code not in codes(good), [(d.code, d.span.line, d.message) for d in lint(good)]
-
-
-def test_every_mcode_rule_has_extra_cases() -> None:
-    from mcc.compiler.lint.rules import rules_for
-
-    # the envelope rules (G3xx, every dialect) have their cases per dialect in test_envelope.py
-    assert {r.code for r in rules_for("mcode") if r.code.startswith("M")} <= {c[0] for c in CASES}
 
 
 def test_conventional_end_after_main_loop_is_not_unreachable() -> None:
