@@ -394,19 +394,25 @@ def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
               help="X150: sequence memory in bytes (L4871).")
 @click.option("--run-limit", type=click.FloatRange(min=0, min_open=True), default=60.0, show_default=True,
               metavar="SECONDS",
-              help="Virtual seconds a program (or command) may run on the simulator's machine before the "
-                   "device answers; a program still going then stays 'running'.")
+              help="Virtual seconds a program may run on the simulator's machine; a program still going "
+                   "then is held, reported 'running'.")
+@click.option("--time-scale", type=click.FloatRange(min=0), default=1.0, show_default=True, metavar="X",
+              help="Virtual seconds that pass per second the host is silent (1: real time, as a drive; "
+                   "0: only the commands' own time passes).")
 @click.option("--profile", default=None, metavar="NAME",
               help="MCode: the product to be (a built-in profile or a TOML file): its machine, and the "
                    "identity PR VR and PR PN report (default: the dialect's default profile).")
 def device(dialect: str, listen: str, program: str | None, fault: str, addresses: str, party_names: str,
-           program_lines: int, sequence_bytes: int, run_limit: float, profile: str | None) -> None:
+           program_lines: int, sequence_bytes: int, run_limit: float, time_scale: float,
+           profile: str | None) -> None:
     """Run a virtual device on a TCP port, behind the dialect's host protocol.
 
     Connect with --port socket://HOST:PORT. The device keeps its state between connections
     until it is stopped (Ctrl-C). Programs and commands run on the simulator's machine (as
-    `mcc sim`), in virtual time: each runs to its end, or to --run-limit, before the device
-    answers. See docs/LINK.md for what it models.
+    `mcc sim`) in virtual time that runs as a drive's clock does: each command takes its
+    characters' time on the line and the product's execution time, and while the host is silent
+    time passes (--time-scale); moves and programs go on across commands. See docs/LINK.md for
+    what it models.
 
     \b
     Example:
@@ -434,7 +440,7 @@ def device(dialect: str, listen: str, program: str | None, fault: str, addresses
         raise click.BadParameter(str(exc), param_hint="--profile") from None
     except ValueError as exc:
         raise click.BadParameter(str(exc), param_hint="--program") from None
-    server = DeviceServer(dev, host or "127.0.0.1", int(port_text))
+    server = DeviceServer(dev, host or "127.0.0.1", int(port_text), time_scale=time_scale)
     click.echo(f"virtual {dialect} device on {server.url} (Ctrl-C to stop)", err=True)
     sys.stderr.flush()
     try:

@@ -18,7 +18,7 @@ import json
 from enum import Enum
 from typing import Any
 
-from mcc.compiler import ir
+from mcc.compiler import ir, ir_ops
 
 
 def to_text(module: ir.Module) -> str:
@@ -48,98 +48,90 @@ def _axes(targets) -> str:
     return " ".join(f"{axis}={expr_text(value)}" for axis, value in targets)
 
 
-def op_text(op: ir.Op) -> str:  # noqa: C901 - one case per operation kind, flat on purpose
-    if isinstance(op, ir.Assign):
-        return f"{op.target.name} = {expr_text(op.value)}"
-    if isinstance(op, ir.SetMotion):
-        return f"set {op.param.value} {op.axis} = {expr_text(op.value)}"
-    if isinstance(op, ir.Move):
-        options = f" with {_axes(op.options)}" if op.options else ""
-        return f"move {op.mode.value} {_axes(op.targets)}{options}"
-    if isinstance(op, ir.Arc):
-        turn = "cw" if op.clockwise else "ccw"
-        centre = ", ".join(expr_text(c) for c in op.center)
-        angle = f" angle {expr_text(op.angle)}" if op.angle is not None else " full circle"
-        return f"arc {turn} {op.axes[0]},{op.axes[1]} centre ({centre}){angle}"
-    if isinstance(op, ir.Slew):
-        if op.velocity is not None:
-            return f"slew {op.axis} velocity {expr_text(op.velocity)}"
-        return f"jog {op.axis} {'+' if op.direction >= 0 else '-'}"
-    if isinstance(op, ir.Home):
-        mode = f" mode {expr_text(op.mode)}" if op.mode is not None else ""
-        speed = f" speed {expr_text(op.speed)}" if op.speed is not None else ""
-        creep = ""
-        if op.creep:
-            creep = f" creep {op.creep:+d}" + (f" at {expr_text(op.creep_speed)}" if op.creep_speed is not None else "")
-        accel = f" accel {expr_text(op.accel)}" if op.accel is not None else ""
-        needs = " needs home input" if op.needs_input else ""
-        return (f"home {op.axis} {op.method} direction {op.direction:+d}{speed}{accel}{creep} zero {op.zero}"
-                f"{needs}{mode}")
-    if isinstance(op, ir.Stop):
-        return f"stop {op.axis} {'ramp' if op.ramp else 'abort'}"
-    if isinstance(op, ir.SetPosition):
-        return f"set position {op.axis} = {expr_text(op.value)}"
-    if isinstance(op, ir.WaitMotion):
-        return f"wait motion {op.axis}"
-    if isinstance(op, ir.Delay):
-        return f"delay {expr_text(op.duration)}"
-    if isinstance(op, ir.SetOutput):
-        where = "outputs" if op.index is None else f"output {op.index}"
-        return f"{where} = {expr_text(op.value)}"
-    if isinstance(op, ir.WaitInput):
-        return f"wait until {cond_text(op.cond)}"
-    if isinstance(op, ir.Print):
-        formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
-        items = ", ".join(expr_text(item) + (f" as {spec}" if spec else "") for item, spec in zip(op.items, formats))
-        device = f" on {op.axis}" if op.axis else ""
-        traced = " if tracing" if op.traced else ""
-        return f"print{device} {items}{'' if op.newline else ' no-newline'}{' signed' if op.signed else ''}{traced}"
-    if isinstance(op, ir.DriveEnable):
-        return f"enable {op.axis} = {expr_text(op.on)}"
-    if isinstance(op, ir.Call):
-        cond = f" if {cond_text(op.cond)}" if op.cond is not None else ""
-        return f"call {op.routine}{cond}"
-    if isinstance(op, ir.SetHandler):
-        args = ", ".join(_any_text(a) for a in op.args)
-        target = f" -> {op.routine}" if op.routine else " off"
-        facts = "".join(f" {word}" for word, on in (("once", op.once), ("gated", op.gated),
-                                                     ("takes-over", op.takes_over)) if on)
-        return f"on {op.event}({args}){target}{facts}"
-    if isinstance(op, ir.Setting):
-        line = f"[{op.index}]" if op.index is not None else ""  # the input or output the setting is for
-        return f"setting {op.name}{line} {op.axis} = {expr_text(op.value)}"
-    if isinstance(op, ir.Save):
-        return "save"
-    if isinstance(op, ir.Pause):
-        return f"pause {op.axis}{' stop motion' if op.stop_motion else ''}"
-    if isinstance(op, ir.Resume):
-        return f"resume {op.axis}"
-    if isinstance(op, ir.Step):
-        return f"step {op.axis} {expr_text(op.count)}"
-    if isinstance(op, ir.Native):
-        args = ", ".join(_any_text(a) for a in op.args)
-        axis = f" axis={op.axis}" if op.axis else ""
-        form = f" form={json.dumps(op.form)}" if op.form else ""
-        return f"native {op.dialect} {op.mnemonic}{axis}{form} ({args})"
-    return f"<{type(op).__name__}>"
+def op_text(op: ir.Op) -> str:
+    """An operation as its syntax template in the operation table (compiler/ir_ops.py) writes it."""
+    writer = _WRITERS.get(type(op))
+    return writer(op) if writer is not None else f"<{type(op).__name__}>"
 
 
 def term_text(term: ir.Terminator | None) -> str:
     if term is None:
         return "<no terminator>"
-    if isinstance(term, ir.Jump):
-        return f"jump {term.target}"
-    if isinstance(term, ir.Branch):
-        return f"branch {cond_text(term.cond)} ? {term.then} : {term.otherwise}"
-    if isinstance(term, ir.Return):
-        return "return"
-    if isinstance(term, ir.End):
-        return "end"
-    if isinstance(term, ir.GotoRoutine):
-        return f"goto routine {term.routine}"
-    if isinstance(term, ir.FallOff):
-        return "fall off"
-    return f"<{type(term).__name__}>"
+    return op_text(term)
+
+
+def _items(op) -> str:
+    """Print items, each with its format (`Print.formats`, by position) when it has one."""
+    formats = list(op.formats) + [""] * (len(op.items) - len(op.formats))
+    return ", ".join(expr_text(item) + (f" as {spec}" if spec else "") for item, spec in zip(op.items, formats))
+
+
+# How each kind of field is written, as a Python expression of the field's value `{v}` (the reader,
+# compiler/ir_read.py, reads the same forms).
+FORMS = {
+    ir_ops.Kind.EXPR: "expr_text({v})",
+    ir_ops.Kind.COND: "cond_text({v})",
+    ir_ops.Kind.ARGS: "', '.join([_any_text(a) for a in {v}])",
+    ir_ops.Kind.ITEMS: "_items(op)",
+    ir_ops.Kind.EXPR_PAIR: "', '.join([expr_text(c) for c in {v}])",
+    ir_ops.Kind.AXIS: "{v}",
+    ir_ops.Kind.AXIS_PAIR: "{v}[0] + ',' + {v}[1]",
+    ir_ops.Kind.AXIS_EXPRS: "_axes({v})",
+    ir_ops.Kind.VAR: "{v}.name",
+    ir_ops.Kind.ENUM: "{v}.value",
+    ir_ops.Kind.NAME: "{v}",
+    ir_ops.Kind.ROUTINE: "{v}",
+    ir_ops.Kind.LABEL: "{v}",
+    ir_ops.Kind.SIGN: "('+' if {v} >= 0 else '-')",
+    ir_ops.Kind.SIGNED: "format({v}, '+d')",
+    ir_ops.Kind.INT: "str({v})",
+    ir_ops.Kind.QUOTED: "json.dumps({v})",
+}
+
+
+def writer_source(definition: ir_ops.OpDef) -> str:
+    """The Python expression that writes an operation of `definition` (`op`) by its template.
+    Compiled once per operation: as quick as the hand-written cases it replaced."""
+
+    def parts(pieces) -> str:
+        out = []
+        for piece in pieces:
+            if isinstance(piece, ir_ops.Text):
+                out.append(repr(piece.text))
+            elif isinstance(piece, ir_ops.Ref):
+                f = definition.field(piece.field)
+                if f.kind is ir_ops.Kind.BOOL:
+                    out.append(f"({f.words[0]!r} if op.{f.name} else {f.words[1]!r})")
+                elif f.kind is not ir_ops.Kind.FLAG:
+                    out.append(FORMS[f.kind].format(v=f"op.{f.name}"))
+            else:
+                # the group is written when its anchor is set: not None, not "", not its default
+                default = definition.default(piece.anchor)
+                value = f"op.{piece.anchor}"
+                test = f"{value} is not None"
+                if definition.field(piece.anchor).kind in ir_ops.TEXTS:
+                    test += f" and {value} != ''"
+                if default is not ir_ops.dataclasses.MISSING and default not in (None, ""):
+                    test += f" and {value} != {default!r}"
+                out.append(f"(({parts(piece.then)}) if {test} else ({parts(piece.otherwise)}))")
+        return " + ".join(out) or "''"
+
+    return parts(ir_ops.PIECES[definition.cls])
+
+
+def _writer(definition: ir_ops.OpDef):
+    source = f"lambda op: {writer_source(definition)}"
+    names = {"expr_text": expr_text, "cond_text": cond_text, "_any_text": _any_text, "_items": _items,
+             "_axes": _axes, "json": json}
+    return eval(compile(source, f"<ir_ops {definition.name}>", "eval"), names)  # noqa: S307 - our own table
+
+
+_WRITERS: dict = {}
+
+
+def _writers() -> None:
+    """Compile the writers once the functions they call exist (below)."""
+    _WRITERS.update({cls: _writer(d) for cls, d in ir_ops.TABLE.items()})
 
 
 def _any_text(node) -> str:
@@ -263,3 +255,6 @@ def _node(value: Any) -> Any:
             out[f.name] = _node(item)
         return out
     return str(value)
+
+
+_writers()

@@ -11,6 +11,9 @@ Checked, in two groups:
   settings use the neutral names of `ir_names`; a dialect's own spelling (`DeviceRef`) appears only
   inside a `Native` operation.
 
+The field checks (choices and units) are read from the operation table, `compiler/ir_ops.py`:
+a field's `choices` and its units are data there, not a case per operation here.
+
 `verify(module)` returns the violations; an empty list means the module keeps the contract. The
 test suite runs it on every sample and golden program after lowering and after every pass, and
 `mcc check --verify-ir` runs it on demand (each violation is a G010 diagnostic).
@@ -19,9 +22,11 @@ test suite runs it on every sample and golden program after lowering and after e
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 
 from mcc.compiler import ir
 from mcc.compiler import ir_names
+from mcc.compiler import ir_ops
 from mcc.compiler.span import Span
 
 
@@ -34,13 +39,6 @@ class Violation:
 
     def __str__(self) -> str:
         return f"{self.where}: {self.message}"
-
-
-# The unit each operand position must carry when it is a constant (NONE is always accepted for
-# a plain number written without a unit only where the table says so).
-POSITION = frozenset({ir.Unit.STEPS})
-TIME = frozenset({ir.Unit.S})
-ANGLE = frozenset({ir.Unit.DEGREES})
 
 
 def verify(module: ir.Module, meaning: bool = True) -> list[Violation]:
@@ -82,13 +80,18 @@ class _Checker:
                     if target not in labels:
                         self.add("structure", where, f"jump to '{target}', not a block of this routine",
                                  block.span)
-                if isinstance(block.terminator, ir.GotoRoutine):
-                    self._routine_ref(block.terminator.routine, where, block.terminator.span)
+                if block.terminator is not None:
+                    self._routine_refs(block.terminator, where)
                 for index, op in enumerate(block.ops):
-                    if isinstance(op, ir.Call):
-                        self._routine_ref(op.routine, f"{where}[{index}]", op.span)
-                    elif isinstance(op, ir.SetHandler) and op.routine is not None:
-                        self._routine_ref(op.routine, f"{where}[{index}]", op.span)
+                    self._routine_refs(op, f"{where}[{index}]")
+
+    def _routine_refs(self, node, where: str) -> None:
+        """Each routine an operation or terminator names (its table's routine fields) exists."""
+        definition = ir_ops.definition(node)
+        for f in definition.fields if definition is not None else ():
+            name = getattr(node, f.name) if f.kind is ir_ops.Kind.ROUTINE else None
+            if name is not None:
+                self._routine_ref(name, where, node.span)
 
     def _routine_ref(self, name: str, where: str, span: Span | None) -> None:
         if name not in self.routines and name not in self.externals:
@@ -113,59 +116,39 @@ class _Checker:
             return  # the one place a dialect's spelling may live
         for expr in ir.op_exprs(op):
             self._expr(expr, where, getattr(op, "span", None))
-        if isinstance(op, ir.Move):
-            if op.mode not in (ir.MoveMode.ABSOLUTE, ir.MoveMode.RELATIVE):
-                self.add("meaning", where, f"move mode '{op.mode.value}': moves are absolute or relative",
-                         op.span)
-            for axis, target in op.targets:
-                self._unit(target, POSITION, where, f"move target on axis {axis}", op.span)
-        elif isinstance(op, ir.SetMotion):
-            self._unit(op.value, frozenset({ir.PARAM_UNITS[op.param]}), where, op.param.value, op.span)
-        elif isinstance(op, ir.SetPosition):
-            self._unit(op.value, POSITION, where, "position", op.span)
-        elif isinstance(op, ir.Delay):
-            self._unit(op.duration, TIME, where, "delay", op.span)
-        elif isinstance(op, ir.Arc):
-            for value in op.center:
-                self._unit(value, POSITION, where, "arc centre", op.span)
-            if op.angle is not None:
-                self._unit(op.angle, ANGLE, where, "arc angle", op.span)
-        elif isinstance(op, ir.Home):
-            self._home(op, where)
-        elif isinstance(op, ir.Print) and op.formats:
+        definition = ir_ops.definition(op)
+        if definition is not None:
+            self._fields(op, definition, where)
+        if isinstance(op, ir.Print) and op.formats:
             if len(op.formats) > len(op.items):
                 self.add("meaning", where, "a print has more formats than items", op.span)
             for spec in op.formats:
                 problem = ir_names.print_format_error(spec)
                 if problem is not None:
                     self.add("meaning", where, problem, op.span)
-        elif isinstance(op, ir.Step):
-            self._unit(op.count, frozenset({ir.Unit.NONE}), where, "step count", op.span)
-        elif isinstance(op, ir.Slew) and op.velocity is not None:
-            self._unit(op.velocity, frozenset({ir.Unit.STEPS_PER_S}), where, "slew velocity", op.span)
-        elif isinstance(op, ir.SetHandler) and op.event not in ir_names.EVENTS:
-            self.add("meaning", where, f"event '{op.event}' is not a neutral event name", op.span)
-        elif isinstance(op, ir.Setting):
-            info = ir_names.SETTINGS.get(op.name)
-            if info is None:
-                self.add("meaning", where, f"setting '{op.name}' is not in ir_names.SETTINGS", op.span)
-            else:
-                self._unit(op.value, frozenset({info.unit}), where, op.name, op.span)
 
-    def _home(self, op: ir.Home, where: str) -> None:
-        """A homing operation says what it does after the switch (docs/IR.md, "Home")."""
-        speeds = frozenset({ir.Unit.STEPS_PER_S})
-        if op.speed is not None:
-            self._unit(op.speed, speeds, where, "homing speed", op.span)
-        if op.creep_speed is not None:
-            self._unit(op.creep_speed, speeds, where, "homing creep speed", op.span)
-        if op.accel is not None:
-            self._unit(op.accel, frozenset({ir.Unit.STEPS_PER_S2}), where, "homing acceleration", op.span)
-        if op.creep not in (-1, 0, 1):
-            self.add("meaning", where, f"homing creep direction {op.creep} is not +1, -1 or 0", op.span)
-        if op.zero not in ir.HOME_ZEROS:
-            self.add("meaning", where, f"homing zero '{op.zero}' is not one of {', '.join(ir.HOME_ZEROS)}",
-                     op.span)
+    def _fields(self, op: ir.Op, definition: ir_ops.OpDef, where: str) -> None:
+        """The field checks the operation table states: a value among the field's choices (a move's
+        mode, a neutral event or setting name, a homing's creep and zero), and the unit of each
+        constant where the table gives one (a position in steps, a delay in seconds, ...)."""
+        for f in definition.fields:
+            value = getattr(op, f.name)
+            if f.choices is not None and value not in f.choices:
+                shown = value.value if isinstance(value, Enum) else value
+                self.add("meaning", where, f.invalid.format(value=shown), op.span)
+                continue
+            units = ir_ops.units_of(op, f)
+            if units is None or value is None:
+                continue
+            allowed, what = units
+            if f.kind is ir_ops.Kind.AXIS_EXPRS:
+                for axis, target in value:
+                    self._unit(target, allowed, where, what.format(axis=axis), op.span)
+            elif f.kind is ir_ops.Kind.EXPR_PAIR:
+                for item in value:
+                    self._unit(item, allowed, where, what, op.span)
+            else:
+                self._unit(value, allowed, where, what, op.span)
 
     def _unit(self, expr, allowed: frozenset, where: str, what: str, span) -> None:
         if isinstance(expr, ir.Const) and expr.unit not in allowed:

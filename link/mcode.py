@@ -18,7 +18,7 @@ from pathlib import Path
 from mcc.compiler import toml
 from mcc.link.errors import LinkError
 from mcc.link.ports import Channel
-from mcc.link.protocol import DeviceError, LostReply, Mismatch, Reply, Step, normalize
+from mcc.link.protocol import DeviceError, LostReply, Mismatch, Reply, Step, echo_at, normalize
 from mcc.link.settings import LinkSettings
 
 ACK, NAK = b"\x06", b"\x15"
@@ -113,7 +113,7 @@ class Protocol:
         """A function telling where a reply to a command echoed as `echo` ends (0: not yet)."""
 
         def complete(buffer: bytes) -> int:
-            start = len(echo)
+            start = max(echo_at(buffer, echo), 0) + len(echo)   # after what a running program printed
             if len(buffer) <= start:
                 return 0
             rest = buffer[start:]
@@ -159,11 +159,12 @@ class Protocol:
                 if retry and attempt + 1 < attempts:
                     continue
                 raise last
-            rest = raw[len(echo):]
+            at = echo_at(raw, echo)   # a running program's output may come first (L4895)
+            rest = raw[max(at, 0) + len(echo):]
             if rest[:1] == NAK:
                 last = LostReply(command, raw, garbled=True)
                 continue  # the device ignored the command (L6890): sending it again is safe
-            if raw[:len(echo)] != echo:
+            if at < 0:
                 last = LostReply(command, raw, garbled=True)
                 self.resync()
                 raise last

@@ -75,3 +75,18 @@ class LostReply(Exception):
 def normalize(text: str) -> str:
     """A stored line as devices list it back: case and runs of blanks do not matter."""
     return " ".join(text.upper().split())
+
+
+def echo_at(raw: bytes, echo: bytes) -> int:
+    """Where the echo of the command just sent starts in what the device sent back: 0, or after
+    whole lines a running program printed before it (a drive transmits a program's output as it
+    runs, lexium-mcode.txt L4895; an X150 sequence's messages, parker-x150.md L5593); -1 when the
+    echo is not there (the line was garbled on the way)."""
+    if raw.startswith(echo):
+        return 0
+    at = raw.find(echo)
+    while at > 0:
+        if raw[at - 1:at] in (b"\r", b"\n"):
+            return at
+        at = raw.find(echo, at + 1)
+    return -1

@@ -22,7 +22,7 @@ import time
 
 from mcc.link.errors import LinkError
 from mcc.link.ports import Channel
-from mcc.link.protocol import DeviceError, LostReply, Mismatch, Reply, Step
+from mcc.link.protocol import DeviceError, LostReply, Mismatch, Reply, Step, echo_at
 from mcc.link.settings import LinkSettings
 
 COMMAND = re.compile(r"^\s*(\d*)\s*([A-Z\"#;^]+)(.*)$")
@@ -85,10 +85,11 @@ class Protocol:
                 if retry and attempt < self.settings.retries:
                     continue
                 raise last
-            if echo and not raw.startswith(echo):
+            at = echo_at(raw, echo) if echo else 0   # a running sequence's messages may come first (L5593)
+            if at < 0:
                 self.channel.discard_input()
                 raise LostReply(command, raw, garbled=True)
-            text = raw[len(echo):-1].decode("latin-1")
+            text = raw[at + len(echo):-1].decode("latin-1")
             lines = [line for line in re.split(r"[\r\n]+", text) if line]
             messages = [line for line in lines if line.startswith(";")]
             data = [line for line in lines if not line.startswith(";")]

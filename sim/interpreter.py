@@ -287,6 +287,10 @@ class Simulator:
         # block for as long as it likes (virtual time does not pass), or raise `Stop` to end the run
         # (`run()` then finishes the trace as usual). None (the default): `run()` is unchanged.
         self.observer = None
+        self.started = False  # `advance` has started the run
+        self.ended = False  # `advance` has seen the program end (its moves may still run)
+        self.end_time = 0.0  # when `advance` saw the program stop
+        self.adopted: set[int] = set()  # the moves of other runs this one lets end (`adopt`)
 
     # -- public ----------------------------------------------------------------------------------
 
@@ -303,6 +307,47 @@ class Simulator:
                     pass
         self._finish()
         return self.trace
+
+    def advance(self, until: float) -> str | None:
+        """Run on up to virtual time `until` and stop there, to be advanced again later (a virtual
+        device between its host's commands, link/device/machine.py). Returns None while the program
+        still runs at `until`, else how it stopped (`trace.stopped`: "end", "waiting", "error",
+        "step-limit"). Once the program has ended, advancing only lets the machine's events happen:
+        the moves it left end at their time (and a homing goes on to its next phase). The trace is
+        not finished (no `_finish`): the caller reads the machine and `vars`. Start the run at the
+        device's clock by setting `now` before the first call."""
+        self.options.until = until
+        try:
+            if not self.started:
+                self.started = True
+                self._start()
+            if self.ended:
+                while self._next_event_time() <= until:
+                    self.now = max(self.now, self.queue[0].t)
+                    self._process_events()
+                    self.pending.clear()  # no program is left to run a handler
+                self.now = max(self.now, until)
+                return "end"
+            self._loop()
+        except Stop as stop:
+            if stop.stopped == "time-limit":
+                return None
+            self.trace.stopped, self.trace.reason = stop.stopped, stop.reason
+            self.ended = stop.stopped == "end"
+            self.end_time = self.now
+            return stop.stopped
+        return None  # pragma: no cover - _loop only ends by Stop
+
+    def adopt(self) -> None:
+        """The moves another run left going on this machine (a virtual device's earlier command) end
+        at their time in this run too, and their positions are watched, as if it had started them."""
+        known = set(self.motion_op) | self.adopted
+        for name, axis in self.machine.axes.items():
+            motion = axis.motion
+            if motion is not None and motion.ident not in known and motion.t_end > self.now:
+                self._schedule(motion.t_end, "motion_end", (name, motion.ident))  # a slew's (INF) is not
+                self._watch(axis)
+                self.adopted.add(motion.ident)
 
     def set_variable(self, name: str, value) -> values.Number:
         """Give variable `name` a value while the run is paused (a debugger's setVariable): stored
@@ -376,7 +421,8 @@ class Simulator:
             self._fire_pending()
             self._execute()
             if not self.stack:
-                self._settle()
+                if not self.started:  # `run`: the moves still going finish; `advance` lets them later
+                    self._settle()
                 raise Stop("end", "the program ended")
             wait = self.stack[-1].wait
             nxt = self._next_event_time()
@@ -723,8 +769,13 @@ class Simulator:
     # -- operations ------------------------------------------------------------------------------
 
     def _op(self, op: ir.Op, frame: Frame) -> Wait | None:
-        run = OP_METHODS.get(type(op))
-        return run(self, op) if run is not None else None  # Setting, Save: nothing to model
+        # one handler per operation of the table (compiler/ir_ops.py); tests/ir/test_handlers.py
+        # checks that every operation has one, so none is skipped silently
+        return OP_METHODS[type(op)](self, op)
+
+    def _do_save(self, op) -> Wait | None:
+        """Storing the settings in non-volatile memory changes nothing a run observes."""
+        return None
 
     def _do_assign(self, op) -> Wait | None:
         name = op.target.name
@@ -1779,6 +1830,7 @@ OP_METHODS = {
     ir.Pause: Simulator._do_pause,
     ir.Resume: Simulator._do_resume,
     ir.Step: Simulator._do_step,
+    ir.Save: Simulator._do_save,
 }
 
 

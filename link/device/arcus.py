@@ -131,10 +131,10 @@ class ArcusDevice(VirtualDevice):
         if match:   # the timer register counts down to 0 in ms from the value written (L789-L793, L1701-L1702)
             machine = self.sim.machine
             if match.group(1) is None:
-                return str(int(round(machine.countdown_left(0.0) * 1000)))
+                return str(int(round(machine.countdown_left(self.sim.clock) * 1000)))
             if int(match.group(1)) > TIMER_MAX:
                 return INVALID
-            machine.load_countdown(0.0, int(match.group(1)) / 1000)
+            machine.load_countdown(self.sim.clock, int(match.group(1)) / 1000)
             return "OK"
         reading = self.reading(upper)
         if reading is not None:
@@ -147,6 +147,7 @@ class ArcusDevice(VirtualDevice):
             if match.group(2) is None:
                 return str(self.variables[n])
             self.variables[n] = int(match.group(2))
+            self.sim.write(f"V{n}", self.variables[n])   # what the running program and the next run read
             return "OK"
         match = re.fullmatch(r"SR=([0-3])", upper)
         if match:
@@ -184,7 +185,9 @@ class ArcusDevice(VirtualDevice):
         if cmd in ("PP", "PE"):
             return ":".join(str(int(round(sim.position(a)))) for a in AXES)
         if cmd == "PS":
-            return ":".join(str(int(round(abs(sim.moving.get(a, 0))))) for a in AXES)
+            return ":".join(str(int(round(abs(sim.speed(a))))) for a in AXES)
+        if cmd == "MST":
+            return self.motor_status()
         if cmd == "DO":
             return str(sim.machine.output_mask())
         if cmd == "DI":   # the levels: 255 with nothing connected, an input sunk to ground reads 0 (L797, L1905)
@@ -195,6 +198,36 @@ class ArcusDevice(VirtualDevice):
                 return str(sim.input_logic(int(match.group(2))))
             return str(sim.machine.outputs.get(int(match.group(2)), 0))
         return None
+
+    def motor_status(self) -> str:
+        """MST (L720-L731, L1581): per axis bit 0 accelerating, bit 1 decelerating, bit 2 constant
+        speed, at the clock (the limit and alarm bits: no switch on a virtual device), then the
+        buffered move's state: enabled (BO), start and end (0: the manual does not say what they
+        hold), the points still free of the 36 (L628), and the move mode (0 ABS, 1 INC: a decision,
+        the manual gives no values)."""
+        sim, now = self.sim, self.sim.clock
+        fields = []
+        for name in AXES:
+            bits = 0
+            if sim.is_moving(name):
+                here, later = abs(sim.speed(name)), abs(self.speed_at(name, now + 1e-4))
+                bits = 1 if later > here + 1e-6 else 2 if later < here - 1e-6 else 4
+            fields.append(bits)
+        fields += [int(self.buffered), 0, 0, BUFFER_POINTS - len(self.points), int(self.mode == "INC")]
+        return ":".join(str(f) for f in fields)
+
+    def speed_at(self, name: str, t: float) -> float:
+        axis = self.sim.machine.axes.get(name)
+        if axis is None or axis.motion is None:
+            return self.sim.moving.get(name, 0.0)   # a held program's frozen axis keeps its speed
+        return axis.speed(t)
+
+    def synchronise(self) -> None:
+        """What the running program changed (its variables, the settings it set) is what the host reads."""
+        if self.sim.generation != self.synced:
+            self.synced = self.sim.generation
+            self.take_variables()
+            self.take_settings()
 
     def on_machine(self, cmd: str) -> bool:
         """Run a host command that acts on the machine; False when it is not one."""
@@ -249,8 +282,10 @@ class ArcusDevice(VirtualDevice):
             self.run()
         elif code == "2" and self.state == "1":
             self.paused = True
+            self.sim.pause()    # the program stops where it is until SR=3 (L1626-L1632)
         elif code == "3" and self.state == "2":
             self.paused = False
+            self.sim.resume()
         return "OK"
 
     # -- the standalone program on the simulator's machine ------------------------------------

@@ -283,12 +283,12 @@ class MCodeDevice(VirtualDevice):
         sim = self.sim
         if name in ("P", "C1", "C2"):   # counters: whole steps
             return int(round(sim.position(AXIS)))
-        if name == "MV":
-            return 1 if AXIS in sim.moving else 0
+        if name == "MV":   # the axis is moving now (L4424)
+            return 1 if sim.is_moving(AXIS) else 0
         if name == "MP":   # a positional move (MA, MR) in progress (L4211-L4220); a slew is not one
-            return 1 if AXIS in sim.moving and AXIS not in sim.slewing else 0
+            return 1 if sim.is_moving(AXIS) and not sim.is_slewing(AXIS) else 0
         if name == "V":
-            return int(round(sim.moving.get(AXIS, 0)))
+            return int(round(sim.speed(AXIS)))
         if name == "BY":
             return 1 if sim.status == "running" else 0
         if name in SETTINGS and SETTINGS[name] in sim.machine.axis(AXIS).settings:
@@ -461,6 +461,17 @@ class MCodeDevice(VirtualDevice):
             self.run("SU")
 
     # -- the simulator's machine ----------------------------------------------------------
+    def synchronise(self) -> None:
+        """What the running program changed (its variables, the registers it set) is what the host
+        reads: the same as after a command's run."""
+        if self.sim.generation != self.synced:
+            self.synced = self.sim.generation
+            self.after_run()
+
+    def unsolicited(self, lines: list[str]) -> bytes:
+        """A program's PR output as the drive sends it while it runs (L4895): each line ends in CR LF."""
+        return "".join(line + "\r\n" for line in lines).encode("latin-1")
+
     def declarations(self) -> list[str]:
         return [f"VA {n}" for n in self.memory.user]
 
@@ -561,6 +572,16 @@ class MCodeBus(VirtualDevice):
             drive.memory.variables["DN"] = name
             drive.saved = copy.deepcopy(drive.memory)
             self.drives[name] = drive
+
+    def machines(self) -> list:
+        return [drive.sim for drive in self.drives.values()]   # one line, one time for every drive
+
+    def synchronise(self) -> None:
+        for drive in self.drives.values():
+            drive.synchronise()
+
+    def unsolicited(self, lines: list[str]) -> bytes:
+        return "".join(line + "\r\n" for line in lines).encode("latin-1")
 
     def command(self, raw: bytes) -> bytes:
         return b"".join(drive.command(raw) for drive in self.drives.values())

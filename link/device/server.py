@@ -1,19 +1,28 @@
 """Serve a virtual device on a TCP port, one host connection at a time, the state kept between
-connections as a real controller keeps it while the cable is unplugged."""
+connections as a real controller keeps it while the cable is unplugged.
+
+Time runs on while the host is silent (docs/LINK.md, "Virtual time"): before the device reads
+what arrived, it lets the wall time since it last heard from or answered the host pass, times
+`time_scale` (1: real time; 0: only the commands' own time passes, for reproducible runs; more than
+1: a test that waits a short while sees a long program end)."""
 
 from __future__ import annotations
 
 import socket
 import sys
 import threading
+import time
 import traceback
 
 from mcc.link.device.base import ConnectionDropped, VirtualDevice
 
 
 class DeviceServer:
-    def __init__(self, device: VirtualDevice, host: str = "127.0.0.1", port: int = 0) -> None:
+    def __init__(self, device: VirtualDevice, host: str = "127.0.0.1", port: int = 0,
+                 time_scale: float = 1.0) -> None:
         self.device = device
+        self.time_scale = time_scale
+        self.heard = time.monotonic()   # when the host last sent something or was last answered
         self.sock = socket.create_server((host, port))
         self.sock.settimeout(0.2)
         self.host, self.port = self.sock.getsockname()[:2]
@@ -44,6 +53,9 @@ class DeviceServer:
                 return
             if not data:
                 return
+            now = time.monotonic()
+            if self.time_scale > 0:
+                self.device.elapse((now - self.heard) * self.time_scale)   # the host was silent that long
             try:
                 reply = self.device.feed(data)
             except ConnectionDropped:
@@ -61,6 +73,7 @@ class DeviceServer:
                     conn.sendall(reply)
                 except OSError:
                     return
+            self.heard = time.monotonic()
 
     def start(self) -> "DeviceServer":
         self.thread = threading.Thread(target=self.serve_forever, daemon=True)

@@ -39,6 +39,14 @@ def mnemonics() -> tuple[str, ...]:
 
 
 @lru_cache(maxsize=None)
+def buffered(word: str) -> bool:
+    """A buffered command (the catalog's `exec = "B"`): it waits for the sequence running to end
+    ("stored in the command buffer and executed in sequential order", L177); an immediate one runs
+    at once."""
+    return any(e.name == word and e.get("exec") == "B" for e in catalog.load("x150").entries)
+
+
+@lru_cache(maxsize=None)
 def device_specific() -> frozenset[str]:
     """Commands that "require a device address for execution" (L181: every report among them)."""
     return frozenset(e.name for e in catalog.load("x150").entries if e.get("address") == "D")
@@ -89,6 +97,7 @@ class X150Device(VirtualDevice):
         self.capacity = capacity
         self.sim = DeviceMachine("x150", run_limit)
         self.stepping: dict[str, Stepping] = {}   # address -> its sequence in single-step mode
+        self.running = ""                          # the address whose sequence is the device's program
         for unit in self.units.values():
             unit.saved = self.snapshot(unit)
 
@@ -239,15 +248,17 @@ class X150Device(VirtualDevice):
 
     def do_R(self, unit: Unit, arg: str) -> list[str]:
         function_error = unit.xsr == "2"
-        running = self.sim.status == "running" or unit.address in self.sim.moving
+        running = self.sim.status == "running" or self.sim.is_moving(unit.address)   # now, on the clock
         return [("*B" if running else "*R") if not function_error else ("*C" if running else "*S")]
 
     def do_PR(self, unit: Unit, arg: str) -> list[str]:
         """The absolute position counter (L3141-L3144: `*-25600`, `*+4000`), as the simulator prints
         `aPR` on the machine: the format is the one the lowering gives it (compiler/x150/neutral.py)."""
         module = module_of("x150", f"{unit.address}PR\n")
-        outcome = self.sim.run(module, None, program=False) if module is not None else None
-        return [text.rstrip("\n") for text in outcome.prints] if outcome is not None else []
+        outcome = self.sim.run(module, None, program=False, buffered=True) if module is not None else None
+        # the counter counts whole steps: read during a sequence's move it is a whole number too
+        return [re.sub(r"([+-]?\d+\.\d+)", lambda m: str(round(float(m.group(1)))), text.rstrip("\n"))
+                for text in outcome.prints] if outcome is not None else []
 
     def do_IS(self, unit: Unit, arg: str) -> list[str]:
         """Input status (L2173-L2178): the 7 dedicated inputs (none active on a virtual device),
@@ -263,6 +274,7 @@ class X150Device(VirtualDevice):
         if match.group(2) is None:
             return [f"* {unit.variables.get(n, 0.0):.4f}"]
         unit.variables[n] = float(match.group(2))
+        self.sim.write(f"VAR{n}", unit.variables[n])   # the running sequence reads it too
         return []
 
     # -- single step --------------------------------------------------------------------------
@@ -292,6 +304,18 @@ class X150Device(VirtualDevice):
         return new
 
     # -- the simulator's machine ----------------------------------------------------------
+    def synchronise(self) -> None:
+        """The variables the running sequence changed are what `VARn` reads (on the unit that ran it)."""
+        unit = self.units.get(self.running)
+        if unit is not None and self.sim.generation != self.synced:
+            self.synced = self.sim.generation
+            self.take_variables(unit)
+
+    def take_variables(self, unit: Unit) -> None:
+        for name, value in self.sim.variables.items():
+            if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
+                unit.variables[int(name[3:])] = float(value)
+
     def on_machine(self, unit: Unit, text: str, word: str) -> list[str]:
         """Run a command on the machine, after the unit's context; a sequence run (XR, XG, GOSUB,
         GOTO) also compiles the unit's sequences and is the device's program. Returns the lines
@@ -335,10 +359,10 @@ class X150Device(VirtualDevice):
             self.stepping[unit.address] = Stepping(module, self.sim.snapshot())
             self.sim.run(module, None, program=True, commands=0)
             return []
-        outcome = self.sim.run(module, None, program=program)
-        for name, value in self.sim.variables.items():
-            if name.startswith("VAR") and name[3:].isdigit() and 1 <= int(name[3:]) <= 50:
-                unit.variables[int(name[3:])] = float(value)
+        outcome = self.sim.run(module, None, program=program, buffered=buffered(word))
+        if program:
+            self.running = unit.address
+        self.take_variables(unit)
         if program and outcome.status == "error":
             unit.xsr = "2"
         return [line for text in outcome.prints for line in text.splitlines()]

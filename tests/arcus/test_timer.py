@@ -46,13 +46,17 @@ def test_the_manuals_tr_example_moves_at_the_thresholds() -> None:
 
 
 def test_the_virtual_device_counts_tr_down_while_it_runs() -> None:
-    """The host writes and reads TR (L1701-L1702); the device's clock runs only while it runs
-    something (docs/LINK.md), so TR=1000 read at once is 1000, and after a program that waits
-    250 ms it reads 750."""
+    """The host writes and reads TR (L1701-L1702); it counts down in ms on the device's clock
+    (L789-L793), which runs between commands (docs/LINK.md, "Virtual time"): TR=1000 read at
+    once (`execute` takes no time on the line) is 1000, and 250 ms later, while a program waits
+    out its DELAY=250, it reads 750; it stops at 0."""
     device = ArcusDevice()
     device.load_program("DELAY=250\nEND\n")
     assert device.execute("TR=1000") == "OK"
     assert device.execute("TR") == "1000"
-    assert device.execute("SR=1") == "OK"
-    assert device.execute("TR") == "750"
+    assert device.execute("SR=1") == "OK" and device.execute("SASTAT") == "1"
+    device.elapse(0.25)
+    assert device.execute("TR") == "750" and device.execute("SASTAT") == "0"
+    device.elapse(2.0)
+    assert device.execute("TR") == "0"
     assert device.execute("TR=2000000") == "?Invalid Command"

@@ -23,6 +23,9 @@ A case (keys of one `[[case]]` table):
     stored    the device stores the program and runs it (Arcus standalone: load, then SR=1)
     profile   the product profile the example is about (default: the dialect's default profile)
     targets   which of "sim" and "device" the case applies to (default both)
+    at_once   the device gets the commands one right after the other (default: before each command
+              the host waits, up to TYPING seconds, for the device to be idle, as a person typing
+              the manual's session waits for the motor to stop: the manual's replies are read then)
     note      how the set-up was derived from the manual, and any decision taken where the
               manual contradicts itself
 
@@ -33,8 +36,11 @@ comment above each case. They use the keys above and three more:
     duration      seconds from the start of the run to the end of its last move or delay
     tolerance     the allowed difference on `duration`, in seconds, stated per case (1 ms, or the
                   time of one step at the speed the last move ends at); required with `duration`
-On the virtual device the duration is its virtual clock (docs/LINK.md, "Running a program") and
-the output changes are those of every run the commands started.
+On the virtual device, whose clock runs between commands (docs/LINK.md, "Virtual time"), the runner
+waits as a host does until the program has ended and no axis moves (polling the status); the
+duration is from the start of the first program (else of the first command run on the machine) to
+the end of the last run, move or delay, and the output changes are those of every run the
+commands started, in time order.
 """
 
 from __future__ import annotations
@@ -67,6 +73,7 @@ class Case:
     stored: bool = False
     profile: str | None = None
     note: str = ""
+    at_once: bool = False
     output_order: list[tuple[int, int]] | None = None
     duration: float | None = None
     tolerance: float | None = None
@@ -81,7 +88,8 @@ class Outcome:
     got: str
 
 
-KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "variables", "inputs", "device", "targets", "stored", "profile", "note"}
+KEYS = {"id", "manual", "program", "prints", "positions", "outputs", "variables", "inputs", "device", "targets", "stored", "profile", "note",
+        "at_once"}
 HANDWORKED_KEYS = KEYS | {"output_order", "duration", "tolerance"}
 
 
@@ -117,7 +125,7 @@ def _load(dialect: str, name: str, keys: set[str]) -> list[Case]:
             device=[(c, r) for c, r in raw["device"]] if "device" in raw else None,
             targets=tuple(raw.get("targets", TARGETS)), stored=bool(raw.get("stored", False)),
             profile=raw.get("profile"),
-            note=raw.get("note", ""),
+            note=raw.get("note", ""), at_once=bool(raw.get("at_once", False)),
             output_order=[(int(n), int(v)) for n, v in raw["output_order"]] if "output_order" in raw else None,
             duration=float(raw["duration"]) if "duration" in raw else None,
             tolerance=float(raw["tolerance"]) if "tolerance" in raw else None,
@@ -176,18 +184,52 @@ def _device(case: Case):
     return make_device(case.dialect, profile=case.profile)
 
 
-def replies(dialect: str, device, command: str) -> list[str]:
+def replies(dialect: str, device, command: str, sent: list[str] | None = None) -> list[str]:
     """The lines a device answers to one command, without its echo and prompt (MCode, X150) or
-    framing (Arcus: the command goes out as `@00<command>`); a refusal is kept, as `?...`."""
+    framing (Arcus: the command goes out as `@00<command>`); a refusal is kept, as `?...`. What a
+    running program printed before the answer (the device sends it as it happens, before the
+    echo) goes to `sent`."""
     if dialect == "arcus":
         raw = device.feed(f"@00{command}\r".encode()).decode(errors="replace")
         return [line for line in raw.split("\r") if line]
     raw = device.feed(f"{command}\r".encode()).decode(errors="replace")
     parts = raw.replace("\r\n", "\r").split("\r")
-    if parts and parts[0].strip() == command.strip():
-        parts = parts[1:]   # the echo
+    echo = next((i for i, part in enumerate(parts) if part.strip() == command.strip()), None)
+    if echo is not None:
+        if sent is not None:
+            sent += [part for part in parts[:echo] if part]
+        parts = parts[echo + 1:]   # the echo
     # the prompt `>` (or MCode's `?` after a refused command, kept so the case shows the refusal)
     return [part for part in parts if part not in (">", "")]
+
+
+# How a host knows the device is done: the program no longer runs and no axis moves (MCode BY and
+# MV, lexium-mcode.txt L1828, L4424; X150 R, parker-x150.md L3224-L3240; Arcus SASTAT and PS,
+# arcus-pmx-4ex-sa.txt L1626, L716).
+def _idle(dialect: str, device, sent: list[str]) -> bool:
+    if getattr(device, "program_mode", False) or any(u.defining is not None for u in getattr(device, "units", {}).values()):
+        return True   # the host is storing a program (PG, XD): it sends the next line, it does not poll
+    if dialect == "mcode":
+        return all(replies(dialect, device, f"PR {flag}", sent) == ["0"] for flag in ("BY", "MV"))
+    if dialect == "x150":
+        return all(replies(dialect, device, f"{a}R", sent) in (["*R"], ["*S"]) for a in device.units)
+    return replies(dialect, device, "SASTAT") != ["1"] and set(replies(dialect, device, "PS")[0].split(":")) == {"0"}
+
+
+TYPING = 5.0   # seconds a person typing a manual's session waits for the motor before the next line
+
+
+def wait_until_idle(dialect: str, device, sent: list[str], step: float = 0.01, limit: float | None = None) -> None:
+    """Wait as a host does: ask whether the device is done, and while it is not, wait `step`
+    seconds (the host's sleep, `device.elapse`) and ask again, up to `limit` seconds, by default
+    the device's run limit (a program still running then is held, as `mcc sim` stops at its time
+    limit)."""
+    from mcc.link.device.machine import RUN_LIMIT
+
+    for _poll in range(int(((RUN_LIMIT + 1) if limit is None else limit) / step)):
+        if _idle(dialect, device, sent):
+            return
+        device.elapse(step)
 
 
 def run_device(case: Case) -> Outcome:
@@ -196,31 +238,31 @@ def run_device(case: Case) -> Outcome:
         device.sim.machine.inputs.update({k: float(v) for k, v in case.inputs.items()})
     got_prints: list[str] = []
     changes: list[tuple[int, int]] = []
-    seen = [device.sim.last]
-
     def record() -> None:
-        """The output changes of the run the last command started, if it started one."""
-        if device.sim.last is not seen[0]:
-            seen[0] = device.sim.last
-            changes.extend((int(e.data["output"]), int(e.data["value"]))
-                           for e in device.sim.last.events if e.kind == "output")
+        """The output changes of every run the commands started, in the order they happened."""
+        events = sorted((e.t, n, i, e.data) for n, trace in enumerate(device.sim.traces)
+                        for i, e in enumerate(trace.events) if e.kind == "output")
+        changes.extend((int(data["output"]), int(data["value"])) for _t, _n, _i, data in events)
 
     if case.stored:
         device.load_program(case.program.strip() + "\n", "case")
         started = replies(case.dialect, device, "SR=1")
-        record()
         if started != _ack(case.dialect):
             return Outcome(False, f"SR=1 -> {started!r}")
         exchange = list(case.device or [])
     else:
         exchange = case.device if case.device is not None else [(c, None) for c in lines(case.program)]
     for command, reply in exchange:
-        answer = replies(case.dialect, device, command)
-        record()
+        if not case.at_once:
+            wait_until_idle(case.dialect, device, got_prints, limit=TYPING)
+        answer = replies(case.dialect, device, command, got_prints)
         if reply is None:
             got_prints += answer
         elif answer != ([reply] if reply else _ack(case.dialect)):
             return Outcome(False, f"{command!r} -> {answer!r}, the manual: {reply!r}")
+    # the host waits for the programs and moves it started to end before it reads the results
+    wait_until_idle(case.dialect, device, got_prints)
+    record()
     positions = {}
     for axis in case.positions:
         answer = replies(case.dialect, device, _position_command(case.dialect, axis))
@@ -236,7 +278,9 @@ def run_device(case: Case) -> Outcome:
         variables[name] = _number(answer[-1] if answer else "")
     # With an explicit exchange, its replies were the check of what the device answers.
     checked = case.prints is not None and case.device is None
-    got = _observed(got_prints if checked else None, positions, outputs, variables, changes, device.sim.clock)
+    start = device.sim.first_program if device.sim.first_program is not None else device.sim.first_start
+    duration = max(device.sim.busy_until, start) - start if start is not None else 0.0
+    got = _observed(got_prints if checked else None, positions, outputs, variables, changes, duration)
     return Outcome(_matches(case, got, prints=checked), _show(got))
 
 

@@ -21,3 +21,14 @@ def lowered(path: Path, dialect: str):
     if result.has_errors or result.analysis is None:
         return None
     return result.analysis.module
+
+
+def modules_of(dialect: str):
+    """(path, module) for every sample and golden program of `dialect` that lowers, errors or not
+    (the printer and the reader work on any module `mcc ir` prints)."""
+    from mcc.compiler import driver
+
+    for path in program_files(dialect):
+        result = driver.check_file(str(path), dialect)
+        if result.analysis is not None and result.analysis.module is not None:
+            yield path, result.analysis.module

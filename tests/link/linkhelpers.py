@@ -11,7 +11,10 @@ import pytest
 def serving(device):
     from mcc.link.device.server import DeviceServer
 
-    with DeviceServer(device) as server:
+    # time_scale 0: only the commands' own time passes (their characters and execution time), not
+    # the wall time between them, so a test reads the same state however loaded the machine is; a
+    # test that waits says so with device.elapse(seconds), the host's sleep
+    with DeviceServer(device, time_scale=0.0) as server:
         yield server
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import re
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 from conftest import SAMPLES, run_mcc
@@ -24,17 +25,26 @@ def start_device(*args: str) -> tuple[subprocess.Popen, str]:
 
 
 def test_virtual_arcus_device_process_runs_its_program():
-    # The program runs on the simulator's machine: it ends (in virtual time) with the variables
-    # `mcc sim` computes for it.
+    # The program runs on the simulator's machine, on the device's clock: it runs on after SR=1
+    # is answered (SASTAT 1, arcus-pmx-4ex-sa.txt L1626) and ends with the variables `mcc sim`
+    # computes for it. The device runs 50 virtual seconds per second the host is silent; the host
+    # polls SASTAT until the program has stopped.
     sample = str(SAMPLES / "arcus" / "drill_grid_variables.prg")
     predicted = simulate_file(sample).trace
-    assert predicted.stopped == "end"
-    proc, url = start_device("--dialect", "arcus", "--program", sample)
+    assert predicted.stopped == "end" and predicted.time > 1.0
+    proc, url = start_device("--dialect", "arcus", "--program", sample, "--time-scale", "50")
     try:
-        result = run_mcc("send", "--port", url, "--dialect", "arcus", "SASTAT", "SR=1", "SASTAT", "V4", "V14")
+        result = run_mcc("send", "--port", url, "--dialect", "arcus", "SASTAT", "SR=1", "SASTAT")
         assert result.returncode == 0, result.stdout + result.stderr
-        assert result.stdout.splitlines() == ["SASTAT: 0  (stopped)", "SR=1: OK", "SASTAT: 0  (stopped)",
-                                              f"V4: {predicted.variables['V4']}", f"V14: {predicted.variables['V14']}"]
+        assert result.stdout.splitlines() == ["SASTAT: 0  (stopped)", "SR=1: OK", "SASTAT: 1  (running)"]
+        for _poll in range(100):
+            time.sleep(0.05)
+            state = run_mcc("send", "--port", url, "--dialect", "arcus", "SASTAT").stdout.strip()
+            if state == "SASTAT: 0  (stopped)":
+                break
+        result = run_mcc("send", "--port", url, "--dialect", "arcus", "SASTAT", "V4", "V14")
+        assert result.stdout.splitlines() == ["SASTAT: 0  (stopped)", f"V4: {predicted.variables['V4']}",
+                                              f"V14: {predicted.variables['V14']}"]
     finally:
         proc.terminate()
         proc.wait(10)
@@ -74,15 +84,20 @@ def test_terminal_reads_commands_and_decodes_replies(tmp_path):
 
 
 def test_run_limit_cuts_a_long_move_in_virtual_time():
-    # A 5 s move on a device that runs each command for at most 1 virtual second: the axis is
-    # where the move had got to after 1 s (about 2000 steps at 2000 steps/s), still moving.
-    proc, url = start_device("--dialect", "mcode", "--run-limit", "1")
+    # A program with a 5 s move on a device that runs a program for at most 1 virtual second: the
+    # program is held where its move had got to after 1 s (about 2000 steps at 2000 steps/s),
+    # reported busy (BY, lexium-mcode.txt L1828) and moving (MV, L4424). The host waits 2 s of
+    # virtual time (0.2 s at --time-scale 10) before it asks.
+    proc, url = start_device("--dialect", "mcode", "--run-limit", "1", "--time-scale", "10")
     try:
-        result = run_mcc("send", "--port", url, "--dialect", "mcode", "VM=2000", "MR 10000", "PR P", "PR MV")
+        program = ["VM=2000", "PG 1", "LB GO", "MR 10000", "H", "E", "PG", "EX GO"]
+        result = run_mcc("send", "--port", url, "--dialect", "mcode", *program)
         assert result.returncode == 0, result.stdout + result.stderr
+        time.sleep(0.2)
+        result = run_mcc("send", "--port", url, "--dialect", "mcode", "PR P", "PR BY", "PR MV")
         lines = result.stdout.splitlines()
-        position = int(lines[2].split(": ")[1])
-        assert 1500 < position < 2100 and lines[3] == "PR MV: 1"
+        position = int(lines[0].split(": ")[1])
+        assert 1500 < position < 2100 and lines[1:] == ["PR BY: 1", "PR MV: 1"], lines
     finally:
         proc.terminate()
         proc.wait(10)

@@ -18,6 +18,7 @@ from linkhelpers import mcc, serve  # noqa: F401  (serve: fixture)
 
 from mcc.compiler import driver
 from mcc.link.device.arcus import ArcusDevice
+from mcc.link.device.machine import RUN_LIMIT
 from mcc.link.device.mcode import MCodeBus, MCodeDevice
 from mcc.link.device.x150 import X150Device
 from mcc.sim.files import simulate_file
@@ -31,6 +32,22 @@ def replies(url: str, dialect: str, *commands: str) -> list[str]:
     result = mcc("send", "--port", url, "--dialect", dialect, *commands)
     assert result.returncode == 0, result.stdout + result.stderr
     return [line.split(": ", 1)[1].split("  (")[0] for line in result.stdout.splitlines()]
+
+
+# What a host asks to know whether the program still runs, and the answer once it has stopped:
+# MCode BY (lexium-mcode.txt L1828), X150 R (parker-x150.md L3224-L3240), Arcus SASTAT (L1626).
+STATUS = {"mcode": ("PR BY", "0"), "x150": ("1R", "*R"), "arcus": ("SASTAT", "0")}
+
+
+def wait_for_the_program(device, url: str, dialect: str, status: str | None = None) -> None:
+    """Wait as a host does: ask the status, and while the program runs, wait a second (the host's
+    sleep, `device.elapse`) and ask again, up to the run limit (a program that has not ended by
+    then is held there, as `mcc sim` stops it at its time limit)."""
+    command, idle = STATUS[dialect]
+    for _second in range(int(RUN_LIMIT) + 2):
+        if replies(url, dialect, status or command)[0] == idle:
+            return
+        device.elapse(1.0)
 
 
 def prediction(path: str):
@@ -49,10 +66,12 @@ PARTY = "party_mode_setup.mxt"
 @pytest.mark.parametrize("path", [p for p in samples("mcode", ".mxt") if not p.endswith(PARTY)],
                          ids=lambda p: p.rsplit("/", 1)[-1])
 def test_mcode_sample_runs_where_the_simulator_predicts(path, serve):
-    server = serve(MCodeDevice())
+    device = MCodeDevice()
+    server = serve(device)
     result = mcc("download", path, "--port", server.url, "--run", "--format", "json")
     assert result.returncode == 0, result.stdout + result.stderr
     assert json.loads(result.stdout)["ran"]
+    wait_for_the_program(device, server.url, "mcode")
     trace = prediction(path)
     p, busy = replies(server.url, "mcode", "PR P", "PR BY")
     assert int(p) == position(trace, "1")
@@ -65,6 +84,11 @@ def test_mcode_party_drives_run_where_the_simulator_predicts(serve):
     server = serve(bus)
     result = mcc("download", path, "--port", server.url, "--party", "--address", "a", "--run")
     assert result.returncode == 0, result.stdout + result.stderr
+    for _second in range(int(RUN_LIMIT) + 2):   # the host waits until neither drive is busy
+        if all(b"\r\n0\r\n" in drive.command(f"{name}PR {flag}\n".encode())
+               for name, drive in bus.drives.items() for flag in ("BY", "MV")):   # L1828, L4424
+            break
+        bus.elapse(1.0)
     trace = prediction(path)
     assert {"a", "b"} <= set(trace.axes)
     for name in ("a", "b"):
@@ -100,6 +124,7 @@ def test_x150_sample_runs_where_the_simulator_predicts(path, serve):
     if extra:
         replies(server.url, "x150", *extra)
     trace = prediction(path)
+    wait_for_the_program(device, server.url, "x150", f"{sorted(set(trace.axes) | set(device.sim.positions()))[0]}R")
     axes = sorted(set(trace.axes) | set(device.sim.positions()))
     reported = replies(server.url, "x150", *[f"{a}PR" for a in axes])
     assert [int(r.lstrip("*")) for r in reported] == [position(trace, a) for a in axes]
@@ -116,10 +141,12 @@ def test_arcus_sample_runs_where_the_simulator_predicts(path, serve, tmp_path):
     image = tmp_path / "machine.sa"
     assert mcc("upload", "--port", serve(source).url, "--dialect", "arcus", "--image", str(image),
                "-o", str(tmp_path / "vars.prg")).returncode == 0
-    server = serve(ArcusDevice())
+    device = ArcusDevice()
+    server = serve(device)
     result = mcc("download", str(image), "--port", server.url, "--run", "--format", "json")
     assert result.returncode == 0, result.stdout + result.stderr
     assert json.loads(result.stdout)["ran"]
+    wait_for_the_program(device, server.url, "arcus")
     trace = prediction(path)
     names = sorted(trace.variables, key=lambda n: int(n[1:]))
     pp, state, *values = replies(server.url, "arcus", "PP", "SASTAT", *names)
@@ -156,7 +183,14 @@ def test_arcus_interpolation_waits_in_the_buffer_until_bo_and_keeps_the_speeds()
         return device.feed(f"@00{command}\r".encode()).decode().rstrip("\r")
 
     assert send("I1000:0:0:500") == "OK" and send("PX") == "0"
-    assert send("BO") == "OK" and send("PX") == "1000"
-    assert abs(device.sim.clock - 2.0) < 1e-6        # 1000 pulses at 500 pulses/s, no ramp
-    assert send("I1000:2000:0:250") == "OK" and send("PY") == "2000"
+    assert send("BO") == "OK" and 0 < int(send("PX")) < 1000   # on its way: time runs between commands
+    assert send("PS").split(":")[0] == "500"                     # at its constant speed from the start
+    move = [e.t for e in device.sim.last.events if e.kind == "move"]
+    device.elapse(2.0)
+    assert send("PX") == "1000"
+    ends = [e.t for e in device.sim.last.events if e.kind == "move_end"]
+    assert abs(ends[0] - move[0] - 2.0) < 1e-6        # 1000 pulses at 500 pulses/s, no ramp
+    assert send("I1000:2000:0:250") == "OK" and int(send("PY")) < 2000
+    device.elapse(10.0)
+    assert send("PY") == "2000"
     assert send("HS") == "1000" and send("LS") == "100"

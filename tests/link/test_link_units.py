@@ -80,9 +80,16 @@ def test_programs_run_on_the_simulators_machine():
     replies = [device.feed((line + "\r").encode()) for line in program]
     assert all(reply.endswith(b">") for reply in replies), replies
     assert replies[-3:] == [b"PR QA\r\n6\r\n>", b"PR QB\r\n15\r\n>", b"PR BY\r\n0\r\n>"]
-    # A move runs to its end in virtual time before the device answers: P is where it stopped.
+    # The program goes on after EX has been answered (the drive answers after the command's
+    # execution time, lexium-mcode.txt L6821): BY is 1 while it runs (L1828). A host polls BY, waiting
+    # between polls, until the program has ended; P is then where its last move stopped.
     for line in ["CP 1", "PG 10", "LB GM", "MR 1000", "H", "MR -250", "E", "PG", "EX 10"]:
         assert device.feed((line + "\r").encode()).endswith(b">")
+    assert device.feed(b"PR BY\r") == b"PR BY\r\n1\r\n>"
+    for _poll in range(100):
+        if device.feed(b"PR BY\r") == b"PR BY\r\n0\r\n>":
+            break
+        device.elapse(0.01)
     assert device.feed(b"PR P,\" \",BY,\" \",MV\r") == b"PR P,\" \",BY,\" \",MV\r\n750 0 0\r\n>"
     # A program waiting for an input that nothing sets is still running: busy.
     for line in ["PG 20", "LB GW", "BR GW,I1=0", "E", "PG", "EX GW"]:
