@@ -511,7 +511,8 @@ async def main_async(options) -> None:
         for dialect in options.dialects.split(","):
             if options.client in ("raw", "both"):
                 raw = raw_dialect(root, dialect, options.lines, options.edits)
-                print(f"\n{dialect}, independent client (stdlib JSON-RPC over stdio; diagnostics compared with mcc lint)")
+                print(f"\n{dialect}, independent client (stdlib JSON-RPC over stdio; diagnostics compared with "
+                      "mcc lint)")
                 for name, label in (("full", "edit -> all diagnostics        "),
                                     ("typing", "typing -> all diagnostics      ")):
                     ok = "within" if statistics.median(raw[name]) <= TARGET_DIAGNOSTICS_MS else "OVER"
