@@ -24,8 +24,18 @@ printed too, since other processes compete for the CPUs, and so is the CPU time 
 analysis thread spent in the checks and the rules of each edit (reported by `mcc/status`), which
 the load does not inflate.
 
+An independent client (`RawClient`: JSON-RPC over the server's stdio written from the protocol's
+specification with the standard library, no pygls) runs the same edits and takes, for each, the
+time from sending `didChange` to the arrival of the publication whose diagnostics are exactly what
+`mcc check` + `mcc lint` report for the new text (computed in this process before the edit is
+sent), so that nothing of the server's own bookkeeping (`mcc/status`) decides when it is done.
+It also reads the server process's CPU time, all its threads (Linux /proc schedstat), from just
+before `didChange` to its last publication of the version: the work an edit's diagnostics cost the
+server, protocol included, which the machine's load does not inflate (an idle machine's wall
+clock would be about that).
+
 Run: .venv/bin/python bench/bench_lsp.py [--lines 3000] [--edits 12] [--requests 40] [--dialects x150]
-     [--debounce MS]
+     [--debounce MS] [--client pygls|raw|both]
 """
 
 from __future__ import annotations
@@ -37,6 +47,7 @@ import random
 import statistics
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
@@ -176,6 +187,25 @@ def digit_lines(lines: list[str]) -> list[int]:
             and not line.lstrip().startswith(("'", ";"))]
 
 
+def next_edit(content: list[str], rng: random.Random, i: int) -> tuple[int, int, int, str]:
+    """The i-th edit of a series (line, start, end, new text), applied to `content` (the lines):
+    by turns a digit changed, a digit typed (every later line moves by one character) and a line
+    break typed at the end of a line (every later line moves down)."""
+    line = rng.choice(digit_lines(content))
+    column = next(k for k, c in enumerate(content[line]) if c.isdigit())
+    kind = i % 3
+    if kind == 0:
+        digit = str((int(content[line][column]) + 1) % 10)
+        content[line] = content[line][:column] + digit + content[line][column + 1:]
+        return line, column, column + 1, digit
+    if kind == 1:
+        content[line] = content[line][:column] + "1" + content[line][column:]
+        return line, column, column, "1"
+    end = len(content[line])
+    content.insert(line + 1, "")
+    return line, end, end, "\n"
+
+
 async def bench_dialect(bench: Bench, root: Path, dialect: str, lines: int, edits: int, requests: int) -> dict:
     rng = random.Random(dialect)
     text = generate(dialect, lines)
@@ -190,20 +220,7 @@ async def bench_dialect(bench: Bench, root: Path, dialect: str, lines: int, edit
     first, full, typing, cpu = [], [], [], []
     busy_hover, busy_completion = [], []
     for i in range(edits):
-        line = rng.choice(digit_lines(content))
-        column = next(k for k, c in enumerate(content[line]) if c.isdigit())
-        kind = i % 3
-        if kind == 0:  # a digit changed
-            digit = str((int(content[line][column]) + 1) % 10)
-            sent = bench.change(uri, line, column, column + 1, digit)
-            content[line] = content[line][:column] + digit + content[line][column + 1:]
-        elif kind == 1:  # a digit typed: every later line moves by one character
-            sent = bench.change(uri, line, column, column, "1")
-            content[line] = content[line][:column] + "1" + content[line][column:]
-        else:  # a line break typed at the end of a line: every later line moves down
-            end = len(content[line])
-            sent = bench.change(uri, line, end, end, "\n")
-            content.insert(line + 1, "")
+        sent = bench.change(uri, *next_edit(content, rng, i))
         version = bench.version[uri]
         # while the server re-analyses: queries answer from the previous analysis
         for position in positions(text, rng, 2):
@@ -232,6 +249,209 @@ async def bench_dialect(bench: Bench, root: Path, dialect: str, lines: int, edit
     return {"first": first, "full": full, "typing": typing, "cpu": cpu, "hover": hover, "completion": completion,
             "busy_hover": busy_hover, "busy_completion": busy_completion, "lines": len(content),
             "frontend": frontend_alone(path, text, edits)}
+
+
+class RawClient:
+    """An independent client: LSP as its specification describes it (JSON-RPC 2.0 messages with a
+    `Content-Length` header, over the pipes of `mcc lsp --stdio`), written here with the standard
+    library only, sharing no code with the server (no pygls, no lsprotocol), as an editor speaks
+    to it. A thread reads the server's messages and stamps each with the time it arrived; requests
+    from the server (registrations, refreshes) are answered with null, as a minimal editor does."""
+
+    def __init__(self, argv: list[str]) -> None:
+        import queue
+        import subprocess
+
+        self.process = subprocess.Popen(argv, stdin=subprocess.PIPE, stdout=subprocess.PIPE)
+        self.messages: queue.Queue = queue.Queue()
+        # (uri, version) -> each publication's (arrival, the server's CPU time then, diagnostic keys)
+        self.publications: dict[tuple[str, int], list[tuple[float, float, list]]] = {}
+        self.published = threading.Condition()
+        self.next_id = 0
+        self.lock = threading.Lock()
+        threading.Thread(target=self.read, daemon=True).start()
+
+    def read(self) -> None:
+        import json
+
+        stream = self.process.stdout
+        while True:
+            length = None
+            while True:
+                header = stream.readline()
+                if not header:
+                    return
+                if header in (b"\r\n", b"\n"):
+                    break
+                name, _, value = header.decode("ascii").partition(":")
+                if name.strip().lower() == "content-length":
+                    length = int(value)
+            body = stream.read(length or 0)
+            arrived = time.perf_counter()
+            cpu = process_cpu_ms(self.process.pid) if b'"textDocument/publishDiagnostics"' in body else 0.0
+            message = json.loads(body)
+            if "method" in message and "id" in message:  # a request from the server
+                self.send({"jsonrpc": "2.0", "id": message["id"], "result": None})
+            if message.get("method") == "textDocument/publishDiagnostics":
+                params = message["params"]
+                with self.published:
+                    self.publications.setdefault((params["uri"], params.get("version")), []).append(
+                        (arrived, cpu, sorted(diagnostic_key(d) for d in params["diagnostics"])))
+                    self.published.notify_all()
+                continue
+            self.messages.put((arrived, message))
+
+    def send(self, message: dict) -> float:
+        import json
+
+        body = json.dumps(message).encode("utf-8")
+        with self.lock:
+            self.process.stdin.write(b"Content-Length: %d\r\n\r\n" % len(body) + body)
+            self.process.stdin.flush()
+            return time.perf_counter()
+
+    def notify(self, method: str, params) -> float:
+        return self.send({"jsonrpc": "2.0", "method": method, "params": params})
+
+    def request(self, method: str, params, timeout: float = 120.0):
+        self.next_id += 1
+        ident = self.next_id
+        self.send({"jsonrpc": "2.0", "id": ident, "method": method, "params": params})
+        deadline = time.perf_counter() + timeout
+        while True:
+            _, message = self.messages.get(timeout=max(0.0, deadline - time.perf_counter()))
+            if message.get("id") == ident and "method" not in message:
+                return message.get("result")
+
+    def wait_for(self, uri: str, version: int, expected: list, timeout: float = 120.0) -> None:
+        """Until a publication of `version` equal to `expected` arrives (without asking the server
+        anything meanwhile: the requests would cost it CPU time that is measured)."""
+        with self.published:
+            if not self.published.wait_for(lambda: any(keys == expected for _, _, keys in
+                                                       self.publications.get((uri, version), [])), timeout):
+                raise AssertionError(f"no publication of version {version} equal to mcc lint's in {timeout} s")
+
+    def final(self, uri: str, version: int, expected: list) -> tuple[float, float]:
+        """The arrival of the publication from which on the editor shows `expected` (code and range
+        of each diagnostic, sorted) for `uri` at `version` and nothing else (the earliest one equal
+        to it that no later one of the version differs from: when the lint rules find nothing new,
+        the checks published first under load already are), and the server's CPU time when its
+        last publication of the version arrived (all the work of the diagnostics). Asked once the
+        server has published everything of the version (`mcc/status` says complete)."""
+        found = self.publications.get((uri, version), [])
+        start = len(found)
+        while start > 0 and found[start - 1][2] == expected:
+            start -= 1
+        if start == len(found):
+            raise AssertionError(f"the server's diagnostics of version {version} are not mcc lint's: "
+                                 f"{found[-1][2] if found else 'none published'} != {expected}")
+        return found[start][0], found[-1][1]
+
+    def close(self) -> None:
+        self.request("shutdown", None)
+        self.notify("exit", None)
+        self.process.wait(timeout=30)
+
+
+def process_cpu_ms(pid: int) -> float:
+    """The CPU time of every thread of process `pid` so far, in milliseconds (Linux: the first
+    field of /proc/PID/task/TID/schedstat, nanoseconds on a CPU; NaN elsewhere)."""
+    total = 0
+    try:
+        for tid in os.listdir(f"/proc/{pid}/task"):
+            with open(f"/proc/{pid}/task/{tid}/schedstat", encoding="ascii") as stat:
+                total += int(stat.read().split()[0])
+    except OSError:
+        return float("nan")
+    return total / 1e6
+
+
+def diagnostic_key(d: dict) -> tuple:
+    r = d["range"]
+    return (d.get("code"), r["start"]["line"], r["start"]["character"], r["end"]["line"], r["end"]["character"])
+
+
+def expected_diagnostics(path: Path, text: str) -> list:
+    """What `mcc check` and `mcc lint` report for the text (the configuration the server reads for
+    the file), as (code, LSP range) keys, sorted: the diagnostics the editor must end up with."""
+    from mcc.compiler.config import Resolver
+    from mcc.compiler.lint import engine
+
+    _, found = engine.lint_text(str(path), text, Resolver().for_path(str(path)))
+    keys = []
+    for d in found:
+        if d.span.file != str(path):
+            continue
+        span = d.span
+        keys.append((d.code, max(span.line - 1, 0), max(span.column - 1, 0), max(span.end_line - 1, 0),
+                     max(span.end_column - 1, 0)))
+    return sorted(keys)
+
+
+def raw_dialect(root: Path, dialect: str, lines: int, edits: int) -> dict:
+    """The edits of `bench_dialect` (same series) through the independent client: didChange ->
+    the publication equal to `mcc check` + `mcc lint` on the new text; bursts of typing likewise,
+    from the last keystroke. The server's CPU time per edit is read from `mcc/status`."""
+    rng = random.Random(dialect)
+    text = generate(dialect, lines)
+    path = root / f"raw{EXTENSIONS[dialect]}"
+    uri = path.as_uri()
+    client = RawClient([sys.executable, "-m", "mcc", "lsp", "--stdio"])
+    client.request("initialize", {"processId": os.getpid(), "rootUri": root.as_uri(), "capabilities": {}})
+    client.notify("initialized", {})
+    client.notify("textDocument/didOpen", {"textDocument": {"uri": uri, "languageId": dialect, "version": 1,
+                                                            "text": text}})
+    content = text.split("\n")
+    version = 1
+    full, typing, cpu, process = [], [], [], []
+    pid = client.process.pid
+
+    def change(edit: tuple[int, int, int, str]) -> float:
+        nonlocal version
+        version += 1
+        line, start, end, new = edit
+        return client.notify("textDocument/didChange", {
+            "textDocument": {"uri": uri, "version": version},
+            "contentChanges": [{"range": {"start": {"line": line, "character": start},
+                                          "end": {"line": line, "character": end}}, "text": new}]})
+
+    def settle() -> None:  # the analysis of this version complete (memory, cycles) before the next edit
+        while True:
+            status = client.request("mcc/status", {"uri": uri})
+            if status.get("version") == version and status.get("complete"):
+                if version > 1:  # an edit's, not the first analysis of the whole file
+                    cpu.append(status["timings"].get("check_cpu_ms", 0) + status["timings"].get("lint_cpu_ms", 0))
+                return
+            time.sleep(0.01)
+
+    settle()
+    client.final(uri, 1, expected_diagnostics(path, text))
+    for i in range(edits):
+        edit = next_edit(content, rng, i)
+        expected = expected_diagnostics(path, "\n".join(content))  # before the edit is sent: not timed
+        before = process_cpu_ms(pid)
+        sent = change(edit)
+        client.wait_for(uri, version, expected)
+        settle()
+        arrived, spent = client.final(uri, version, expected)
+        full.append((arrived - sent) * 1000)
+        process.append(spent - before)  # every thread of the server, to its last publication
+    for _ in range(max(2, edits // 3)):
+        line = rng.choice(digit_lines(content))
+        column = next(k for k, c in enumerate(content[line]) if c.isdigit())
+        keystrokes = []
+        for _ in range(5):
+            keystrokes.append((line, column, column, "1"))
+            content[line] = content[line][:column] + "1" + content[line][column:]
+        expected = expected_diagnostics(path, "\n".join(content))
+        for edit in keystrokes:
+            sent = change(edit)
+            time.sleep(0.04)
+        client.wait_for(uri, version, expected)
+        settle()
+        typing.append((client.final(uri, version, expected)[0] - sent) * 1000)
+    client.close()
+    return {"full": full, "typing": typing, "cpu": cpu, "process": process}
 
 
 def frontend_alone(path: Path, text: str, repeat: int) -> list[float]:
@@ -289,6 +509,19 @@ async def main_async(options) -> None:
               f"{summary(floor)})")
         print(f"mcc lsp: {options.edits} edits, bursts of typing and {options.requests} queries per dialect")
         for dialect in options.dialects.split(","):
+            if options.client in ("raw", "both"):
+                raw = raw_dialect(root, dialect, options.lines, options.edits)
+                print(f"\n{dialect}, independent client (stdlib JSON-RPC over stdio; diagnostics compared with "
+                      "mcc lint)")
+                for name, label in (("full", "edit -> all diagnostics        "),
+                                    ("typing", "typing -> all diagnostics      ")):
+                    ok = "within" if statistics.median(raw[name]) <= TARGET_DIAGNOSTICS_MS else "OVER"
+                    print(f"  {label}: {summary(raw[name])}  [target <= {TARGET_DIAGNOSTICS_MS} ms: {ok}]")
+                print(f"  analysis thread CPU (check+lint): {summary(raw['cpu'])}")
+                print(f"  server process CPU, all threads, didChange -> last publication: {summary(raw['process'])}"
+                      "  (about what an idle machine's wall clock would be)")
+            if options.client == "raw":
+                continue
             r = await bench_dialect(bench, root, dialect, options.lines, options.edits, options.requests)
             print(f"\n{dialect} ({r['lines']} lines)")
             for name, label in (("full", "edit -> all diagnostics        "),
@@ -319,6 +552,8 @@ def main() -> None:
     args.add_argument("--requests", type=int, default=40)
     args.add_argument("--dialects", default="mcode,arcus,x150", help="comma-separated")
     args.add_argument("--debounce", type=float, default=None, help="the server's debounce in ms (default: its own)")
+    args.add_argument("--client", choices=("pygls", "raw", "both"), default="both",
+                      help="pygls's client, the independent stdlib client, or both (default)")
     asyncio.run(main_async(args.parse_args()))
 
 

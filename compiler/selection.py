@@ -162,13 +162,31 @@ COMMENT = re.compile(r"[;'`].*$")
 def matches(source: SourceFile, detector: Detector) -> list[int]:
     """The first line each of the detector's markers occurs on (a marker that occurs nowhere adds
     nothing), when at least `minimum` of them occur; else []."""
-    lines = [COMMENT.sub("", line).upper() for line in source.text.split("\n")]
-    evidence = []
-    for marker in detector.markers:
-        hit = next((n for n, text in enumerate(lines, 1) if marker.search(text)), None)
-        if hit is not None:
-            evidence.append(hit)
+    markers = detector.markers
+    hits = _HITS.get(markers)
+    if hits is None or len(hits) > 1 << 16:
+        hits = _HITS[markers] = {}
+    first: list[int | None] = [None] * len(markers)
+    missing = len(first)
+    for number, text in enumerate(source.text.split("\n"), 1):
+        found = hits.get(text)
+        if found is None:
+            clean = COMMENT.sub("", text).upper()
+            found = hits[text] = tuple(index for index, marker in enumerate(markers) if marker.search(clean))
+        for index in found:
+            if first[index] is None:
+                first[index] = number
+                missing -= 1
+        if not missing:
+            break
+    evidence = [hit for hit in first if hit is not None]
     return sorted(set(evidence)) if len(evidence) >= detector.minimum else []
+
+
+# per detector (its markers): the markers each line text holds (comment removed, upper-cased). The
+# editor server asks again after every keystroke of a file with an error, and all but the edited
+# line are the same (20 ms a keystroke on 3,000 Arcus lines without it)
+_HITS: dict[tuple[re.Pattern, ...], dict[str, tuple[int, ...]]] = {}
 
 
 def suggest(source: SourceFile, dialect: str, current: Profile, errors: int, analyze) -> Diagnostic | None:

@@ -42,7 +42,11 @@ class Snapshot:
     index: model.Index = field(default_factory=lambda: model.Index(""))
     diagnostics: list[Diagnostic] = field(default_factory=list)
     complete: bool = False  # every step has run (lint rules, editor model, program memory)
-    check_errors: bool = False  # the frontend's checks found errors (no program memory then)
+    check_errors: bool = False  # the frontend's checks found errors
+    # the lines of the frontend's errors, the budget's own (A201, X203, M116) aside: the program
+    # memory and the cycle time of a version with such lines are computed from the lines that do
+    # analyse (the others left out of the IR), or carried from the last version without any
+    error_lines: tuple[int, ...] = ()
     memory: object | None = None  # memory.Usage
     cycles: object | None = None  # cycles.Cycles: the cycle time lenses
     config_diagnostics: list[tuple[str, list[Diagnostic]]] = field(default_factory=list)
@@ -82,8 +86,16 @@ def check(uri: str, path: str, version: int | None, text: str, resolver: Resolve
         snap.tree, snap.module, snap.analysis = analysis.tree, analysis.module, analysis
     snap.diagnostics = engine.settle(checked, settings, rules=False)
     snap.check_errors = any(d.severity.value == "error" for d in snap.diagnostics)
+    snap.error_lines = error_lines(snap.diagnostics, {path, source.path})
     snap.config_diagnostics = [(p, d) for p, d, _ in resolver.diagnostics()]
     return snap, checked, cache
+
+
+def error_lines(diagnostics: list[Diagnostic], paths: set[str]) -> tuple[int, ...]:
+    """The lines of the errors among the checks' diagnostics that may leave a statement out of the
+    IR: every error but the program memory's budget (the whole program is priced for it)."""
+    return tuple(sorted({d.span.line for d in diagnostics if d.severity.value == "error"
+                         and d.code not in driver.BUDGET_CODES and d.span.file in paths}))
 
 
 def lint(snap: Snapshot, checked: engine.Checked, stop: Callable[[], bool] | None = None) -> Snapshot | None:
@@ -127,13 +139,30 @@ class _Sink:
         self.items.extend(collected.items)
 
 
-def complete(snap: Snapshot) -> Snapshot:
-    """The snapshot with its program memory and cycle time (last step): every feature has what it
-    needs."""
+def figures_wanted(snap: Snapshot) -> bool:
+    """Whether the program memory and the cycle time are to be computed for this version (the
+    backend's work and a bounded simulation). A version whose checks found errors (`error_lines`)
+    keeps the figures of the last version without any, carried onto its lines (`snap.memory` and
+    `snap.cycles` hold them then), so that the lenses stay as they were while the user types;
+    only when there are none (a file opened with an error, or never without one since) are they
+    computed from the lines that analyse, and say which lines have errors."""
     from mcc.lsp import cycles, memory
 
-    usage = memory.usage(snap)  # None when it cannot be priced: the figures carried stay (documents.py)
-    timed = cycles.cycles(snap)  # None when it cannot run: likewise
+    if not (memory.priced(snap) or cycles.timed(snap)):
+        return False
+    if not snap.error_lines:
+        return True
+    carried = [figures for figures in (snap.memory, snap.cycles) if figures is not None]
+    return not carried or any(figures.error_lines for figures in carried)
+
+
+def complete(snap: Snapshot, compute: bool = True) -> Snapshot:
+    """The snapshot with its program memory and cycle time (last step), computed when `compute`
+    (else the figures it carries stay): every feature has what it needs."""
+    from mcc.lsp import cycles, memory
+
+    usage = memory.usage(snap) if compute else None  # None: the figures carried stay (documents.py)
+    timed = cycles.cycles(snap) if compute else None
     return Snapshot(**{**snap.__dict__, "complete": True, "memory": usage if usage is not None else snap.memory,
                        "cycles": timed if timed is not None else snap.cycles})
 
@@ -143,4 +172,5 @@ def analyze(uri: str, path: str, version: int | None, text: str, resolver: Resol
     """All the steps at once (for tests, the benchmark and one-off requests)."""
     snap, checked, _ = check(uri, path, version, text, resolver or Resolver(), dialect)
     snap = lint(snap, checked) or snap
-    return complete(with_index(snap))
+    snap = with_index(snap)
+    return complete(snap, figures_wanted(snap))

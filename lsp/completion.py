@@ -90,8 +90,12 @@ def word_start(dialect: str, before: str) -> int:
 
 
 def with_range(item: t.CompletionItem, replaced: t.Range) -> t.CompletionItem:
-    """A copy of `item` that replaces `replaced` (the word being typed) with its text."""
-    return t.CompletionItem(**{**{f: getattr(item, f) for f in FIELDS}, "filter_text": item.label,
+    """A copy of `item` that replaces `replaced` (the word being typed) with its text. No
+    `filterText`: LSP filters by the label then, which is what it would say; and Neovim's
+    omnifunc (0.7, the Debian package the editor test runs) takes the start of the replaced
+    range from the items' `textEdit` only for items without one, else from its own word pattern
+    (`1D`, `XV2`: the whole), and then drops every item (tests/editors/test_neovim_completion.py)."""
+    return t.CompletionItem(**{**{f: getattr(item, f) for f in FIELDS},
                                "text_edit": t.TextEdit(range=replaced, new_text=item.insert_text or item.label)})
 
 

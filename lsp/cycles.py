@@ -7,9 +7,11 @@ the analysis worker after the pause in the typing that prices the program memory
 the simulator's next checkpoint when a newer edit arrives. A main loop entered but not closed
 within the run says "cycle > N s" (N the virtual seconds the loop ran); a loop that only polls an
 input the run keeps low says so; a main loop the program leaves, and a subroutine the run never
-called, have no lens. A file with errors cannot be simulated: the last figures stay, moved to
-the lines that now hold the same text (like the memory lenses, so they do not flicker while the
-user types).
+called, have no lens. While a file has errors the last figures of a version without any stay,
+moved to the lines that now hold the same text (like the memory lenses, so they do not flicker
+while the user types); a file that has had none since it was opened is simulated as far as it
+analyses (the lowering leaves a statement with an error out), and each lens says which lines it
+was run without (analysis.figures_wanted).
 """
 
 from __future__ import annotations
@@ -29,11 +31,17 @@ class Lens:
 @dataclass
 class Cycles:
     lenses: list[Lens] = field(default_factory=list)
+    error_lines: tuple[int, ...] = ()  # run without the statements of these lines (errors), else ()
+
+    def title(self, lens: Lens) -> str:
+        from mcc.lsp.memory import with_errors
+
+        return lens.title + with_errors(self.error_lines)
 
 
 def timed(snap) -> bool:
-    """Whether there is a program to simulate (no errors, a module)."""
-    return snap.module is not None and not snap.check_errors
+    """Whether there is a program to simulate (a module: with errors, the lines that analyse)."""
+    return snap.module is not None
 
 
 def cycles(snap) -> Cycles | None:
@@ -53,7 +61,7 @@ def cycles(snap) -> Cycles | None:
         return None
     if found is None:
         return None
-    out = Cycles()
+    out = Cycles(error_lines=tuple(snap.error_lines))
     line = loop_line(snap.module, found.loop)
     title = cycle_title(found)
     if line is not None and title:
@@ -97,7 +105,7 @@ def carried(previous: Cycles | None, snap) -> Cycles | None:
     where: dict[str, list[int]] = {}
     for number, text in enumerate(lines, 1):
         where.setdefault(text.strip(), []).append(number)
-    out = Cycles()
+    out = Cycles(error_lines=tuple(snap.error_lines) if previous.error_lines else ())
     for lens in previous.lenses:
         candidates = where.get(lens.text)
         if candidates:

@@ -33,6 +33,7 @@ from mcc.lsp import analysis, cycles, incremental, memory
 from mcc.lsp.analysis import Snapshot
 
 log = logging.getLogger(__name__)
+PUBLISH_WAIT = 0.5  # seconds the worker waits at most for the protocol thread to send the diagnostics
 
 
 class Documents:
@@ -164,24 +165,25 @@ class Documents:
         arrived = self.arrived.get(uri, started)
         linted.timings = {"check_cpu_ms": (checked_cpu - cpu) * 1000, "lint_cpu_ms": (time.thread_time() - checked_cpu) * 1000,
                           "queued_ms": (started - arrived) * 1000, "edit_to_rules_done_ms": (time.perf_counter() - arrived) * 1000}
-        self.deliver(linted, generation, queries=False)
+        # the editor model waits until the diagnostics are sent: run at once, it would take the GIL
+        # from the protocol thread that converts and writes them (15-25 ms later on a loaded machine)
+        self.deliver(linted, generation, queries=False).wait(PUBLISH_WAIT)
         indexed = analysis.with_index(linted)
         if stop():
             return
-        costly = memory.priced(indexed) or cycles.timed(indexed)  # the backend's work, a bounded simulation
-        deferred = costly and self.memory_delay > 0
+        # until this version is priced and run (or, with errors, for as long as it has them: see
+        # analysis.figures_wanted), the lenses show the last figures, on this version's lines
         previous = self.latest.get(uri)
-        if deferred or not memory.priced(indexed):
-            # until this version is priced (or, with errors, cannot be), the lenses show the last figures
-            indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
-        if deferred or not cycles.timed(indexed):
-            indexed.cycles = cycles.carried(previous.cycles if previous is not None else None, indexed)
+        indexed.memory = memory.carried(previous.memory if previous is not None else None, indexed)
+        indexed.cycles = cycles.carried(previous.cycles if previous is not None else None, indexed)
+        costly = analysis.figures_wanted(indexed)  # the backend's work, a bounded simulation
+        deferred = costly and self.memory_delay > 0
         # the editor model's own failure (G001) is one more diagnostic: published again then
         self.deliver(indexed, generation, publish=len(indexed.diagnostics) != len(linted.diagnostics))
         if stop():
             return
         if not deferred:
-            self.deliver(analysis.complete(indexed), generation, publish=False)
+            self.deliver(analysis.complete(indexed, costly), generation, publish=False)
         elif self.loop is not None and not self.loop.is_closed():
             # pricing the program (the backend's work) waits for a pause in the typing, so that it
             # never holds up the checks of the next keystroke
@@ -210,10 +212,19 @@ class Documents:
         except Exception:  # noqa: BLE001
             log.exception("pricing %s failed", snap.uri)
 
-    def deliver(self, snap: Snapshot, generation: int, queries: bool = True, publish: bool = True) -> None:
+    def deliver(self, snap: Snapshot, generation: int, queries: bool = True, publish: bool = True) -> threading.Event:
         """On the protocol thread: make `snap` what queries answer from (`queries`; a snapshot
-        without its editor model only when there is nothing better) and publish its diagnostics."""
+        without its editor model only when there is nothing better) and publish its diagnostics.
+        The event is set once that is done (or will not be: stale, shutting down)."""
+        done = threading.Event()
+
         def run() -> None:
+            try:
+                deliver()
+            finally:
+                done.set()
+
+        def deliver() -> None:
             if self.stale(snap.uri, generation):
                 return
             if queries or snap.uri not in self.latest:
@@ -233,8 +244,11 @@ class Documents:
         if self.loop is not None and not self.loop.is_closed():
             try:
                 self.loop.call_soon_threadsafe(run)
+                return done
             except RuntimeError:  # the server is shutting down
                 pass
+        done.set()
+        return done
 
     def shutdown(self) -> None:
         self.executor.shutdown(wait=False, cancel_futures=True)

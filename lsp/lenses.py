@@ -18,7 +18,7 @@ def cycle_lenses(snap) -> list[t.CodeLens]:
     if found is None:
         return []
     return [t.CodeLens(range=t.Range(t.Position(lens.line - 1, 0), t.Position(lens.line - 1, 0)),
-                       command=t.Command(title=lens.title, command="")) for lens in found.lenses]
+                       command=t.Command(title=found.title(lens), command="")) for lens in found.lenses]
 
 
 def memory_lenses(snap) -> list[t.CodeLens]:
@@ -28,11 +28,13 @@ def memory_lenses(snap) -> list[t.CodeLens]:
     out = []
     where = "program memory" if usage.unit == "assembly lines" else "sequence memory"
     out.append(t.CodeLens(range=t.Range(t.Position(0, 0), t.Position(0, 0)),
-                          command=t.Command(title=f"{where}: {usage.describe(usage.total)}", command="")))
+                          command=t.Command(title=f"{where}: {usage.describe(usage.total, usage.error_lines)}",
+                                            command="")))
     for routine in usage.routines:
         line = routine.line - 1
+        title = f"{routine.name}: {usage.describe(routine.used, routine.error_lines)}"
         out.append(t.CodeLens(range=t.Range(t.Position(line, 0), t.Position(line, 0)),
-                              command=t.Command(title=f"{routine.name}: {usage.describe(routine.used)}", command="")))
+                              command=t.Command(title=title, command="")))
     return out
 
 
@@ -46,6 +48,7 @@ def inlay_hints(snap, first_line: int, last_line: int) -> list[t.InlayHint]:
         if not first_line <= line <= last_line:
             continue
         length = len(snap.source.line_text(routine.line))
-        out.append(t.InlayHint(position=t.Position(line, length), label=f"  {usage.describe(routine.used)}",
+        out.append(t.InlayHint(position=t.Position(line, length),
+                               label=f"  {usage.describe(routine.used, routine.error_lines)}",
                                kind=t.InlayHintKind.Type, padding_left=True))
     return out

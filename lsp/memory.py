@@ -20,6 +20,7 @@ class RoutineUsage:
     name: str
     line: int  # 1-based line of the routine's head
     used: int
+    error_lines: tuple[int, ...] = ()  # lines of the routine with errors (priced without them)
 
 
 @dataclass
@@ -28,26 +29,53 @@ class Usage:
     total: int
     budget: int
     routines: list[RoutineUsage] = field(default_factory=list)
+    # priced from the lines that analyse: the lines with errors (what the IR may lack), else ()
+    error_lines: tuple[int, ...] = ()
 
-    def describe(self, used: int) -> str:
+    def describe(self, used: int, error_lines: tuple[int, ...] = ()) -> str:
         share = f" ({100.0 * used / self.budget:.1f}% of {self.budget})" if self.budget else ""
-        return f"{used} {self.unit}{share}"
+        return f"{used} {self.unit}{share}{with_errors(error_lines)}"
+
+
+def with_errors(lines: tuple[int, ...]) -> str:
+    """What a figure computed from the lines that analyse adds: which lines it lacks."""
+    if not lines:
+        return ""
+    if len(lines) == 1:
+        return f", without line {lines[0]} (error)"
+    if len(lines) <= 3:
+        return f", without lines {', '.join(map(str, lines))} (errors)"
+    return f", without {len(lines)} lines with errors"
 
 
 def priced(snap) -> bool:
-    """Whether `usage` has anything to compute for the snapshot (the backend's work)."""
-    return snap.dialect in ("arcus", "x150") and snap.module is not None and not snap.check_errors
+    """Whether `usage` has anything to compute for the snapshot (the backend's work). A program
+    with errors is priced too, from the lines that analyse (the lowering leaves a statement with
+    an error out): analysis.figures_wanted decides when that is shown."""
+    return snap.dialect in ("arcus", "x150") and snap.module is not None
 
 
 def carried(previous: Usage | None, snap) -> Usage | None:
     """The previous version's figures placed on this version's routines (matched by name), shown
-    until this version is priced, and while it has errors (a program with errors cannot be
-    priced), so that the code lenses and inlay hints do not vanish while the user types."""
+    until this version is priced, and while it has errors (the figures of the last version without
+    errors: analysis.figures_wanted), so that the code lenses and inlay hints do not vanish or
+    change while the user types. Figures that were already priced without some lines say so with
+    this version's lines with errors."""
     if previous is None or snap.dialect not in ("arcus", "x150"):
         return None
     lines = {routine.name: routine.span.line for routine in snap.index.routines}
+    errors = snap.error_lines if previous.error_lines else ()
     return Usage(previous.unit, previous.total, previous.budget,
-                 [RoutineUsage(r.name, lines[r.name], r.used) for r in previous.routines if r.name in lines])
+                 [RoutineUsage(r.name, lines[r.name], r.used, routine_errors(snap, r.name, errors))
+                  for r in previous.routines if r.name in lines], errors)
+
+
+def routine_errors(snap, name: str, errors: tuple[int, ...]) -> tuple[int, ...]:
+    """The lines of `errors` within the routine of the editor model named `name`."""
+    for routine in snap.index.routines:
+        if routine.name == name:
+            return tuple(line for line in errors if routine.span.line <= line <= routine.span.end_line)
+    return ()
 
 
 def usage(snap) -> Usage | None:
@@ -58,13 +86,14 @@ def usage(snap) -> Usage | None:
         listing = dialect.load_backend().emit(snap.module, driver.profile_for(dialect, snap.profile))
     except Exception:  # noqa: BLE001 - no memory figures is better than no editor
         return None
+    errors = tuple(snap.error_lines)
     if snap.dialect == "x150":
         result = Usage("bytes", int(listing.stats.get("sequence_bytes", 0)),
-                       int(listing.stats.get("sequence_budget", 0)))
+                       int(listing.stats.get("sequence_budget", 0)), error_lines=errors)
         return x150_sequences(snap, result)
     rows = [(sources, 1) for _, sources in (listing.detail or [])]
     result = Usage("assembly lines", int(listing.stats.get("asm_lines", len(rows))),
-                   int(listing.stats.get("asm_budget", 0)))
+                   int(listing.stats.get("asm_budget", 0)), error_lines=errors)
     routines = sorted(snap.index.routines, key=lambda r: r.span.line)
     starts = [r.span.line for r in routines]
     counts = [0] * len(routines)
@@ -76,7 +105,8 @@ def usage(snap) -> Usage | None:
         if i >= 0 and routines[i].span.line <= line <= routines[i].span.end_line:
             counts[i] += cost
     for routine, count in zip(routines, counts, strict=True):
-        result.routines.append(RoutineUsage(routine.name, routine.span.line, count))
+        result.routines.append(RoutineUsage(routine.name, routine.span.line, count,
+                                            routine_errors(snap, routine.name, errors)))
     return result
 
 
@@ -102,5 +132,6 @@ def x150_sequences(snap, result: Usage) -> Usage:
         number = int(routine.symbol.split(":")[1])
         device = routine.name.rsplit("device ", 1)[1].rstrip(")") if "(device " in routine.name else None
         used = by_key.get((number, int(device) if device else None), 0)
-        result.routines.append(RoutineUsage(routine.name, routine.span.line, used))
+        result.routines.append(RoutineUsage(routine.name, routine.span.line, used,
+                                            routine_errors(snap, routine.name, result.error_lines)))
     return result

@@ -201,6 +201,7 @@ class ArcusCatalog:
         self.by_first: dict[str, list[Keyword]] = {}
         self.by_name: dict[str, list[Keyword]] = {}
         self._matches: dict[str, Match | None] = {}  # texts repeat a lot (WAITX, V1, DO7)
+        self._elsewhere: dict[str, Match | None] = {}  # the same for match_elsewhere
         variants = (raw.data.get("variants", {}) or {}).get(product, {}) or {}
         for entry in raw.entries:
             pattern = entry.get("pattern", "")
@@ -252,7 +253,18 @@ class ArcusCatalog:
 
     def match_elsewhere(self, text: str) -> Match | None:
         """The longest statement of another product of the family at the start of `text` (for
-        "a PMX-4EX-SA statement: the ACE-SDE does not have it")."""
+        "a PMX-4EX-SA statement: the ACE-SDE does not have it"); asked for every statement, so
+        the answer per text is kept, as `match` keeps its own."""
+        try:
+            return self._elsewhere[text]
+        except KeyError:
+            pass
+        if len(self._elsewhere) > 20000:
+            self._elsewhere.clear()
+        found = self._elsewhere[text] = self._match_elsewhere(text)
+        return found
+
+    def _match_elsewhere(self, text: str) -> Match | None:
         best: Match | None = None
         for keyword in self.elsewhere:
             if keyword.kind == ASCII_ONLY:

@@ -30,7 +30,7 @@ class Recorder(Documents):
     def deliver(self, snap, generation, queries=True, publish=True):
         self.delivered.append((snap.version, snap.complete, publish))
         self.snapshots.append(snap)
-        super().deliver(snap, generation, queries, publish)
+        return super().deliver(snap, generation, queries, publish)
 
 
 async def until(condition, timeout: float = 60.0) -> None:

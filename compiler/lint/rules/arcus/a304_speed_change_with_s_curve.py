@@ -36,11 +36,13 @@ END
 from __future__ import annotations
 
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.arcus.helpers import forward_all, keyword, switch_state
+from mcc.compiler.lint.rules.arcus.helpers import forward_all, keyword, keywords_in, switch_state
 
 
 @rule
 def speed_change_with_s_curve(ctx: Context) -> None:
+    if not {"SCV", "SSPD"} <= keywords_in(ctx.module):  # an S-curve switched on, and a speed change
+        return
     transfer = switch_state("SCV", None)
     for _, item, on in forward_all(ctx.module, transfer):
         name, axis = keyword(item)

@@ -49,7 +49,7 @@ END
 from __future__ import annotations
 
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.arcus.helpers import argument, const, forward_all, keyword
+from mcc.compiler.lint.rules.arcus.helpers import argument, const, forward_all, keyword, keywords_in
 from mcc.compiler.lint.rules.shared.helpers import motion_axes
 
 
@@ -57,6 +57,8 @@ from mcc.compiler.lint.rules.shared.helpers import motion_axes
 def speed_mode_not_reset(ctx: Context) -> None:
     """The state holds ("armed", axis) after SSPDM<axis> != 0 and ("used", axis) once an SSPD ran
     in that mode; the move that SSPD changes is fine, a move after it is not."""
+    if not {"SSPDM", "SSPD"} <= keywords_in(ctx.module):  # the mode armed, and a speed change in it
+        return
 
     def transfer(state: frozenset, item) -> frozenset:
         name, axis = keyword(item)

@@ -38,13 +38,15 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.arcus.helpers import forward_all, switch_state
+from mcc.compiler.lint.rules.arcus.helpers import forward_all, keywords_in, switch_state
 
 AXES = ("X", "Y", "Z", "U")  # SYNXO drives DO1, SYNYO DO2, ... (L756-L787)
 
 
 @rule
 def output_used_by_sync(ctx: Context) -> None:
+    if "SYNO" not in keywords_in(ctx.module):  # no synchronisation output switched on
+        return
     transfer = switch_state("SYNO", None)
     for _, item, on in forward_all(ctx.module, transfer):
         if not isinstance(item, ir.SetOutput) or not on:

@@ -120,6 +120,8 @@ class Motion:
 
 @rule
 def move_after_slew_without_hold(ctx: Context) -> None:
+    if not any(isinstance(op, ir.Slew) for _, _, op in flow.ops(ctx.module)):
+        return  # no SL: nothing may still be running (and no walk of every routine)
     motion = Motion(ctx.module, (ir.Slew,))
 
     def transfer(state: frozenset, item) -> frozenset:

@@ -72,12 +72,25 @@ class Motion:
         return waited, frozenset(m for m in at_exit if m[1] != -1)
 
 
+def reads_a_position(module: ir.Module) -> bool:
+    """Whether an operation or terminator of the module reads a position (or encoder) register:
+    without one the rule has nothing to find, and skips its walk of every routine (the editor
+    server runs the rules on every keystroke)."""
+    for _, block in module.blocks():
+        for item in (*block.ops, block.terminator):
+            if any(isinstance(node, ir.Status) and node.meaning in POSITION_READINGS for node in reads(item)):
+                return True
+    return False
+
+
 def position_read_while_moving(ctx: Context, voice: Voice) -> None:
     """Fields: reading (the dialect's word for the register read), axis, lines (every move that may
     still run, ", "), line (the last of them). Option `anchor`: "reading" points at the register,
     "operation" at the statement (one finding per statement)."""
     options = voice.options.get("position-read-while-moving", {})
     per_reading = options.get("anchor", "reading") == "reading"
+    if not reads_a_position(ctx.module):  # nothing to report: no data flow over every routine
+        return
     motion = Motion(ctx.module)
     for routine in ctx.module.routines:
         if routine.kind is ir.RoutineKind.IMMEDIATE and options.get("skip_immediate"):

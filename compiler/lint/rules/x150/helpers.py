@@ -46,6 +46,13 @@ def axis_of(item) -> str:
     return getattr(item, "axis", "")
 
 
+def any_op(module: ir.Module, wanted) -> bool:
+    """Whether an operation of the module is `wanted`: a rule whose state only an operation of
+    that kind starts has nothing to find without one, and skips its walk of every routine (the
+    editor server runs the rules on every keystroke)."""
+    return any(wanted(op) for _, _, op in flow.ops(module))
+
+
 def forward_all(module: ir.Module, transfer):
     """(routine, item, state before it) for every reachable operation, with the stream's state."""
     entries = flow.stream_entries(module, transfer, frozenset.union, subroutines=True)

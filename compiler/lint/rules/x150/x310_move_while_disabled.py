@@ -47,11 +47,14 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.x150.helpers import const, forward_all, is_go, native
+from mcc.compiler.lint.rules.x150.helpers import any_op, const, forward_all, is_go, native
 
 
 @rule
 def move_while_disabled(ctx: Context) -> None:
+    if not any_op(ctx.module, lambda op: isinstance(op, ir.DriveEnable) or native(op, "ST") or native(op, "OFF")):
+        return  # the drive is never shut down
+
     def transfer(off: frozenset, item) -> frozenset:
         if isinstance(item, ir.DriveEnable):  # ST0 / ST1 (the lowering's neutral form)
             on = const(item.on)

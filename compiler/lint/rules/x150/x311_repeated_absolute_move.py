@@ -53,11 +53,14 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.x150.helpers import axis_of, forward_all, native
+from mcc.compiler.lint.rules.x150.helpers import any_op, axis_of, forward_all, native
 
 
 @rule
 def repeated_absolute_move(ctx: Context) -> None:
+    if not any_op(ctx.module, lambda op: isinstance(op, ir.Move) and op.mode is ir.MoveMode.ABSOLUTE):
+        return  # no absolute move: nothing is reached
+
     def target(item) -> tuple:
         value = item.targets[0][1] if item.targets else None
         return (axis_of(item), value.value if isinstance(value, ir.Const) else getattr(value, "name", None))

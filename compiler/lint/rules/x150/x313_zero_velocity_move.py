@@ -44,11 +44,15 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 from mcc.compiler.lint.rules import Context, rule
-from mcc.compiler.lint.rules.x150.helpers import axis_of, const, forward_all, is_go
+from mcc.compiler.lint.rules.x150.helpers import any_op, axis_of, const, forward_all, is_go
 
 
 @rule
 def zero_velocity_move(ctx: Context) -> None:
+    if not any_op(ctx.module, lambda op: isinstance(op, ir.SetMotion) and op.param is ir.MotionParam.MAX_SPEED
+                  and const(op.value) == 0):
+        return  # V0 is never set
+
     def transfer(zero: frozenset, item) -> frozenset:
         if isinstance(item, ir.SetMotion) and item.param is ir.MotionParam.MAX_SPEED:
             return zero | {item.axis} if const(item.value) == 0 else zero - {item.axis}
