@@ -43,30 +43,28 @@ def boot_state(profile: Profile | None) -> State:
 
 def changers(module: ir.Module) -> set[str]:
     """Routines that may switch the mode, directly or through the routines they call."""
-    direct: set[str] = set()
-    calls: dict[str, set[str]] = {}
-    for routine in module.routines:
-        for block in routine.blocks:
-            for op in block.ops:
-                if switch(op) is not None:
-                    direct.add(routine.name)
-                elif isinstance(op, ir.Call):
-                    calls.setdefault(routine.name, set()).add(op.routine)
-    return ir.callers_of(direct, calls)
+    return _Program(module).changing
+
+
+def relevant_ops(block: ir.Block) -> list[ir.Op]:
+    """The operations of `block` that `_Flow.after` does not pass through unchanged (ABS, INC and
+    calls): the fixpoint walks each block several times, and most operations are neither."""
+    return [op for op in block.ops if isinstance(op, ir.Call) or switch(op) is not None]
 
 
 class _Plan:
     """One routine's blocks as positions, for the walks of `_Flow.routine` (each routine is walked
     in every round of both fixpoints of `resolve`): per block, the operations that matter and the
-    positions of its successors inside the routine; the blocks that return. Walking lists by
-    position instead of dictionaries by label made the pass grow with the program as the others
-    do (it had grown 7x from 8,000 to 32,000 lines, issue 26)."""
+    positions of its successors inside the routine; the blocks that call or return. Walking lists
+    by position instead of dictionaries by label, with the operations that matter found once,
+    made the pass grow with the program as the others do (it had grown 7x from 8,000 to 32,000
+    lines, issue 26)."""
 
-    def __init__(self, routine: ir.Routine, ops_of):
+    def __init__(self, routine: ir.Routine):
         self.routine = routine
         self.labels = [block.label for block in routine.blocks]
         position = {label: index for index, label in enumerate(self.labels)}
-        self.relevant = [ops_of(block) for block in routine.blocks]
+        self.relevant = [relevant_ops(block) for block in routine.blocks]
         self.successors = [[position[s] for s in ir.successors(block.terminator) if s in position]
                            for block in routine.blocks]
         # the blocks the final walk over the solved states looks at, in order: those that call a
@@ -77,16 +75,42 @@ class _Plan:
                           or any(isinstance(op, ir.Call) for op in self.relevant[index])]
 
 
+class _Program:
+    """What both fixpoints of `resolve` read of a module that does not change meanwhile, found in
+    one pass over its operations: each routine's plan, the routines that may switch the mode
+    (directly or through the routines they call) and the routines some call names."""
+
+    def __init__(self, module: ir.Module):
+        self.plans = {routine.name: _Plan(routine) for routine in module.routines}
+        direct: set[str] = set()
+        calls: dict[str, set[str]] = {}
+        for routine in module.routines:
+            for ops in self.plan(routine).relevant:
+                for op in ops:
+                    if switch(op) is not None:
+                        direct.add(routine.name)
+                    elif isinstance(op, ir.Call):
+                        calls.setdefault(routine.name, set()).add(op.routine)
+        self.changing = ir.callers_of(direct, calls)
+        self.called = {name for names in calls.values() for name in names}
+
+    def plan(self, routine: ir.Routine) -> _Plan:
+        found = self.plans.get(routine.name)
+        if found is None or found.routine is not routine:  # two routines of one name: each its own
+            found = _Plan(routine)
+        return found
+
+
 class _Flow:
     """The fixpoint over routines: entry and return states per routine."""
 
-    def __init__(self, module: ir.Module, boot: State, plans: dict[str, _Plan] | None = None):
+    def __init__(self, module: ir.Module, boot: State, program: _Program | None = None):
         self.module = module
         self.boot = boot
-        self.changing = changers(module)
+        self.program = _Program(module) if program is None else program  # shared by the flows of one module
+        self.changing = self.program.changing
         self.kinds = {routine.name: routine.kind for routine in module.routines}
-        self.plans: dict[str, _Plan] = {} if plans is None else plans  # shared by the flows of one module
-        called = {op.routine for _, block in module.blocks() for op in block.ops if isinstance(op, ir.Call)}
+        called = self.program.called
         self.entry: dict[str, State] = {}
         for routine in module.routines:
             uncalled = routine.kind is not ir.RoutineKind.SUBROUTINE or routine.name not in called
@@ -95,16 +119,6 @@ class _Flow:
         self.exit: dict[str, State] = {r.name: NONE for r in module.routines}
         self.blocks: dict[str, State] = {}
         self.final = False  # set once the exits are known: see `after`
-        self.relevant: dict[int, list[ir.Op]] = {}  # id(block) -> its switches and calls
-
-    def ops_of(self, block: ir.Block) -> list[ir.Op]:
-        """The operations of `block` that `after` does not pass through unchanged (ABS, INC and
-        calls): the fixpoint walks each block several times, and most operations are neither."""
-        found = self.relevant.get(id(block))
-        if found is None:
-            found = [op for op in block.ops if isinstance(op, ir.Call) or switch(op) is not None]
-            self.relevant[id(block)] = found
-        return found
 
     def after(self, op: ir.Op, state: State, calls: dict[str, State] | None) -> State:
         if not state:
@@ -123,18 +137,11 @@ class _Flow:
                 return returned or (state if self.final else NONE)
         return state
 
-    def plan(self, routine: ir.Routine) -> _Plan:
-        """The walk plan of a routine, made once per module (see `_Plan`)."""
-        found = self.plans.get(routine.name)
-        if found is None or found.routine is not routine:
-            found = self.plans[routine.name] = _Plan(routine, self.ops_of)
-        return found
-
     def routine(self, routine: ir.Routine, calls: dict[str, State]) -> State:
         """Solve one routine from its entry state; the union of the states it returns in."""
         if not routine.blocks:
             return NONE
-        plan = self.plan(routine)
+        plan = self.program.plan(routine)
         relevant, successors = plan.relevant, plan.successors
         states: list[State] = [NONE] * len(relevant)
         states[0] = self.entry[routine.name]
@@ -231,7 +238,7 @@ def _stated(module: ir.Module, flow: _Flow) -> str:
     left (L1569: INC stays in force): solved again from "either mode" at the start. "start" when
     the main program's first statement is the switch; "paths" otherwise; "" when not stated."""
     if flow.boot != BOTH:
-        flow = _Flow(module, BOTH, flow.plans)  # the same module, unchanged: the same plans
+        flow = _Flow(module, BOTH, flow.program)  # the same module, unchanged: the same plans
         flow.solve()
     for routine in module.routines:
         for block in routine.blocks:
