@@ -57,11 +57,35 @@ def exact(found: Positions, factor: Fraction) -> bool:
     return all(units.scale_steps(v, factor).exact for v in found.constants)
 
 
+def exact_at(found: Positions, source_spr: int, target_spr: int, whole: list[int] | None) -> bool:
+    """`exact(found, units.ratio(source_spr, target_spr))` in integers, for the scan of every
+    candidate (X150 CUR has 32,767: with Fractions the scan took about a second per compile, issue
+    26). `whole`: the distinct constants as integers, None when one is not a whole number."""
+    if source_spr <= 0 or target_spr <= 0 or source_spr == target_spr:
+        return True  # a factor of 1: every position stays what it is
+    if found.computed and target_spr % source_spr:
+        return False
+    if whole is None:
+        return False  # a fraction of a step only converts exactly with a factor of 1
+    return all(value * target_spr % source_spr == 0 for value in whole)
+
+
+def whole_constants(found: Positions) -> list[int] | None:
+    """The distinct constants as integers (as `units.scale_steps` reads them), None if one is not whole."""
+    values = set()
+    for value in found.constants:
+        if not (isinstance(value, int) or float(value).is_integer()):
+            return None
+        values.add(int(value))
+    return sorted(values, key=lambda v: (v == 0, v))  # a zero converts with any factor: last
+
+
 def choose(source_spr: int, current: int, candidates: list[int], found: Positions) -> int | None:
     """A steps-per-revolution of `candidates` for the target, or None (keep `current`)."""
     if not source_spr or found.fixed or exact(found, units.ratio(source_spr, current)):
         return None
-    fitting = [c for c in candidates if exact(found, units.ratio(source_spr, c))]
+    whole = whole_constants(found)
+    fitting = [c for c in candidates if exact_at(found, source_spr, c, whole)]
     if not fitting:
         return None
 

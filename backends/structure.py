@@ -145,11 +145,9 @@ def structure(routine: ir.Routine, flag: Callable[[int], ir.Var | None], dispatc
     included. `stops` are the terminator kinds written in place as an `EndNode` (the routine does not
     go on after them); `repeat=True` makes loops tested at their end `RepeatNode`s instead of
     flagged whiles."""
-    flagged = ir.Routine(routine.name, routine.kind, [copy_block(b) for b in routine.blocks], routine.span,
-                         routine.number)
     try:
-        graph = flag_loops(flagged, flag, max_copied, stops, repeat)
-        structurer = Structurer(flagged, tail_copy, stops, repeat, graph)
+        graph = flag_loops(routine, flag, max_copied, stops, repeat)  # rewrites a copy, if anything
+        structurer = Structurer(routine, tail_copy, stops, repeat, graph)
         return Structured(structurer.run(), structurer.exit_span)
     except Unstructurable as why:
         var = dispatch_var()
@@ -361,9 +359,11 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
     `max_copied` of them, with a flag otherwise. `flag(depth)` gives the flag of a loop nested in
     `depth` others. Raises Unstructurable when the graph is irreducible, a loop has several exits
     (the dispatch fallback handles those) or no flag is left. Returns the graph of the routine as
-    it leaves (the structurer reads the same graph: it is not built twice)."""
+    it leaves (the structurer reads the same graph: it is not built twice). `routine` itself is not
+    changed: the first rewrite copies its blocks."""
     counter = 0
     done: set[str] = set()
+    copied = False
     while True:
         graph = Graph(routine, stops)
         if not graph.reducible:
@@ -394,6 +394,13 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
             raise Unstructurable("no temporary variable is left for a loop flag")
         counter += 1
         span = graph.blocks[header].span
+        if not copied:
+            # The first rewrite works on a copy of the blocks (the caller's routine stays as it
+            # was: the dispatch fallback reads it); a routine with no loop to flag, the common
+            # case, is not copied at all (issue 26: the copy was a pass over every block).
+            routine = ir.Routine(routine.name, routine.kind, [copy_block(b) for b in routine.blocks],
+                                 routine.span, routine.number)
+            copied = True
         pre = ir.Block(f"{routine.name}.pre{counter}%", [ir.Assign(var, ir.Const(1), span)], span=span)
         test = ir.Block(f"{routine.name}.test{counter}%", span=span)
         leave = ir.Block(f"{routine.name}.leave{counter}%", [ir.Assign(var, ir.Const(0), span)], span=span)

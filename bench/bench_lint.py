@@ -16,6 +16,7 @@ shows whether the growth is linear (it should stay flat down the column). The th
 flow analyses quadratic and the structurer recurse.
 
 Run: .venv/bin/python bench/bench_lint.py [--files N] [--repeat R] [--sizes 1000,2000,...] [--skip-tree]
+     .venv/bin/python bench/bench_lint.py --check-growth --sizes 2000,8000,32000 (check alone, its growth)
 """
 
 from __future__ import annotations
@@ -172,6 +173,24 @@ must-home = true
 """ + "".join(f"[tool.mcc.axes.{axis}]\nmin = -1000000\nmax = 1000000\n" for axis in "XYZU")
 
 
+def check_growth_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
+    """`mcc check` alone on the growing programs, with the growth from the size a quarter as large
+    (issue 26: Arcus at most 4.4x from 8,000 to 32,000 lines; 4x is linear)."""
+    print("check growth on one program (CPU time, best of %d runs)" % repeat)
+    print(f"  {'dialect':8} {'lines':>6} {'check s':>8} {'ms/1k lines':>12} {'x from 1/4':>11}")
+    for dialect in dialects:
+        path = f"bench{EXTENSION[dialect]}"
+        driver.check_file(path, dialect, text=program(dialect, 200))  # imports, catalogs, parsers
+        times: dict[int, float] = {}
+        for size in sizes:
+            text = program(dialect, size)
+            times[size] = timed(repeat, lambda: driver.check_file(path, dialect, text=text))
+            quarter = times.get(size // 4)
+            growth = f"{times[size] / quarter:>10.2f}x" if quarter else f"{'':>11}"
+            print(f"  {dialect:8} {text.count(chr(10)):>6} {times[size]:>8.3f} "
+                  f"{times[size] * 1e6 / text.count(chr(10)):>12.1f} {growth}")
+
+
 def envelope_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
     """The envelope rules' analysis (G301-G304, issue 27) on one growing program: the interval
     analysis visits each block a bounded number of times, so ms per 1,000 lines should stay flat.
@@ -229,11 +248,16 @@ def main() -> None:
     args.add_argument("--dialects", default="arcus,mcode,x150", help="dialects of the one-program tables")
     args.add_argument("--skip-tree", action="store_true", help="only the one-program tables")
     args.add_argument("--envelope-only", action="store_true", help="only the envelope rules' table (issue 27)")
+    args.add_argument("--check-growth", action="store_true",
+                      help="only `mcc check`'s growth table (e.g. --sizes 8000,32000; issue 26)")
     options = args.parse_args()
     dialects = [d for d in options.dialects.split(",") if d]
     args_sizes = [int(n) for n in options.sizes.split(",") if n]
     if options.envelope_only:
         envelope_table(args_sizes, options.repeat, dialects)
+        return
+    if options.check_growth:
+        check_growth_table(args_sizes, options.repeat, dialects)
         return
     growth_table(args_sizes, options.repeat, dialects)
     envelope_table(args_sizes, options.repeat, dialects)

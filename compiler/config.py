@@ -17,7 +17,6 @@ e.g. an unknown code) becomes a diagnostic on the TOML file, at the line of the 
 
 from __future__ import annotations
 
-import difflib
 import fnmatch
 import os
 import re
@@ -30,6 +29,7 @@ from mcc.compiler import dialects, toml
 from mcc.compiler.codes import registry
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Kind, Severity
 from mcc.compiler.span import SourceFile, Span
+from mcc.compiler.suggest import close_matches
 
 CONFIG_FILES = ("mcc.toml", "pyproject.toml")
 ALWAYS_ON = ("G001", "G102", "G103")  # internal errors and configuration errors
@@ -381,7 +381,7 @@ class Reader:
             return Settings(root=root, path=str(self.path))
         for key in table:
             if key not in KNOWN_KEYS:
-                near = difflib.get_close_matches(key.replace("_", "-"), KNOWN_KEYS, n=1, cutoff=0.6)
+                near = close_matches(key.replace("_", "-"), KNOWN_KEYS, n=1, cutoff=0.6)
                 hint = f"; did you mean '{near[0]}'?" if near else f" (known keys: {', '.join(KNOWN_KEYS)})"
                 self.error("G102", (key,), f"unknown configuration key '{key}'{hint}")
         lists = {key: self.codes(table, key) for key in ("select", "extend-select", "ignore")}
@@ -524,7 +524,7 @@ class Reader:
                 self.error("G103", keys, f"'{ext}' is not a file extension (write it without the dot: lxt = \"mcode\")")
                 continue
             if not isinstance(dialect, str) or dialect not in known:
-                near = difflib.get_close_matches(str(dialect).lower(), known, n=1, cutoff=0.5)
+                near = close_matches(str(dialect).lower(), known, n=1, cutoff=0.5)
                 hint = f"; did you mean '{near[0]}'?" if near else ""
                 self.error("G103", keys, f"'{dialect}' is not a dialect ({', '.join(known)}){hint}",
                            needle=dialect if isinstance(dialect, str) else None)

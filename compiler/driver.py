@@ -374,10 +374,12 @@ def compile_file(path: str, dialect: str | None = None, target: str | None = Non
         stats.lines_after = target_lines(listing)
         budget = [d for d in listing.diagnostics if d.code in BUDGET_CODES and d.severity.value == "error"]
         if budget and not passes:
+            # one note for every budget diagnostic: whether a higher level fits does not depend on
+            # the diagnostic (asked once per diagnostic, a program over its memory by many sequences
+            # was compiled twice per sequence: minutes for a 150-deep call chain, issue 26)
+            note = fits_at(module, target_dialect, target_profile, opt_level)
             listing.diagnostics.items[:] = [d for d in listing.diagnostics
-                                            if d not in budget] + [with_level_note(d, fits_at(
-                                                module, target_dialect, target_profile, opt_level))
-                                                                   for d in budget]
+                                            if d not in budget] + [with_level_note(d, note) for d in budget]
         level = f"; optimization: -{stats.level}" + (f" (passes {passes})" if passes else "")
         listing.header = "\n".join(filter(None, [listing.header.rstrip("\n"), level]))
         diags.extend(listing.diagnostics)

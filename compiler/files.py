@@ -25,7 +25,6 @@ from __future__ import annotations
 import errno
 import os
 import stat
-import tempfile
 from dataclasses import dataclass
 
 from mcc.compiler.span import normalise_newlines
@@ -236,6 +235,8 @@ def stage(path: str, data: bytes) -> str:
     folder = os.path.dirname(os.path.abspath(target))
     name = os.path.basename(target)
     try:
+        import tempfile  # only when writing: a check never loads it (start-up, issue 26)
+
         fd, tmp = tempfile.mkstemp(prefix=f".{name}.", suffix=".tmp", dir=folder)
     except OSError as exc:
         raise FileError(path, f"cannot create a file in {folder}: {reason_of(exc)}") from None

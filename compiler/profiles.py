@@ -89,7 +89,10 @@ def _read(path: Path) -> dict:
     from mcc.compiler.files import read_bytes  # only regular files: a FIFO named as a profile never blocks
 
     try:
-        data = toml.loads(read_bytes(str(path)).decode("utf-8"))
+        if path.parent == PROFILE_DIR:  # a built-in profile: parsed once, then read from the cache
+            data = toml.load_data_file(path)
+        else:
+            data = toml.loads(read_bytes(str(path)).decode("utf-8"))
     except (OSError, UnicodeDecodeError) as exc:
         raise ProfileError(f"cannot read profile {path}: {exc}") from None
     except toml.TOMLDecodeError as exc:

@@ -5,27 +5,41 @@ what a small `mcc check` cost as a whole process (issue 26). `load_data_file` ke
 table in the user's cache directory as `marshal` data keyed by the file's path, size and time of
 change, so a process reads it back in a fraction of the parse; anything wrong with the cache (no
 directory, no permission, a damaged entry, a value marshal cannot hold) only means parsing again.
+
+Start-up cost (issue 26): the TOML parser is imported only when a file is parsed (a process whose
+data files are all cached never imports it), and an entry is named by a CRC-32 of its key (zlib)
+rather than a SHA-256 (hashlib loads OpenSSL: about 5 ms of a small `mcc check`); the entry holds
+its whole key, so two keys with the same CRC only mean parsing again.
 """
 
 from __future__ import annotations
 
-import hashlib
 import marshal
 import os
 import sys
+import zlib
 from pathlib import Path
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover
-    import tomli as tomllib
+CACHE_VERSION = 2
 
-TOMLDecodeError = tomllib.TOMLDecodeError
-CACHE_VERSION = 1
+
+def _tomllib():
+    if sys.version_info >= (3, 11):
+        import tomllib
+    else:  # pragma: no cover
+        import tomli as tomllib
+    return tomllib
+
+
+def __getattr__(name: str):
+    """`TOMLDecodeError`, imported with the parser on first use."""
+    if name == "TOMLDecodeError":
+        return _tomllib().TOMLDecodeError
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def loads(text: str) -> dict:
-    return tomllib.loads(text)
+    return _tomllib().loads(text)
 
 
 def cache_dir() -> Path | None:
@@ -51,21 +65,24 @@ def load_data_file(path: Path) -> dict:
     entry = None
     if stat is not None and directory is not None:
         key = f"{path.resolve()}|{stat.st_size}|{stat.st_mtime_ns}|{CACHE_VERSION}|{sys.version_info[:2]}"
-        entry = directory / f"toml-{hashlib.sha256(key.encode()).hexdigest()[:32]}.marshal"
+        entry = directory / f"toml-{path.stem}-{zlib.crc32(key.encode()):08x}.marshal"
         try:
-            return marshal.loads(entry.read_bytes())
+            stored_key, data = marshal.loads(entry.read_bytes())
+            if stored_key == key:
+                return data
         except (OSError, EOFError, ValueError, TypeError):
             pass
     data = loads(path.read_text(encoding="utf-8"))
     if entry is not None:
-        store(entry, data)
+        store(entry, key, data)
     return data
 
 
-def store(entry: Path, data: dict) -> None:
-    """Write one cache entry atomically (a concurrent reader sees the old entry or the new one)."""
+def store(entry: Path, key: str, data: dict) -> None:
+    """Write one cache entry, its key and table, atomically (a concurrent reader sees the old entry
+    or the new one)."""
     try:
-        blob = marshal.dumps(data)
+        blob = marshal.dumps((key, data))
     except ValueError:  # a value marshal cannot hold (a TOML date): this file is simply not cached
         return
     try:

@@ -43,27 +43,74 @@ def boot_state(profile: Profile | None) -> State:
 
 def changers(module: ir.Module) -> set[str]:
     """Routines that may switch the mode, directly or through the routines they call."""
-    direct: set[str] = set()
-    calls: dict[str, set[str]] = {}
-    for routine in module.routines:
-        for block in routine.blocks:
-            for op in block.ops:
-                if switch(op) is not None:
-                    direct.add(routine.name)
-                elif isinstance(op, ir.Call):
-                    calls.setdefault(routine.name, set()).add(op.routine)
-    return ir.callers_of(direct, calls)
+    return _Program(module).changing
+
+
+def relevant_ops(block: ir.Block) -> list[ir.Op]:
+    """The operations of `block` that `_Flow.after` does not pass through unchanged (ABS, INC and
+    calls): the fixpoint walks each block several times, and most operations are neither."""
+    return [op for op in block.ops if isinstance(op, ir.Call) or switch(op) is not None]
+
+
+class _Plan:
+    """One routine's blocks as positions, for the walks of `_Flow.routine` (each routine is walked
+    in every round of both fixpoints of `resolve`): per block, the operations that matter and the
+    positions of its successors inside the routine; the blocks that call or return. Walking lists
+    by position instead of dictionaries by label, with the operations that matter found once,
+    made the pass grow with the program as the others do (it had grown 7x from 8,000 to 32,000
+    lines, issue 26)."""
+
+    def __init__(self, routine: ir.Routine):
+        self.routine = routine
+        self.labels = [block.label for block in routine.blocks]
+        position = {label: index for index, label in enumerate(self.labels)}
+        self.relevant = [relevant_ops(block) for block in routine.blocks]
+        self.successors = [[position[s] for s in ir.successors(block.terminator) if s in position]
+                           for block in routine.blocks]
+        # the blocks the final walk over the solved states looks at, in order: those that call a
+        # routine (the states at the calls) and those that return (True: the state they return in)
+        self.finishing = [(index, isinstance(block.terminator, (ir.Return, ir.FallOff)))
+                          for index, block in enumerate(routine.blocks)
+                          if isinstance(block.terminator, (ir.Return, ir.FallOff))
+                          or any(isinstance(op, ir.Call) for op in self.relevant[index])]
+
+
+class _Program:
+    """What both fixpoints of `resolve` read of a module that does not change meanwhile, found in
+    one pass over its operations: each routine's plan, the routines that may switch the mode
+    (directly or through the routines they call) and the routines some call names."""
+
+    def __init__(self, module: ir.Module):
+        self.plans = {routine.name: _Plan(routine) for routine in module.routines}
+        direct: set[str] = set()
+        calls: dict[str, set[str]] = {}
+        for routine in module.routines:
+            for ops in self.plan(routine).relevant:
+                for op in ops:
+                    if switch(op) is not None:
+                        direct.add(routine.name)
+                    elif isinstance(op, ir.Call):
+                        calls.setdefault(routine.name, set()).add(op.routine)
+        self.changing = ir.callers_of(direct, calls)
+        self.called = {name for names in calls.values() for name in names}
+
+    def plan(self, routine: ir.Routine) -> _Plan:
+        found = self.plans.get(routine.name)
+        if found is None or found.routine is not routine:  # two routines of one name: each its own
+            found = _Plan(routine)
+        return found
 
 
 class _Flow:
     """The fixpoint over routines: entry and return states per routine."""
 
-    def __init__(self, module: ir.Module, boot: State):
+    def __init__(self, module: ir.Module, boot: State, program: _Program | None = None):
         self.module = module
         self.boot = boot
-        self.changing = changers(module)
+        self.program = _Program(module) if program is None else program  # shared by the flows of one module
+        self.changing = self.program.changing
         self.kinds = {routine.name: routine.kind for routine in module.routines}
-        called = {op.routine for _, block in module.blocks() for op in block.ops if isinstance(op, ir.Call)}
+        called = self.program.called
         self.entry: dict[str, State] = {}
         for routine in module.routines:
             uncalled = routine.kind is not ir.RoutineKind.SUBROUTINE or routine.name not in called
@@ -72,16 +119,6 @@ class _Flow:
         self.exit: dict[str, State] = {r.name: NONE for r in module.routines}
         self.blocks: dict[str, State] = {}
         self.final = False  # set once the exits are known: see `after`
-        self.relevant: dict[int, list[ir.Op]] = {}  # id(block) -> its switches and calls
-
-    def ops_of(self, block: ir.Block) -> list[ir.Op]:
-        """The operations of `block` that `after` does not pass through unchanged (ABS, INC and
-        calls): the fixpoint walks each block several times, and most operations are neither."""
-        found = self.relevant.get(id(block))
-        if found is None:
-            found = [op for op in block.ops if isinstance(op, ir.Call) or switch(op) is not None]
-            self.relevant[id(block)] = found
-        return found
 
     def after(self, op: ir.Op, state: State, calls: dict[str, State] | None) -> State:
         if not state:
@@ -104,29 +141,29 @@ class _Flow:
         """Solve one routine from its entry state; the union of the states it returns in."""
         if not routine.blocks:
             return NONE
-        blocks = {b.label: b for b in routine.blocks}
-        relevant = {label: self.ops_of(block) for label, block in blocks.items()}
-        states: dict[str, State] = {b.label: NONE for b in routine.blocks}
-        first = routine.blocks[0].label
-        states[first] = self.entry[routine.name]
-        work = [first]
+        plan = self.program.plan(routine)
+        relevant, successors = plan.relevant, plan.successors
+        states: list[State] = [NONE] * len(relevant)
+        states[0] = self.entry[routine.name]
+        work = [0]
         returns = NONE
         while work:
-            label = work.pop()
-            state = states[label]
-            for op in relevant[label]:
+            index = work.pop()
+            state = states[index]
+            for op in relevant[index]:
                 state = self.after(op, state, None)
-            for succ in ir.successors(blocks[label].terminator):
-                if succ in states and not state <= states[succ]:
+            for succ in successors[index]:
+                if not state <= states[succ]:
                     states[succ] = states[succ] | state
                     work.append(succ)
-        for block in routine.blocks:
-            state = states[block.label]
-            for op in self.ops_of(block):
+        for index, returning in plan.finishing:
+            state = states[index]
+            for op in relevant[index]:
                 state = self.after(op, state, calls)
-            if isinstance(block.terminator, (ir.Return, ir.FallOff)):
+            if returning:
                 returns |= state
-        self.blocks.update(states)
+        if self.final:  # the states of the last walk are the ones kept (each round walks every routine)
+            self.blocks.update(zip(plan.labels, states))
         return returns
 
     def widen_entries(self, calls: dict[str, State]) -> bool:
@@ -201,7 +238,7 @@ def _stated(module: ir.Module, flow: _Flow) -> str:
     left (L1569: INC stays in force): solved again from "either mode" at the start. "start" when
     the main program's first statement is the switch; "paths" otherwise; "" when not stated."""
     if flow.boot != BOTH:
-        flow = _Flow(module, BOTH)
+        flow = _Flow(module, BOTH, flow.program)  # the same module, unchanged: the same plans
         flow.solve()
     for routine in module.routines:
         for block in routine.blocks:

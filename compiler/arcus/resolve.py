@@ -10,7 +10,6 @@ operands, ranges. The result is a `Resolved` statement the lowering turns into I
 
 from __future__ import annotations
 
-import difflib
 import re
 from dataclasses import dataclass, field
 
@@ -19,6 +18,7 @@ from mcc.compiler.arcus import syntax as st
 from mcc.compiler.diagnostics import Diagnostics, Severity
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import Span
+from mcc.compiler.suggest import close_matches
 
 VALUE = re.compile(r"([+-]?)([0-9]+)\Z")
 VARIABLE = re.compile(r"V([0-9]+)\Z")
@@ -205,7 +205,7 @@ class Resolver:
                            f"'{part.word}{part.sign}{part.number}' is not a complete {keyword.name} statement: "
                            f"write {keyword.usage} (e.g. {keyword.example})")
             return
-        near = difflib.get_close_matches(part.word.upper(), self.cat.names(), n=3, cutoff=0.6)
+        near = close_matches(part.word.upper(), self.cat.names(), n=3, cutoff=0.6)
         hint = f"; did you mean {' or '.join(near)}?" if near else ""
         self.diags.add("A101", part.word_span, f"unknown keyword '{part.word}'{hint}")
 

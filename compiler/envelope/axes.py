@@ -9,9 +9,10 @@ accelerations in steps/s². A table gives its lengths in `unit` = "steps" (the d
 
 from __future__ import annotations
 
-import difflib
 from dataclasses import dataclass, fields, replace
 from typing import Any
+
+from mcc.compiler.suggest import close_matches
 
 KEYS = ("unit", "min", "max", "home", "max-speed", "max-accel", "must-home", "steps-per-mm", "steps-per-rev",
         "lead")
@@ -69,7 +70,7 @@ def parse_axis(axis: str, raw: dict, keys: tuple[str, ...], problems: list) -> A
     bad = len(problems)
     for key in raw:
         if key not in KEYS:
-            near = difflib.get_close_matches(key.replace("_", "-"), KEYS, n=1, cutoff=0.6)
+            near = close_matches(key.replace("_", "-"), KEYS, n=1, cutoff=0.6)
             hint = f"; did you mean '{near[0]}'?" if near else f" (known keys: {', '.join(KEYS)})"
             problems.append(((*keys, key), "G102", f"unknown envelope key '{key}'{hint}"))
     values: dict[str, float] = {}

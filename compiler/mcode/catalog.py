@@ -169,7 +169,7 @@ def for_profile(profile) -> McodeCatalog:
 
 @lru_cache(maxsize=1)
 def _families_data() -> dict:
-    return toml.loads((generic.CATALOG_DIR / FAMILIES_FILE).read_text(encoding="utf-8")).get("variant", {})
+    return toml.load_data_file(generic.CATALOG_DIR / FAMILIES_FILE).get("variant", {})
 
 
 def families() -> dict[str, dict]:

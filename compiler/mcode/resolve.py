@@ -8,7 +8,6 @@ catalog's argument list: count, kind (label, variable, condition, string) and co
 
 from __future__ import annotations
 
-import difflib
 import re
 from dataclasses import dataclass, field
 
@@ -16,6 +15,7 @@ from mcc.compiler.diagnostics import Diagnostics, Edit, Fix
 from mcc.compiler.mcode import catalog as cat
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.profiles import Profile
+from mcc.compiler.suggest import close_matches
 
 USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]{0,2}\Z")
 STRICT_USER_NAME = re.compile(r"[A-Za-z][A-Za-z0-9]\Z")
@@ -207,7 +207,7 @@ class Resolver:
         """Up to three names close to `text`, those with its first letter first."""
         choices = list(self.cat.commands) + list(self.names.variables)
         word = text.upper()
-        near = difflib.get_close_matches(word, choices, n=12, cutoff=0.5)
+        near = close_matches(word, choices, n=12, cutoff=0.5)
         return sorted(near, key=lambda c: (c[:1] != word[:1], near.index(c)))[:3]
 
     def unknown(self, head: st.Name, also: str = "") -> None:

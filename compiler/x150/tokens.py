@@ -16,11 +16,11 @@ silent trial parse first.
 
 from __future__ import annotations
 
-import difflib
 import re
 from typing import Callable
 
 from mcc.compiler.span import Span
+from mcc.compiler.suggest import close_matches
 from mcc.compiler.x150 import syntax as st
 from mcc.compiler.x150.catalog import Command as CatalogCommand
 from mcc.compiler.x150.catalog import X150Catalog
@@ -241,7 +241,7 @@ class CommandReader:
         name = word.group()
         cmd.written = name
         cmd.mnemonic_span = sub(pos, word.end())
-        close = difflib.get_close_matches(name.upper(), self.names, n=3, cutoff=0.6)
+        close = close_matches(name.upper(), self.names, n=3, cutoff=0.6)
         hint = f" (did you mean {', '.join(close)}?)" if close else ""
         add_problem(cmd, st.Problem("X101", cmd.mnemonic_span,
                                        f"'{name}' is not an X150 command{hint}; see the command list in "
