@@ -9,8 +9,9 @@ from click.testing import CliRunner
 from mcc.cli.commands import cli
 from mcc.compiler import ir
 
-# lexium-mcode.txt: VM sets the maximum velocity in steps/s, MA an absolute move, H waits for it
-PROGRAM = "VM=5120\nA=20000\nD=20000\nPG 100\nMA 51200\nH\nO1=1\nE\nPG\n"
+# lexium-mcode.txt: VM sets the maximum velocity in steps/s, MA an absolute move, H waits for it; VI=10
+# keeps the X150 conversion within its start-speed drift (X216: X150 starts moves from standstill)
+PROGRAM = "VM=5120\nVI=10\nA=20000\nD=20000\nPG 100\nMA 51200\nH\nO1=1\nE\nPG\n"
 
 
 def slow_down(module: ir.Module, context) -> int:
@@ -39,7 +40,7 @@ def test_a_wrong_optimization_is_refused_by_default(tmp_path, monkeypatch):
     result, out = run([], tmp_path)
     assert result.exit_code == 1, result.output
     assert not out.exists()
-    assert "S010" in result.output and "p.mxt:5:" in result.output and "MA 51200" in result.output  # the move that arrives late
+    assert "S010" in result.output and "p.mxt:6:" in result.output and "MA 51200" in result.output  # the move that arrives late
 
 
 def test_no_verify_writes_it_and_says_so(tmp_path, monkeypatch):
