@@ -9,15 +9,15 @@ at its line, upfront, rather than leave it to the validation (S010). A value com
 variables at run time is the validation's to compare."""
 from __future__ import annotations
 
+from mcc.backends import division
 from mcc.compiler import ir
 
 INT32 = (-2**31, 2**31 - 1)
 
 
 def constant(expr) -> int | float | None:
-    """The value of an expression made of constants and + - *, else None."""
-    if isinstance(expr, ir.Const) and isinstance(expr.value, (int, float)):
-        return expr.value
+    """The value of an expression made of constants and + - *, else None (a constant operand is
+    division.constant's)."""
     if isinstance(expr, ir.UnOp) and expr.op == "-":
         inner = constant(expr.operand)
         return -inner if inner is not None else None
@@ -26,7 +26,7 @@ def constant(expr) -> int | float | None:
         if left is None or right is None:
             return None
         return left + right if expr.op == "+" else left - right if expr.op == "-" else left * right
-    return None
+    return division.constant(expr)
 
 
 def overflow(module: ir.Module, op: ir.Assign) -> str | None:
