@@ -82,9 +82,9 @@ def drop(module: ir.Module, target: str) -> tuple[ir.Module, list[Dropped]]:
 def message(item: Dropped, target_title: str) -> str:
     """The G051 warning for one setting left out."""
     return (f"the setting '{item.name}' ({item.meaning}) only sets up the drive, which {target_title} sets up "
-            "outside the program or does not have: it is left out and listed at the top of the output; set the "
-            "target drive up by hand, or set `cross.drop-drive-setup = false` in [tool.mcc] to refuse the program "
-            "instead")
+            "outside the program or does not have: it is left out and listed at the top of the output; where the "
+            "target drive has it (a motor current), set it up there by hand; set `cross.drop-drive-setup = false` "
+            "in [tool.mcc] to refuse the program instead")
 
 
 def comment_lines(dropped: list[Dropped], comment: str) -> list[str]:
