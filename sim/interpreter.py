@@ -267,6 +267,9 @@ class Simulator:
         self.poll_changes = 0
         self.poll_vars: dict = {}
         self.poll_steps = 0
+        # the stretch without a change that a poll ends: the events and steps when it began, and
+        # the step of the last event (`Trace.repeats_from`)
+        self.quiet_events, self.quiet_step, self.event_step = 0, 0, -1
         self.wakes = 0  # delays that ended: a round of a delay-paced loop changes nothing else
         self.round: RoundMark | None = None  # the last time the running loop went round
         self.round_reads: set[tuple[str, str]] = set()  # readings that change with time, this round
@@ -440,6 +443,7 @@ class Simulator:
                 elif nxt == INF and moving:  # an axis slews on while the loop sees nothing new
                     nxt = self.options.until + 1
                 elif nxt == INF:
+                    self._note_repeats()
                     raise Stop("waiting", "the program polls in a loop for a change the scenario never "
                                           f"makes (at line {self._line_now()})")
                 self.stack[-1].wait = None
@@ -550,6 +554,8 @@ class Simulator:
         polling = self.polling and self.changes - self.var_changes == self.poll_changes \
             and self.vars == self.poll_vars
         threshold = POLL_RECHECK if polling else self.options.spin
+        if not polling:
+            self._quiet_begins()
         while self.stack:
             frame = self.stack[-1]
             if frame.wait is not None:
@@ -615,6 +621,7 @@ class Simulator:
                     round_states.add(state)
             if changed:
                 quiet, last_changes = 0, self.changes - self.var_changes
+                self._quiet_begins()
                 self.read_continuous = False
                 polling, threshold = False, self.options.spin
             else:
@@ -628,6 +635,17 @@ class Simulator:
                     self.poll_vars = dict(self.vars)
                     return
         self.polling = False
+
+    def _quiet_begins(self) -> None:
+        self.quiet_events, self.quiet_step = len(self.trace.events), self.trace.steps
+
+    def _note_repeats(self) -> None:
+        """Before a run stops polling for good: when its loop made events in the later half of the
+        stretch without a change, those rounds repeat for ever (`Trace.repeats_from`); a loop that
+        made a few events and then only polled quietly does not."""
+        quiet = self.trace.steps - self.quiet_step
+        if self.event_step >= self.quiet_step and self.trace.steps - self.event_step < quiet / 2:
+            self.trace.repeats_from = self.quiet_events
 
     def _poll_point(self) -> bool:
         """Whether a quiet loop pauses here: where it goes round, or `poll_offset` steps later."""
@@ -1170,7 +1188,14 @@ class Simulator:
         run = HomeRun(op, switch, limits, creep)
         delta = switch - (axis.position + axis.offset)
         if delta == 0:  # on the switch already: it trips at once
+            before = (axis.position, axis.offset)
+            still = axis.homed == (*before, self.motion_ids)  # where the last homing ended
+            count = len(self.trace.events)
             self._home_tripped(axis, run, 0.0)
+            if still and axis.homing is None and (axis.position, axis.offset) == before:
+                for event in self.trace.events[count - 1:]:  # it changed nothing, as a move to where
+                    if event.kind in ("home", "home_end"):  # the axis is does not (sim/verify.py)
+                        event.data["idle"] = True
             return
         try:
             segments, speed = plan_seek(self.now, abs(delta), limits)
@@ -1230,6 +1255,7 @@ class Simulator:
         if run.op.zero == "end":
             axis.position, axis.offset = 0.0, axis.position + axis.offset
         axis.on_end, axis.homing = "", None
+        axis.homed = (axis.position, axis.offset, self.motion_ids)
         machine = axis.position + axis.offset
         self._event(run.op, "home_end", axis=axis.name, position=_round(axis.position), machine=_round(machine),
                     zero=_round(axis.offset))
@@ -1753,6 +1779,8 @@ class Simulator:
     def _event(self, item, kind: str, **data) -> None:
         if self.polling and kind in QUIET_KINDS:
             return  # a polling loop's calls and returns would fill the trace with nothing new
+        if kind not in QUIET_KINDS:
+            self.event_step = self.trace.steps
         self.trace.events.append(Event(self.now, kind, _line(getattr(item, "span", None)), data))
 
     def _finish(self) -> None:

@@ -40,6 +40,9 @@ class Axis:
     home_accel: float | None = None  # X150 GA: homing ramps at it rather than at the move acceleration
     home_final_speed: float | None = None  # the home_final_speed setting: the creep runs at it
     homing: object = None  # the homing in progress (interpreter.HomeRun), while on_end is "home"
+    # (position, offset, motions begun) when its last homing ended: a homing that finds the axis
+    # still there, nothing having moved since, does nothing (interpreter._home)
+    homed: tuple | None = None
     cached: Limits | None = None  # the limits in force, until a setting changes
 
     def at(self, t: float) -> float:

@@ -62,6 +62,10 @@ class Trace:
     points: list[tuple[str, float, float]] = field(default_factory=list)
     # (loop header, time) each time the main routine enters a loop header: sim/cycles.py
     cycle_marks: list[tuple[str, float]] = field(default_factory=list)
+    # a run stopped polling ("waiting") while its loop still made events each round (a HOME on a
+    # switch that is already active, over and over at one instant): the index of the first event of
+    # that stretch without a change, whose rounds repeat for ever; None otherwise (sim/verify.py)
+    repeats_from: int | None = None
     _samples: dict | None = None
 
     @property

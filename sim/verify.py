@@ -492,6 +492,11 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
     if stop is None and limited and horizon != ALL:  # both reached the horizon: what happens within the
         end = min(a.time, b.time) if horizon is None else horizon  # tolerance of it may or may not
         cut = end - within.at(end, _motions(a))
+    repeating = _repeating(a, b, ratio, scenario, kinds, within) if stop is None else None
+    if isinstance(repeating, Divergence):
+        return repeating
+    if repeating is not None:  # both repeat for ever: compared up to where they began to repeat
+        a, b = repeating
     ea, eb = _observable(a, None, kinds), _observable(b, None, kinds)
     counted = by_count and a.stopped == b.stopped == "step-limit" and stop is None
     if counted:
@@ -533,6 +538,75 @@ def compare_traces(a: Trace, b: Trace, ratio: Fraction = Fraction(1), scenario: 
     return None
 
 
+def _repeating(a: Trace, b: Trace, ratio: Fraction, scenario: str, kinds: tuple[str, ...],
+               within: Tolerance) -> Divergence | tuple[Trace, Trace] | None:
+    """Two runs stopped polling at the same time, one or both making the same events round after
+    round for ever (`Trace.repeats_from`): how many rounds each made before the poll detector
+    stopped it depends on its steps per round, which a rewrite may change. They are alike when
+    both repeat the same round (up to where it starts) after the same events; then the answer is
+    both traces cut where their repeating began, for the caller to compare those events. None: not
+    both repeat (a run that repeats where the other does not is a difference)."""
+    if a.repeats_from is None and b.repeats_from is None:
+        return None
+    if a.stopped != "waiting" or b.stopped != "waiting":
+        return None
+    parts = [_repeated_round(t, kinds) for t in (a, b)]
+    (before_a, period_a), (before_b, period_b) = parts
+    if not period_a or not period_b:
+        if not period_a and not period_b:
+            return None  # its repeated rounds hold nothing compared here
+        which, period = ("output", period_b) if period_b else ("source", period_a)
+        return Divergence(scenario, a.time, _last_line(a),
+                          f"the {which} does {_show(period[0])} over and over at {a.time:.3f} s, the other "
+                          f"does not")
+    axis_map = _axis_map(a, b)
+    slack = within.at(a.time, _motions(a))
+    if len(period_a) != len(period_b) or not any(
+            all(not _differ(x, period_b[(i + shift) % len(period_b)], axis_map, float(ratio), slack, within.relative)
+                for i, x in enumerate(period_a)) for shift in range(len(period_b))):
+        return Divergence(scenario, a.time, period_a[0].line,
+                          f"the source repeats {', '.join(_show(e) for e in period_a[:4])} for ever at "
+                          f"{a.time:.3f} s, the output {', '.join(_show(e) for e in period_b[:4])}")
+    return dataclasses.replace(a, events=before_a), dataclasses.replace(b, events=before_b)
+
+
+def _repeated_round(trace: Trace, kinds: tuple[str, ...]) -> tuple[list[Event], list[Event]]:
+    """The observable events of a run before its rounds began to repeat, and one round. The round
+    is taken back over the events before the stretch without a change that showed it (a change
+    made during the first round starts that stretch after it), so two runs whose stretches began
+    at other points of the same rounds give the same events before them."""
+    if trace.repeats_from is None:
+        return _observable(trace, None, kinds), []
+    before = _observable(dataclasses.replace(trace, events=trace.events[:trace.repeats_from]), None, kinds)
+    rounds = _observable(dataclasses.replace(trace, events=trace.events[trace.repeats_from:]), None, kinds)
+    period = rounds[:_period(rounds)]
+    while before and period and _key(before[-1]) == _key(period[-1]):
+        before.pop()
+        period = [period[-1]] + period[:-1]
+    return before, period
+
+
+def _key(event: Event) -> tuple[str, str]:
+    """What an event does, not where or when."""
+    return event.kind, repr(sorted(event.data.items()))
+
+
+def _period(events: list[Event]) -> int:
+    """The shortest round the events repeat (the whole list when they do not), by the prefix
+    function of string matching, on what each event does (not where or when)."""
+    if not events:
+        return 0
+    keys = [_key(e) for e in events]
+    fail = [0] * len(keys)
+    for i in range(1, len(keys)):
+        k = fail[i - 1]
+        while k and keys[i] != keys[k]:
+            k = fail[k - 1]
+        fail[i] = k + (keys[i] == keys[k])
+    period = len(keys) - fail[-1]
+    return period if period < len(keys) else len(keys)
+
+
 def _stop_difference(a: Trace, b: Trace, scenario: str, within: Tolerance) -> Divergence | None:
     """A difference in how the runs stopped: another reason (ended, waiting, an error, a limit) or
     another time. A time limit and a step limit reached at the same time are the same horizon."""
@@ -556,8 +630,9 @@ def _observable(trace: Trace, cut: float | None, kinds: tuple[str, ...] = OBSERV
             continue
         if event.kind == "move" and event.data["from"] == event.data["to"]:
             continue  # a move to where the axis already is does nothing
-        if event.kind == "stop" and event.data.get("idle"):
-            continue  # nor does a stop of an axis at standstill (a target's STOP of every axis)
+        if event.kind in ("stop", "home", "home_end") and event.data.get("idle"):
+            continue  # nor does a stop of an axis at standstill (a target's STOP of every axis), nor
+            # a homing on the switch the axis stands on that leaves its position and zero as they were
         out.append(event)
     return out
 
