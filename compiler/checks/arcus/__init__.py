@@ -5,7 +5,7 @@ The checks of one statement (keywords, forms, operands, ranges) are made while r
 (compiler/arcus/resolve.py) and the block structure while lowering (compiler/arcus/lower.py).
 """
 
-from mcc.compiler.checks import Program, discover, facts
+from mcc.compiler.checks import discover, facts
 
 
 facts("arcus", {
