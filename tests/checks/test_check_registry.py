@@ -140,3 +140,16 @@ def test_a_check_that_reports_an_unnamed_code_fails() -> None:
     context = checks.Context(program, found, Diagnostics())
     with pytest.raises(ValueError, match="also"):
         context.report(Span("t.mxt", 1, 1, 1, 2, 0, 1), "m", code="M101")
+
+
+def test_the_check_packages_are_installed() -> None:
+    """A wheel (and pre-commit's installation from the repository) holds only the packages
+    pyproject.toml lists: a check package left out fails every check there with G001."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:  # Python 3.10
+        import tomli as tomllib
+
+    listed = set(tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))["tool"]["setuptools"]["packages"])
+    packages = {"mcc." + ".".join(p.parent.relative_to(ROOT).parts) for p in codes.CHECKS_DIR.rglob("__init__.py")}
+    assert packages <= listed, f"add to [tool.setuptools] packages: {sorted(packages - listed)}"
