@@ -31,6 +31,8 @@ facts("mcode", {
     "user names": _names,  # labels or variables
     "long lines": _long_lines,  # a line longer than the profile's limits.line_length
     "subroutines": _subroutines,  # a subroutine or handler a program could run into
+    # the profile's mcode.comment_line_policy is "warn" or "error" (docs/dialects/mcode.md)
+    "comment overflow reported": lambda program: program.profile.get("mcode.comment_line_policy", "warn") != "ignore",
 })
 
 discover(__name__, __path__)

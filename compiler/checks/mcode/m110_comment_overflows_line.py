@@ -36,7 +36,7 @@ from mcc.compiler.checks.mcode.helpers import line_limit
 from mcc.compiler.diagnostics import Severity
 
 
-@check(needs=("long lines",))
+@check(needs=("long lines", "comment overflow reported"))
 def comment_overflows_line(ctx: Context) -> None:
     """A line over the limit only with its comment (a longer statement is M109). Whether that is a
     warning, an error or nothing is the profile's `mcode.comment_line_policy`; a line that is only
@@ -45,8 +45,6 @@ def comment_overflows_line(ctx: Context) -> None:
     limit = line_limit(ctx.program)
     policy = ctx.profile.get("mcode.comment_line_policy", "warn")
     comment_only = ctx.profile.get("mcode.comment_only_lines", "ignore")
-    if policy == "ignore":
-        return
     for line in ctx.program.tree.lines:
         text = source.line_text(line.number)
         if len(text) <= limit:
