@@ -50,7 +50,6 @@ class Checker:
         self.cat = cat.load()
         low, high = profile.get("limits.addresses", [1, 16])
         self.addresses = (int(low), int(high))
-        self.nesting = lowering.nesting
         self.case_policy = profile.get("x150.case", "warn")  # asked once, not for every command
         self.max_variable = int(self.cat.limit("variables", "max", 50))
         self.product_notes: dict[cat.Command, str | None] = {}  # see check_product
