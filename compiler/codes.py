@@ -7,11 +7,16 @@ the SARIF rule table and `docs/rules/` are all rendered from it.
 Two places hold the descriptions, never both for one code:
 
 - `compiler/codes/*.toml`: the codes of the frontends, backends, simulator and linter, as data;
-- a lint rule's own module, `compiler/lint/rules/<package>/<code>_<name>.py`: its docstring *is*
-  its page, exactly as `mcc explain` prints it (issue 26: "a new lint rule is one module plus its
-  fixture"), and the registry reads the code's facts back from the page (`parse_page`). The page is
-  read from the file as text, without importing the rule (a `mcc explain` or `mcc check` imports no
-  lint rule), and only when the code is first asked for: `mcc check` of a clean file reads none.
+- a lint rule's own module, `compiler/lint/rules/<package>/<code>_<name>.py`, or a semantic check's,
+  `compiler/checks/<dialect>/<code>_<name>.py`: its docstring *is* its page, exactly as `mcc
+  explain` prints it (issue 26: "a new lint rule is one module plus its fixture"; decisions 0016,
+  0021), and the registry reads the code's facts back from the page (`parse_page`). The page is
+  read from the file as text, without importing the module (a `mcc explain` imports no rule or
+  check), and only when the code is first asked for: `mcc check` of a clean file reads none.
+
+Every semantic code (the 1xx) also says where it is reported (`emitted`, paths in the mcc package):
+the module of its check, or the stages a TOML entry lists (`emitted = ["compiler/mcode/resolve.py"]`);
+tests/checks/test_check_registry.py fails on a code reported in a file its entry does not name.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ from __future__ import annotations
 import os
 import re
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from pathlib import Path
 
@@ -29,7 +34,10 @@ from mcc.compiler.diagnostics import Kind, Severity
 
 CODES_DIR = Path(__file__).parent / "codes"
 RULES_DIR = Path(__file__).parent / "lint" / "rules"  # one package per dialect, one module per rule
+CHECKS_DIR = Path(__file__).parent / "checks"  # the semantic checks: the same layout (compiler/checks/)
+PACKAGE_ROOT = Path(__file__).parent.parent  # `emitted` paths are relative to it (compiler/mcode/resolve.py)
 RULE_NAME = re.compile(r"^([a-z]\d{3})_([a-z0-9_]+)$")  # a rule's module: m301_position_read_while_moving
+CODE = re.compile(r"[A-Z]\d{3}")  # a diagnostic code: a prefix letter, three digits
 
 
 @dataclass(frozen=True)
@@ -49,6 +57,9 @@ class CodeInfo:
     # through `ALL` or a shorter prefix: a style some projects want and most do not (docs/LINT.md)
     opt_in: bool = False
     config: str = ""  # the `[tool.mcc]` configuration the examples are checked with (envelope rules)
+    # where the code is reported, relative to the mcc package (not part of the page: `mcc explain`
+    # is for users); a page module reports its own code
+    emitted: tuple[str, ...] = field(default=(), compare=False)
 
     def page(self) -> str:
         """The explanation page as Markdown."""
@@ -83,7 +94,8 @@ class Registry:
         code = code.upper()
         info = self.codes.get(code)
         if info is None and code in self.pages:
-            info = self.codes[code] = read_rule_page(self.pages.pop(code))
+            path = self.pages.pop(code)
+            info = self.codes[code] = replace(read_rule_page(path), emitted=(module_path(path),))
         return info
 
     def __contains__(self, code: str) -> bool:
@@ -117,15 +129,25 @@ def _load_file(path: Path) -> list[CodeInfo]:
             manual=raw.get("manual", ""),
             opt_in=bool(raw.get("opt_in", False)),
             config=raw.get("config", ""),
+            emitted=tuple(raw.get("emitted", ())),
         ))
     return infos
+
+
+def module_path(path: Path) -> str:
+    """A module's path as `emitted` writes it: relative to the mcc package, with slashes."""
+    try:
+        return path.resolve().relative_to(PACKAGE_ROOT.resolve()).as_posix()
+    except ValueError:  # a page outside the package (a test's temporary module)
+        return path.as_posix()
 
 
 # lint rule pages -----------------------------------------------------------------------------------
 
 def rule_modules(root: Path = RULES_DIR) -> dict[str, Path]:
-    """code -> the module of the lint rule that owns it (`<package>/<code>_<name>.py`), found by
-    listing the rule packages (a directory listing: no file is read, no module imported)."""
+    """code -> the module of the lint rule (or, with CHECKS_DIR, the check) that owns it
+    (`<package>/<code>_<name>.py`), found by listing the packages (a directory listing: no file is
+    read, no module imported)."""
     found: dict[str, Path] = {}
     try:
         packages = sorted(entry for entry in root.iterdir()
@@ -237,9 +259,9 @@ def registry() -> Registry:
             if info.code in reg.codes:
                 raise ValueError(f"{path.name}: duplicate diagnostic code {info.code}")
             reg.codes[info.code] = info
-    for code, path in rule_modules().items():
-        if code in reg.codes:
-            raise ValueError(f"{code} is described twice: in compiler/codes/ and in {path}")
+    for code, path in [*rule_modules().items(), *rule_modules(CHECKS_DIR).items()]:
+        if code in reg.codes or code in reg.pages:
+            raise ValueError(f"{code} is described twice: in {reg.pages.get(code, 'compiler/codes/')} and in {path}")
         reg.pages[code] = path
     return reg
 

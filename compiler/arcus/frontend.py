@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from mcc.compiler.arcus import checks, parser
+from mcc.compiler import checks
+from mcc.compiler.arcus import parser
 from mcc.compiler.arcus.lower import Lowering
 from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
@@ -23,6 +24,5 @@ def analyze_tree(source: SourceFile, tree, profile: Profile, diags: Diagnostics)
     lowering = Lowering(tree, profile, diags)
     module = lowering.run()
     checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
-    checks.check_calls(lowering, diags)
-    checks.check_comments(tree, lowering, diags)
+    checks.run(checks.Program("arcus", source, tree, lowering, profile), diags)  # compiler/checks/arcus/
     return Analysis(source, tree, module, diags)

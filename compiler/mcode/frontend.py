@@ -5,7 +5,8 @@ from __future__ import annotations
 from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.analysis import Analysis
-from mcc.compiler.mcode import checks, parser, preprocessor
+from mcc.compiler import checks
+from mcc.compiler.mcode import parser, preprocessor
 from mcc.compiler.mcode.lower import Lowering
 from mcc.compiler.profiles import Profile
 from mcc.compiler.span import SourceFile
@@ -29,9 +30,5 @@ def analyze_tree(source: SourceFile, tree, profile: Profile, diags: Diagnostics)
     lowering = Lowering(tree, profile, diags)
     module = lowering.run()
     checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
-    checks.check_labels(lowering, diags)
-    checks.check_user_names(lowering, diags)
-    checks.check_speeds(lowering, diags)
-    checks.check_line_lengths(source, tree, lowering, diags)
-    checks.check_fall_into_subroutine(lowering, diags)
+    checks.run(checks.Program("mcode", source, tree, lowering, profile), diags)  # compiler/checks/mcode/
     return Analysis(source, tree, module, diags)

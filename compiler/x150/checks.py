@@ -1,5 +1,6 @@
-"""The X150 checks: per command (policy, addresses, products, values, text) and whole program
-(definitions, transfers, nesting through the call graph, sequence memory).
+"""The X150 checks of each command against the catalog (policy, addresses, products, values,
+text); the whole-program checks (transfers, nesting through the call graph, sequence memory, SV)
+are registered checks, one module each in compiler/checks/x150/, run from `run`.
 
 The syntax problems are reported while reading (parser.py, tokens.py) and the structural ones
 (XD/XT, unbalanced constructs, local nesting) while lowering (structure.py, lower.py). Everything
@@ -11,14 +12,15 @@ from __future__ import annotations
 import re
 from functools import lru_cache
 
+from mcc.compiler import checks
 from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics, Edit, Fix, Severity
 from mcc.compiler.profiles import Profile
-from mcc.compiler.span import Span
+from mcc.compiler.span import SourceFile, Span
 from mcc.compiler.x150 import catalog as cat
 from mcc.compiler.x150 import naming
 from mcc.compiler.x150 import syntax as st
-from mcc.compiler.x150.lower import OPENERS, Lowering, Site
+from mcc.compiler.x150.lower import Lowering
 from mcc.compiler.x150.structure import Unit
 
 PRODUCT_NAMES = {"bdhxe": "BDHX-E", "pdhxe": "PDHX-E", "blhx": "BLHX", "pdhx": "PDHX", "x150ds": "X150DS"}
@@ -48,8 +50,6 @@ class Checker:
         self.cat = cat.load()
         low, high = profile.get("limits.addresses", [1, 16])
         self.addresses = (int(low), int(high))
-        self.nesting = lowering.nesting
-        self.memory: dict = {}  # sequence memory, for `mcc check --format json` and the editor
         self.case_policy = profile.get("x150.case", "warn")  # asked once, not for every command
         self.max_variable = int(self.cat.limit("variables", "max", 50))
         self.product_notes: dict[cat.Command, str | None] = {}  # see check_product
@@ -58,10 +58,6 @@ class Checker:
         for unit in self.lowering.units:
             checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
             self.check_unit(unit)
-        self.check_saved()
-        self.check_transfers()
-        self.check_call_nesting()
-        self.check_memory()
 
     # -- per command -------------------------------------------------------------------------------
     def check_unit(self, unit: Unit) -> None:
@@ -301,181 +297,6 @@ class Checker:
                            f"{info.name} {UNMARKED[policy]} ({info.manual}): check on the controller that {where} "
                            "keeps it, or send it before the sequence")
 
-    # -- whole program ---------------------------------------------------------------------------------
-    def check_saved(self) -> None:
-        units = self.lowering.units
-        last_definition = None
-        for unit in units:
-            if unit.is_sequence:
-                last_definition = unit
-        selections = [site for site in self.lowering.sites if site.kind == "handler" and site.number
-                      and site.command.info.ir == "powerup"]
-        anchor = None
-        if last_definition is not None:
-            anchor = (last_definition.start, f"sequence {last_definition.number} stays in volatile memory until SV "
-                                             "(L4904)")
-        if selections:
-            site = selections[-1]
-            anchor = (site.command, f"the power-up sequence selected by {site.command.text} is used after a power cycle "
-                                    "only once saved with SV (L5117)")
-        if anchor is None:
-            return
-        command, why = anchor
-        after = False
-        for other in self.lowering.tree.commands():
-            if other is command:
-                after = True
-            elif after and other.info is not None and other.info.ir == "save":
-                return
-        self.diags.add("X128", command.span, f"{why}: add SV (addressed, e.g. 1SV) after the definitions if the "
-                                             "program must survive a power cycle")
-
-    def check_transfers(self) -> None:
-        for site in self.lowering.sites:
-            number = site.number
-            if not number or not 1 <= number <= 64:
-                continue
-            command = site.command
-            if not site.targets:
-                self.diags.add("X127", command.span,
-                               f"sequence {number} is not defined in this file: {command.text} uses whatever sequence "
-                               f"{number} is stored on the controller (define it here, or check it is downloaded)")
-                continue
-            if site.kind == "goto" and site.depth.get("IF", 0):
-                self.check_goto_out_of_if(site)
-
-    def check_goto_out_of_if(self, site: Site) -> None:
-        depth = site.depth["IF"]
-        for target in site.targets:
-            nifs = self.lowering.leading_nifs.get(target, 0)
-            if nifs < depth:
-                needed = "NIF" if depth == 1 else f"{depth} NIFs"
-                self.diags.add("X112", site.command.span,
-                               f"{site.command.text} leaves {depth} open IF(...) behind; the controller keeps it open, "
-                               f"so sequence {site.number} must begin with {needed} (L1794, L2024, L5079); add "
-                               f"{needed} as its first command, or close the IF before jumping")
-
-    def check_call_nesting(self) -> None:
-        """Sequence calls nest at most 16 deep (L1750, L5140: X110). That the construct stacks are shared
-        by a sequence and the sequences it calls is mcc's inference, reported as the warning X140."""
-        limit = self.nesting
-        kinds = tuple(OPENERS.values())
-        local = self.lowering.max_depth
-        entry: dict[str, dict[str, int]] = {}
-        calls = [s for s in self.lowering.sites if s.kind == "call" and s.targets]
-        by_routine: dict[str, list[Site]] = {}
-        for site in calls:
-            by_routine.setdefault(site.routine, []).append(site)
-        called = {t for s in calls for t in s.targets}
-        work = [r.name for r in self.lowering.module.routines if r.name not in called]
-        for name in work:
-            entry[name] = {k: 0 for k in kinds + ("call",)}
-        reported: set[tuple[str, str]] = set()
-        while work:
-            name = work.pop()
-            here = entry[name]
-            for site in by_routine.get(name, ()):
-                for target in site.targets:
-                    nested = {k: min(limit + 1, here[k] + site.depth.get(k, 0)) for k in kinds}
-                    nested["call"] = min(limit + 1, here["call"] + 1)
-                    old = entry.get(target)
-                    if old is not None and all(nested[k] <= old[k] for k in nested):
-                        continue
-                    merged = {k: max(nested[k], old[k]) if old else nested[k] for k in nested}
-                    entry[target] = merged
-                    work.append(target)
-                    self.report_nesting(site, target, merged, local.get(target, {}), reported)
-
-    def report_nesting(self, site: Site, target: str, context: dict[str, int], inside: dict[str, int],
-                       reported: set[tuple[str, str]]) -> None:
-        limit = self.nesting
-        if context["call"] > limit and (target, "call") not in reported:
-            reported.add((target, "call"))
-            self.diags.add("X110", site.command.span,
-                           f"{site.command.text} nests sequence calls more than {limit} deep (through the calls of "
-                           "this file; a sequence that calls itself never stops): the controller allows "
-                           f"{limit} (L1750, L5140)")
-        for kind, depth in inside.items():
-            total = context.get(kind, 0) + depth
-            if total > limit and (target, kind) not in reported:
-                reported.add((target, kind))
-                self.diags.add("X140", site.command.span,
-                               f"{site.command.text} runs sequence {site.number}, which opens {kind} {depth} deep, "
-                               f"while {context[kind]} are already open: {total} > {limit} if the controller "
-                               "counts a called sequence's constructs with its caller's. This is inferred, not "
-                               f"stated: the manual limits {kind} nesting to {limit} (L2011, L2332, L3441, L4849) "
-                               "and sequence calls to 16 (L1750, L5140), but not the two together; move loops out "
-                               "of the called sequence to be safe, or ignore X140 if your controller runs it")
-
-    def stored_bytes(self, unit: Unit) -> int:
-        """The bytes a sequence stores: each command in its canonical form (upper case, the device
-        address in front, the B prefix on an immediate `*` command) and its delimiter, XT included
-        (L241). The X150 backend writes sequences in the same form."""
-        from mcc.compiler.x150.format import command_text  # format imports this module's canonical_case
-        own = len(str(unit.address)) if unit.address is not None else 0  # the unit's address, written in front
-        total = len("XT") + 1 + own
-        for command in unit.commands:
-            info = command.info
-            if info is None and not command.host:
-                continue
-            written = command.text
-            text = written if written == written.upper() else command_text(command)  # upper case: canonical
-            address = str(command.address) if command.address is not None else ""
-            # the address, then the body (the text after the address, if it starts with it), then the delimiter
-            size = (len(address) or own) + (len(text) - len(address) if text.startswith(address) else len(text)) + 1
-            if info is not None and info.b_prefixable and not command.buffered:
-                size += 1  # the B prefix
-            total += size
-        return total
-
-    def check_memory(self) -> None:
-        lowering = self.lowering
-        store = int(self.profile.get("limits.sequence_store_bytes", self.cat.limit("sequence_store_bytes", default=8000)))
-        buffer = int(self.profile.get("limits.command_buffer_bytes", self.cat.limit("command_buffer_bytes", default=2000)))
-        ratio = float(self.profile.get("x150.buffer_warn_ratio", 0.9))
-        latest: dict[tuple[int, int | None], tuple[Unit, int]] = {}
-        for unit in lowering.units:
-            if not unit.is_sequence or unit.start is None:
-                continue
-            size = self.stored_bytes(unit)
-            latest[(unit.number or 0, unit.address)] = (unit, size)
-            if size >= ratio * buffer:
-                over = "more than" if size > buffer else "close to"
-                self.diags.add("X124", unit.start.span,
-                               f"sequence {unit.number} is {size} bytes, {over} the {buffer}-byte command buffer it is "
-                               "downloaded through (L241, L4904): split it into sequences that call each other")
-        per_device: dict[str, int] = {}
-        for (_, address), (_, size) in latest.items():
-            key = str(address) if address is not None else "*"
-            per_device[key] = per_device.get(key, 0) + size
-        self.memory = {"unit": "bytes", "used": max(per_device.values(), default=0), "budget": store,
-                       "by_device": per_device, "command_buffer": buffer,
-                       "largest_sequence": max((size for _, size in latest.values()), default=0)}
-        store_ratio = float(self.profile.get("x150.store_warn_ratio", 0.9))
-        devices = sorted({address for _, address in latest if address is not None})
-        for device in devices or [None]:
-            total = 0
-            last = None
-            who = f"device {device}" if device is not None else "each device"
-            for (number, address), (unit, size) in sorted(latest.items(), key=lambda kv: kv[1][0].start.span.start):
-                if address is not None and address != device:
-                    continue
-                total += size
-                last = (number, unit)
-                if total > store:
-                    self.diags.add("X123", unit.start.span,
-                                   f"with sequence {number} the sequences for {who} need {total} bytes; the sequence "
-                                   f"store holds {store} (L4871, 1 byte per character and delimiter, L241): shorten "
-                                   "or remove sequences")
-                    break
-            else:
-                if last is not None and total > store_ratio * store:
-                    number, unit = last
-                    self.diags.add("X141", unit.start.span,
-                                   f"the sequences for {who} need {total} of the {store} bytes of the sequence store "
-                                   f"({100 * total / store:.1f} %, L4871): little room is left for changes; the "
-                                   "count assumes 1 byte per character and delimiter (L241)")
-
 
 NAMING_VARIABLES = (st.VarRef, st.VarStatement, st.Chain, st.Condition)  # the arguments `variables` reads
 KEEP_CASE_ARGS = ("raw",)  # TX's free text (catalog argument class): sent to the display as written
@@ -528,8 +349,12 @@ def variables(arg) -> list[st.VarRef]:
     return []
 
 
-def run(lowering: Lowering, profile: Profile, diags: Diagnostics) -> dict:
-    """Every whole-program check; returns the sequence memory used (empty when not measured)."""
-    checker = Checker(lowering, profile, diags)
-    checker.run()
-    return checker.memory
+def run(source: SourceFile, lowering: Lowering, profile: Profile, diags: Diagnostics) -> dict:
+    """The checks of every command, then the registered whole-program checks (compiler/checks/x150/);
+    returns the sequence memory used, for `mcc check --format json` and the editor."""
+    Checker(lowering, profile, diags).run()
+    program = checks.Program("x150", source, lowering.tree, lowering, profile)
+    checks.run(program, diags)
+    from mcc.compiler.checks.x150 import helpers  # imported with the checks `checks.run` loaded
+
+    return helpers.memory(program)

@@ -8,7 +8,7 @@ several rules share is in helpers.py. M301, M306, M307, M313 and M324 are rules 
 the IR (rules/shared/): their modules give the MCode page and words.
 
 M323 (the program runs on into a subroutine) is a check of the frontend since issue 12, so that
-`mcc check` reports it too: compiler/mcode/checks.py, check_fall_into_subroutine.
+`mcc check` reports it too: compiler/checks/mcode/m323_falls_into_subroutine.py.
 """
 
 from mcc.compiler.lint.rules import discover
