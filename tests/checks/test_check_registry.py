@@ -26,8 +26,11 @@ ROOT = Path(codes.PACKAGE_ROOT)
 SEMANTIC = re.compile(r"[A-Z]1\d\d\Z")  # the semantic checks (docs/ARCHITECTURE.md, "Diagnostics")
 MODULES = codes.rule_modules(codes.CHECKS_DIR)
 CHECKS = checks.load_all()
+# the product's Python: not the tests, benchmarks or editor packages (whose node_modules hold
+# third-party Python once the extension's tests are installed), nor a virtual environment
 SOURCES = [p for p in sorted(ROOT.rglob("*.py"))
-           if p.relative_to(ROOT).parts[0] not in ("tests", "bench", ".venv") and ".venv" not in p.parts]
+           if p.relative_to(ROOT).parts[0] not in ("tests", "bench", "editors", ".venv")
+           and not {".venv", "node_modules"} & set(p.parts)]
 
 
 def reported_codes(path: Path, own: str | None = None) -> set[str]:
