@@ -19,13 +19,14 @@ source (--verify), so a dropped set-up that changed what the program does would 
 """
 from __future__ import annotations
 
-from mcc.compiler import ir
+from mcc.compiler import dialects, ir
 
-# The input functions each target has on inputs of their own, with no set-up in the program.
-DEDICATED: dict[str, frozenset[str]] = {
-    "x150": frozenset({"home", "limit_plus", "limit_minus"}),
-    "arcus": frozenset({"home", "limit_plus", "limit_minus", "general"}),
-}
+
+def dedicated(target: str) -> frozenset[str]:
+    """The input functions `target` has on inputs of its own, with no set-up in the program (the
+    dialect's `dedicated_inputs`, compiler/<dialect>/dialect.py)."""
+    found = dialects.DIALECTS.get(target)
+    return found.dedicated_inputs if found is not None else frozenset()
 
 
 def _reads_inputs(module: ir.Module) -> set[int] | None:
@@ -69,7 +70,7 @@ class InputSetup:
     as nothing."""
 
     def __init__(self, module: ir.Module, target: str):
-        self.dedicated = DEDICATED.get(target, frozenset())
+        self.dedicated = dedicated(target)
         self.functions = _functions(module)
         self.read = _reads_inputs(module)
 

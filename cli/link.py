@@ -106,7 +106,7 @@ def source_line(span) -> str:
 @cli.command()
 @click.argument("file", type=click.Path(exists=True, dir_okay=False))
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension; "
+@click.option("--dialect", type=DIALECT_NAMES, help="Dialect of FILE (default: from the extension; "
                                                                  ".sa is an Arcus program image).")
 @click.option("--save", is_flag=True, help="After verifying, save to non-volatile memory (MCode S, X150 SV).")
 @click.option("--run", is_flag=True, help="After verifying (and saving), start the program and report its status.")
@@ -237,7 +237,7 @@ def print_report(file: str, outcome, transcript, fmt: str) -> None:
 # -- upload -----------------------------------------------------------------------------------
 @cli.command()
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device's dialect.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the source here (default: stdout).")
 @click.option("--password", help="X150: the upload password (PASS) to lift the protection for this upload.")
 @click.option("--devices", help="X150: comma-separated device addresses to read (default: --address or 1).")
@@ -310,7 +310,7 @@ def describe(dialect: str, reply) -> str:
 
 @cli.command()
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device's dialect.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True)
 @click.argument("commands", nargs=-1, required=True)
 @link_errors
@@ -355,7 +355,7 @@ def send(port: str, dialect: str, commands: tuple[str, ...], fmt: str, profile: 
 
 @cli.command()
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device's dialect.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
 @link_errors
 def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
     """An interactive terminal to the device: type commands, read the replies in words.
@@ -378,7 +378,7 @@ def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
 
 # -- the virtual device -----------------------------------------------------------------------
 @cli.command()
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device to be.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device to be.")
 @click.option("--listen", default="127.0.0.1:0", show_default=True, metavar="HOST:PORT",
               help="Where to listen (port 0: any free port, printed at start).")
 @click.option("--program", type=click.Path(exists=True, dir_okay=False),
