@@ -132,20 +132,17 @@ def download(file: str, port: str, dialect: str | None, save: bool, run: bool, d
     """
     from mcc.link import protocols
 
-    if dialect is None and file.lower().endswith(".sa"):
-        dialect = "arcus"
-    from mcc.compiler import driver
+    from mcc.compiler import dialects, driver
 
-    found = driver.resolve_dialect(file, dialect)
+    found = (dialect is None and dialects.from_image(file)) or driver.resolve_dialect(file, dialect)
     if found is None:
         raise click.BadParameter(f"cannot tell the dialect of '{file}': pass --dialect", param_hint="FILE")
     prof, settings = link_settings(found.name, profile, **overrides_of(kwargs))
     proto_class = protocols.get(found.name)
-    if found.name == "arcus":
-        from mcc.link.arcus import NOT_DOWNLOADABLE
-
-        if not file.lower().endswith(".sa"):
-            fail(f"{file}: {NOT_DOWNLOADABLE}", "nothing was sent: the device is as it was", fmt)
+    if found.image_extensions:  # the device is downloaded a memory image, not the listing
+        if not file.lower().endswith(found.image_extensions):
+            fail(f"{file}: {protocols.module(found.name).NOT_DOWNLOADABLE}",
+                 "nothing was sent: the device is as it was", fmt)
         with open(file, encoding="utf-8", errors="replace") as handle:
             steps = proto_class(None, settings).plan_image(handle.read(), file)
     else:
@@ -259,25 +256,23 @@ def upload(port: str, dialect: str, output: str | None, password: str | None, de
       mcc upload --port COM3 --dialect x150 --devices 1,2 -o cell.x150
       mcc upload --port /dev/ttyUSB1 --dialect arcus --image machine.sa -o variables.prg
     """
-    from mcc.compiler import driver
+    from mcc.compiler import dialects, driver
     from mcc.compiler.lint.files import write_atomic
+    from mcc.link import protocols
 
     _prof, settings = link_settings(dialect, profile, **overrides_of(kwargs))
     proto = connect(dialect, port, settings)
     try:
         proto.hello()
-        if dialect == "x150":
-            text = proto.upload(password or "", devices.split(",") if devices else None)
-        else:
-            text = proto.upload()
-        if dialect == "arcus" and image:
+        text = protocols.module(dialect).upload(proto, password or "", devices.split(",") if devices else None)
+        if image and dialects.get(dialect).image_extensions:
             write_atomic(image, proto.image())
         proto.goodbye()
     finally:
         proto.channel.close()
     if not text:
         fail("the device holds no program to upload", "nothing was changed on the device")
-    extension = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}[dialect]
+    extension = dialects.get(dialect).output_extension
     checked = driver.check_file(output or f"<upload>{extension}", dialect, text=text)
     if output:
         write_atomic(output, text)
@@ -291,23 +286,6 @@ def upload(port: str, dialect: str, output: str | None, password: str | None, de
 
 
 # -- send and terminal ------------------------------------------------------------------------
-def describe(dialect: str, reply) -> str:
-    """A reply in words: data, and an error with its meaning."""
-    data = " | ".join(reply.lines)
-    if not reply.ok:
-        return f"error {reply.error}: {reply.meaning}" + (f"  ({data})" if data else "")
-    if dialect == "x150" and reply.lines:
-        from mcc.link.x150 import explain
-
-        words = explain(reply.lines[-1].strip())
-        return f"{data}  ({words})" if words and len(reply.lines) == 1 else data or "ok"
-    if dialect == "arcus" and reply.command.upper() == "SASTAT" and reply.lines:
-        from mcc.link.arcus import SASTAT
-
-        return f"{data}  ({SASTAT.get(data, 'undocumented')})"
-    return data or "ok"
-
-
 @cli.command()
 @port_options
 @click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
@@ -325,6 +303,7 @@ def send(port: str, dialect: str, commands: tuple[str, ...], fmt: str, profile: 
       mcc send --port socket://10.0.0.5:4001 --dialect arcus SR=1 SASTAT
     """
     from mcc.link.protocol import LostReply
+    from mcc.link.protocols import describe
 
     _prof, settings = link_settings(dialect, profile, **overrides_of(kwargs))
     proto = connect(dialect, port, settings)
@@ -435,7 +414,7 @@ def device(dialect: str, listen: str, program: str | None, fault: str, addresses
         dev = make_device(dialect, faults, addresses=tuple(a.strip() for a in addresses.split(",") if a.strip()),
                           program_lines=program_lines, sequence_bytes=sequence_bytes, program=program,
                           party=tuple(n.strip() for n in party_names.split(",") if n.strip()), run_limit=run_limit,
-                          profile=profile if dialect == "mcode" else None)
+                          profile=profile)
     except ProfileError as exc:
         raise click.BadParameter(str(exc), param_hint="--profile") from None
     except ValueError as exc:

@@ -83,9 +83,6 @@ class Dialect:
     # The neutral settings (ir_names.SETTINGS) the dialect has a statement for: a drive-only setting
     # outside them may be left out of a conversion to it (backends/drive_setup.py, G051).
     settings: frozenset[str] = frozenset()
-    # The input functions the target has on inputs of its own, needing no set-up in the program
-    # (backends/input_setup.py): a converted set-up of an input to only these is dropped.
-    dedicated_inputs: frozenset[str] = frozenset()
     # Every marker a comment may start with (the profile directive `mcc: profile=` is read in any of
     # them, compiler/selection.py), and the ones a `noqa` comment is recognised after ("": `comment`).
     comment_markers: str = ""
@@ -104,7 +101,7 @@ class Dialect:
     device: str = ""
     image_extensions: tuple[str, ...] = ()
     # the editor support: a module with `EDITOR`, an lsp.editor.Editor (completion, hover, rename,
-    # program memory and the indexer of the editor model)
+    # program memory and the indexer of the editor model; lsp/editor.py loads it)
     editor: str = ""
 
     def load_frontend(self):
@@ -126,10 +123,6 @@ class Dialect:
 
     def load_device(self):
         return importlib.import_module(self.device)
-
-    def load_editor(self):
-        """The dialect's editor support (an lsp.editor.Editor)."""
-        return importlib.import_module(self.editor).EDITOR
 
     def noqa_comment_markers(self) -> str:
         return self.noqa_markers or self.comment
@@ -163,6 +156,12 @@ def from_path(path: str) -> Dialect | None:
         if lower.endswith(dialect.extensions):
             return dialect
     return None
+
+
+def from_image(path: str) -> Dialect | None:
+    """The dialect whose device memory image `path` is (by its extension), or None."""
+    lower = path.lower()
+    return next((d for d in DIALECTS.values() if d.image_extensions and lower.endswith(d.image_extensions)), None)
 
 
 def all_extensions() -> tuple[str, ...]:

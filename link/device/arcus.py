@@ -325,3 +325,13 @@ class ArcusDevice(VirtualDevice):
         for name, value in self.sim.variables.items():
             if re.fullmatch(r"V\d+", name) and int(name[1:]) < 64:
                 self.variables[int(name[1:])] = int(value)
+
+
+def make(faults: Faults | None, options) -> VirtualDevice:
+    """The virtual device `mcc device` runs (link/device/virtual.py): a controller at the options'
+    address, with the options' program image loaded."""
+    device = ArcusDevice(faults, address=options.address, run_limit=options.run_limit)
+    if options.program:
+        with open(options.program, encoding="utf-8", errors="replace") as handle:
+            device.load_program(handle.read(), options.program)
+    return device

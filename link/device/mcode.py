@@ -585,3 +585,13 @@ class MCodeBus(VirtualDevice):
 
     def command(self, raw: bytes) -> bytes:
         return b"".join(drive.command(raw) for drive in self.drives.values())
+
+
+def make(faults: Faults | None, options) -> VirtualDevice:
+    """The virtual device `mcc device` runs (link/device/virtual.py): a party of named devices when
+    the options name one, else one device; both report the options' product profile."""
+    if options.party:
+        return MCodeBus(options.party, faults, program_lines=options.program_lines, run_limit=options.run_limit,
+                        profile=options.profile)
+    return MCodeDevice(faults, program_lines=options.program_lines, run_limit=options.run_limit,
+                       profile=options.profile)

@@ -382,3 +382,10 @@ class Stepping:
 PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",
             "R", "PR", "IS", '"', "#"}
 
+
+
+def make(faults: Faults | None, options) -> VirtualDevice:
+    """The virtual device `mcc device` runs (link/device/virtual.py): the devices at the options'
+    addresses, each with a sequence store of the options' size."""
+    return X150Device(faults, addresses=options.addresses, capacity=options.sequence_bytes,
+                      run_limit=options.run_limit)
