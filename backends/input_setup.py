@@ -19,14 +19,7 @@ source (--verify), so a dropped set-up that changed what the program does would 
 """
 from __future__ import annotations
 
-from mcc.compiler import dialects, ir
-
-
-def dedicated(target: str) -> frozenset[str]:
-    """The input functions `target` has on inputs of its own, with no set-up in the program (the
-    dialect's `dedicated_inputs`, compiler/<dialect>/dialect.py)."""
-    found = dialects.DIALECTS.get(target)
-    return found.dedicated_inputs if found is not None else frozenset()
+from mcc.compiler import ir
 
 
 def _reads_inputs(module: ir.Module) -> set[int] | None:
@@ -66,11 +59,12 @@ def _functions(module: ir.Module) -> dict[int, set[str]]:
 
 
 class InputSetup:
-    """Decides, once per module, which input_function / input_active_high settings `target` writes
-    as nothing."""
+    """Decides, once per module, which input_function / input_active_high settings a target writes
+    as nothing: `dedicated` are the input functions the target has on inputs of its own, with no
+    set-up in the program (its backend says which)."""
 
-    def __init__(self, module: ir.Module, target: str):
-        self.dedicated = dedicated(target)
+    def __init__(self, module: ir.Module, dedicated: frozenset[str]):
+        self.dedicated = dedicated
         self.functions = _functions(module)
         self.read = _reads_inputs(module)
 

@@ -23,8 +23,6 @@ DIALECT = Dialect(
     # HSPD/LSPD in pulses/s, ACC a ramp time in ms, DELAY in ms (L1198, L1735)
     resolution=Resolution(1.0, False, 0.001, ramp_times=True),
     settings=SETTINGS,
-    # home, limit and general inputs are the controller's own (backends/input_setup.py)
-    dedicated_inputs=frozenset({"home", "limit_plus", "limit_minus", "general"}),
     # ';' is the language's comment (L1721); "'" is what the DXF converter writes (L1201); noqa is
     # recognised after ';' only
     comment_markers=";'", noqa_markers=";",

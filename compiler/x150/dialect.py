@@ -26,8 +26,6 @@ DIALECT = Dialect(
     # V and A in rev/s to four decimals (parker-x150.md L4542, L199), T in s from 0.001 (L4104)
     resolution=Resolution(0.0001, True, 0.001),
     settings=SETTINGS,
-    # home and limit switches are inputs of their own (backends/input_setup.py)
-    dedicated_inputs=frozenset({"home", "limit_plus", "limit_minus"}),
     comment_markers=";",
     # no initial speed: moves start from standstill (docs/dialects/x150.md)
     moves_from_standstill=True,
