@@ -6,7 +6,7 @@ host protocol, virtual device, editor support) are declared by the dialect itsel
 modules, one line per dialect, and is the only place that knows which dialects exist. Shared code
 never names a dialect: it asks the `Dialect` (tests/test_dialect_neutral.py). The modules a
 dialect names are imported lazily so that `mcc --version` and the CLI's help stay fast.
-docs/decisions/0026-dialect-plugin-interface.md says why the interface is this one.
+docs/decisions/0021-dialect-plugin-interface.md says why the interface is this one.
 """
 
 from __future__ import annotations

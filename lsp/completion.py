@@ -5,7 +5,10 @@ where an MCode command takes one (`BR x`, `CL x`, `TI 1,x`, `TT=0.5,x`, `OE=x`, 
 after `BR x,`/`CL x,` (variables, flags and inputs, lexium-mcode.txt L1807, L2124), a subroutine
 number after `GOSUB` (Arcus), a sequence number after `XR`/`XG`/... (X150), a command at the start
 of a statement (as a snippet from the catalog's syntax, only what the target product has, and only
-what the program region allows), variables and readable registers elsewhere.
+what the program region allows), variables and readable registers elsewhere. This module is
+written once; what differs by dialect (the places, where a statement starts, which commands a
+place allows, snippets, the command before the cursor) is the dialect's Editor's
+(lsp/<dialect>_editor.py, lsp/editor.py).
 
 Every item carries the range it replaces (a `textEdit`): the word being typed as the dialect reads
 it, not as the editor's word pattern does. An X150 device address (`1D`, `2G`) and an Arcus axis
