@@ -21,12 +21,6 @@ from __future__ import annotations
 
 from mcc.compiler import ir
 
-# The input functions each target has on inputs of their own, with no set-up in the program.
-DEDICATED: dict[str, frozenset[str]] = {
-    "x150": frozenset({"home", "limit_plus", "limit_minus"}),
-    "arcus": frozenset({"home", "limit_plus", "limit_minus", "general"}),
-}
-
 
 def _reads_inputs(module: ir.Module) -> set[int] | None:
     """The input lines the program reads (conditions, expressions, input handlers); None when it
@@ -65,11 +59,12 @@ def _functions(module: ir.Module) -> dict[int, set[str]]:
 
 
 class InputSetup:
-    """Decides, once per module, which input_function / input_active_high settings `target` writes
-    as nothing."""
+    """Decides, once per module, which input_function / input_active_high settings a target writes
+    as nothing: `dedicated` are the input functions the target has on inputs of its own, with no
+    set-up in the program (its backend says which)."""
 
-    def __init__(self, module: ir.Module, target: str):
-        self.dedicated = DEDICATED.get(target, frozenset())
+    def __init__(self, module: ir.Module, dedicated: frozenset[str]):
+        self.dedicated = dedicated
         self.functions = _functions(module)
         self.read = _reads_inputs(module)
 

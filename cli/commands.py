@@ -10,7 +10,28 @@ import click
 from mcc import __version__
 from mcc.cli.main import EXIT_ERRORS, EXIT_OK, EXIT_USAGE
 
-DIALECT_NAMES = ["mcode", "x150", "arcus"]  # kept in step with mcc.compiler.dialects (tested)
+
+
+class DialectChoice(click.Choice):
+    """The registered dialects (compiler/dialects.py) as a click choice, read when click first asks
+    for them (parsing or help of a command that takes one), so that `mcc --help` and `mcc --version`
+    do not import the compiler."""
+
+    def __init__(self) -> None:
+        super().__init__((), case_sensitive=True)
+
+    @property
+    def choices(self) -> tuple[str, ...]:
+        from mcc.compiler import dialects
+
+        return tuple(dialects.names())
+
+    @choices.setter
+    def choices(self, _value) -> None:
+        """click.Choice sets its choices on construction: this one has none of its own."""
+
+
+DIALECT_NAMES = DialectChoice()
 FORMATS = ["text", "json"]
 CHECK_FORMATS = ["text", "json", "sarif", "github", "gitlab", "junit"]  # as `mcc lint --format`
 
@@ -122,7 +143,7 @@ def check_profile_dialect(profile, dialects_used: set[str]) -> None:
 @cli.command()
 @click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, allow_dash=True),
                 callback=regular_files)
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
+@click.option("--dialect", type=DIALECT_NAMES, help="Dialect of every FILE (default: from the extension).")
 @click.option("--format", "fmt", type=click.Choice(CHECK_FORMATS), default="text", show_default=True,
               help="text: one diagnostic per finding with the source line; json: one JSON object on stdout; "
                    "sarif, github, gitlab, junit: as `mcc lint --format`.")
@@ -206,8 +227,8 @@ def report(results, fmt: str, extra=None) -> None:
 
 @cli.command(name="compile")
 @click.argument("file", type=click.Path(exists=True, dir_okay=False), callback=regular_files)
-@click.option("--target", type=click.Choice(DIALECT_NAMES), help="Dialect to generate (default: the source dialect).")
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension).")
+@click.option("--target", type=DIALECT_NAMES, help="Dialect to generate (default: the source dialect).")
+@click.option("--dialect", type=DIALECT_NAMES, help="Dialect of FILE (default: from the extension).")
 @click.option("-o", "--output", "output", type=click.Path(dir_okay=False),
               help="Write the device-ready program here (default, or `-`: print it on stdout; with --format json "
                    "it is returned in the \"text\" field).")

@@ -12,7 +12,7 @@ from mcc.cli.main import EXIT_ERRORS, EXIT_OK
 
 @cli.command(name="ir")
 @click.argument("files", nargs=-1, required=True, type=click.Path(exists=True, dir_okay=False))
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every FILE (default: from the extension).")
+@click.option("--dialect", type=DIALECT_NAMES, help="Dialect of every FILE (default: from the extension).")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True,
               help="text: the IR's stable text form; json: one JSON object with each file's module.")
 @click.option("--profile", help="Target profile: a built-in name or a path to a TOML file.")

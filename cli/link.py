@@ -106,7 +106,7 @@ def source_line(span) -> str:
 @cli.command()
 @click.argument("file", type=click.Path(exists=True, dir_okay=False))
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension; "
+@click.option("--dialect", type=DIALECT_NAMES, help="Dialect of FILE (default: from the extension; "
                                                                  ".sa is an Arcus program image).")
 @click.option("--save", is_flag=True, help="After verifying, save to non-volatile memory (MCode S, X150 SV).")
 @click.option("--run", is_flag=True, help="After verifying (and saving), start the program and report its status.")
@@ -132,20 +132,17 @@ def download(file: str, port: str, dialect: str | None, save: bool, run: bool, d
     """
     from mcc.link import protocols
 
-    if dialect is None and file.lower().endswith(".sa"):
-        dialect = "arcus"
-    from mcc.compiler import driver
+    from mcc.compiler import dialects, driver
 
-    found = driver.resolve_dialect(file, dialect)
+    found = (dialect is None and dialects.from_image(file)) or driver.resolve_dialect(file, dialect)
     if found is None:
         raise click.BadParameter(f"cannot tell the dialect of '{file}': pass --dialect", param_hint="FILE")
     prof, settings = link_settings(found.name, profile, **overrides_of(kwargs))
     proto_class = protocols.get(found.name)
-    if found.name == "arcus":
-        from mcc.link.arcus import NOT_DOWNLOADABLE
-
-        if not file.lower().endswith(".sa"):
-            fail(f"{file}: {NOT_DOWNLOADABLE}", "nothing was sent: the device is as it was", fmt)
+    if found.image_extensions:  # the device is downloaded a memory image, not the listing
+        if not file.lower().endswith(found.image_extensions):
+            fail(f"{file}: {protocols.module(found.name).NOT_DOWNLOADABLE}",
+                 "nothing was sent: the device is as it was", fmt)
         with open(file, encoding="utf-8", errors="replace") as handle:
             steps = proto_class(None, settings).plan_image(handle.read(), file)
     else:
@@ -237,7 +234,7 @@ def print_report(file: str, outcome, transcript, fmt: str) -> None:
 # -- upload -----------------------------------------------------------------------------------
 @cli.command()
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device's dialect.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
 @click.option("-o", "--output", type=click.Path(dir_okay=False), help="Write the source here (default: stdout).")
 @click.option("--password", help="X150: the upload password (PASS) to lift the protection for this upload.")
 @click.option("--devices", help="X150: comma-separated device addresses to read (default: --address or 1).")
@@ -259,25 +256,23 @@ def upload(port: str, dialect: str, output: str | None, password: str | None, de
       mcc upload --port COM3 --dialect x150 --devices 1,2 -o cell.x150
       mcc upload --port /dev/ttyUSB1 --dialect arcus --image machine.sa -o variables.prg
     """
-    from mcc.compiler import driver
+    from mcc.compiler import dialects, driver
     from mcc.compiler.lint.files import write_atomic
+    from mcc.link import protocols
 
     _prof, settings = link_settings(dialect, profile, **overrides_of(kwargs))
     proto = connect(dialect, port, settings)
     try:
         proto.hello()
-        if dialect == "x150":
-            text = proto.upload(password or "", devices.split(",") if devices else None)
-        else:
-            text = proto.upload()
-        if dialect == "arcus" and image:
+        text = protocols.module(dialect).upload(proto, password or "", devices.split(",") if devices else None)
+        if image and dialects.get(dialect).image_extensions:
             write_atomic(image, proto.image())
         proto.goodbye()
     finally:
         proto.channel.close()
     if not text:
         fail("the device holds no program to upload", "nothing was changed on the device")
-    extension = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}[dialect]
+    extension = dialects.get(dialect).output_extension
     checked = driver.check_file(output or f"<upload>{extension}", dialect, text=text)
     if output:
         write_atomic(output, text)
@@ -291,26 +286,9 @@ def upload(port: str, dialect: str, output: str | None, password: str | None, de
 
 
 # -- send and terminal ------------------------------------------------------------------------
-def describe(dialect: str, reply) -> str:
-    """A reply in words: data, and an error with its meaning."""
-    data = " | ".join(reply.lines)
-    if not reply.ok:
-        return f"error {reply.error}: {reply.meaning}" + (f"  ({data})" if data else "")
-    if dialect == "x150" and reply.lines:
-        from mcc.link.x150 import explain
-
-        words = explain(reply.lines[-1].strip())
-        return f"{data}  ({words})" if words and len(reply.lines) == 1 else data or "ok"
-    if dialect == "arcus" and reply.command.upper() == "SASTAT" and reply.lines:
-        from mcc.link.arcus import SASTAT
-
-        return f"{data}  ({SASTAT.get(data, 'undocumented')})"
-    return data or "ok"
-
-
 @cli.command()
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device's dialect.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
 @click.option("--format", "fmt", type=click.Choice(FORMATS), default="text", show_default=True)
 @click.argument("commands", nargs=-1, required=True)
 @link_errors
@@ -325,6 +303,7 @@ def send(port: str, dialect: str, commands: tuple[str, ...], fmt: str, profile: 
       mcc send --port socket://10.0.0.5:4001 --dialect arcus SR=1 SASTAT
     """
     from mcc.link.protocol import LostReply
+    from mcc.link.protocols import describe
 
     _prof, settings = link_settings(dialect, profile, **overrides_of(kwargs))
     proto = connect(dialect, port, settings)
@@ -355,7 +334,7 @@ def send(port: str, dialect: str, commands: tuple[str, ...], fmt: str, profile: 
 
 @cli.command()
 @port_options
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device's dialect.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device's dialect.")
 @link_errors
 def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
     """An interactive terminal to the device: type commands, read the replies in words.
@@ -378,7 +357,7 @@ def terminal(port: str, dialect: str, profile: str | None, **kwargs) -> None:
 
 # -- the virtual device -----------------------------------------------------------------------
 @cli.command()
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), required=True, help="The device to be.")
+@click.option("--dialect", type=DIALECT_NAMES, required=True, help="The device to be.")
 @click.option("--listen", default="127.0.0.1:0", show_default=True, metavar="HOST:PORT",
               help="Where to listen (port 0: any free port, printed at start).")
 @click.option("--program", type=click.Path(exists=True, dir_okay=False),
@@ -435,7 +414,7 @@ def device(dialect: str, listen: str, program: str | None, fault: str, addresses
         dev = make_device(dialect, faults, addresses=tuple(a.strip() for a in addresses.split(",") if a.strip()),
                           program_lines=program_lines, sequence_bytes=sequence_bytes, program=program,
                           party=tuple(n.strip() for n in party_names.split(",") if n.strip()), run_limit=run_limit,
-                          profile=profile if dialect == "mcode" else None)
+                          profile=profile)
     except ProfileError as exc:
         raise click.BadParameter(str(exc), param_hint="--profile") from None
     except ValueError as exc:

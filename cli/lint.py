@@ -124,7 +124,7 @@ def unknown_notes(unknown: list[str], listed: bool) -> list[str]:
 
 def common_options(func):
     options = [
-        click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of every file (default: from the extension)."),
+        click.option("--dialect", type=DIALECT_NAMES, help="Dialect of every file (default: from the extension)."),
         click.option("--config", "config", type=click.Path(exists=True, dir_okay=False), callback=regular_files,
                      help="Use this configuration file for every file instead of the nearest pyproject.toml/mcc.toml."),
         click.option("--isolated", is_flag=True, help="Ignore every configuration file."),

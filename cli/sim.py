@@ -34,7 +34,7 @@ def load_scenario(path: str | None):
               help="Stop after this much virtual time (default: the scenario's `until`, else 60).")
 @click.option("--max-steps", type=click.IntRange(min=1), default=1_000_000, show_default=True,
               help="Stop after this many executed operations (catches loops that never wait).")
-@click.option("--dialect", type=click.Choice(DIALECT_NAMES), help="Dialect of FILE (default: from the extension).")
+@click.option("--dialect", type=DIALECT_NAMES, help="Dialect of FILE (default: from the extension).")
 @click.option("--profile", help="Target profile: a built-in name or a path to a TOML file.")
 @click.option("--format", "fmt", type=click.Choice(SIM_FORMATS), default="text", show_default=True,
               help="text: a summary and a timeline; json: the run as one JSON object; csv: the trace as CSV.")

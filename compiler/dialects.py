@@ -1,7 +1,12 @@
-"""The table of dialects: extensions, frontend and backend modules, default profile.
+"""The table of dialects: the one registered object through which shared code reaches a dialect.
 
-This is the one place that knows which dialects exist. Frontends and backends are imported lazily
-so that `mcc --version` and the CLI's help stay fast.
+A dialect's facts and the modules that are its own (frontend, backend, migration, preprocessor,
+host protocol, virtual device, editor support) are declared by the dialect itself, in its
+`compiler/<dialect>/dialect.py` (one `Dialect` named `DIALECT`); `REGISTERED` below lists those
+modules, one line per dialect, and is the only place that knows which dialects exist. Shared code
+never names a dialect: it asks the `Dialect` (tests/test_dialect_neutral.py). The modules a
+dialect names are imported lazily so that `mcc --version` and the CLI's help stay fast.
+docs/decisions/0022-dialect-plugin-interface.md says why the interface is this one.
 """
 
 from __future__ import annotations
@@ -75,6 +80,29 @@ class Dialect:
     # the module that moves a program between two product families of this dialect (differs() and
     # migrate(), e.g. MDrivePlus -> Lexium MCode), or "" when the dialect has one family
     migration: str = ""
+    # The neutral settings (ir_names.SETTINGS) the dialect has a statement for: a drive-only setting
+    # outside them may be left out of a conversion to it (backends/drive_setup.py, G051).
+    settings: frozenset[str] = frozenset()
+    # Every marker a comment may start with (the profile directive `mcc: profile=` is read in any of
+    # them, compiler/selection.py), and the ones a `noqa` comment is recognised after ("": `comment`).
+    comment_markers: str = ""
+    noqa_markers: str = ""
+    # The dialect has no initial speed: every move starts from standstill, so a program written for
+    # it runs with an initial speed of 0 (compiler/in_force.py FIXED).
+    moves_from_standstill: bool = False
+    # the module with directive_lines(source) -> [(line, directive)] when the dialect has a
+    # preprocessor whose source is checked whole and never formatted ("" when none)
+    preprocessor: str = ""
+    # The link: the module of the host protocol (`Protocol`, `explain_code`, `describe`, `upload`:
+    # link/protocols.py), the module of the virtual device (`make(faults, options)`:
+    # link/device/virtual.py), and the extensions of a device memory image, when the device is
+    # downloaded an image rather than the compiled listing (empty: the listing).
+    link: str = ""
+    device: str = ""
+    image_extensions: tuple[str, ...] = ()
+    # the editor support: a module with `EDITOR`, an lsp.editor.Editor (completion, hover, rename,
+    # program memory and the indexer of the editor model; lsp/editor.py loads it)
+    editor: str = ""
 
     def load_frontend(self):
         return importlib.import_module(self.frontend)
@@ -86,35 +114,32 @@ class Dialect:
         """The migration module, imported only when a compile names a source profile."""
         return importlib.import_module(self.migration) if self.migration else None
 
+    def load_preprocessor(self):
+        """The preprocessor module, or None when the dialect has none."""
+        return importlib.import_module(self.preprocessor) if self.preprocessor else None
 
-DIALECTS: dict[str, Dialect] = {
-    # MCode: user variables are 32-bit integers (VA, L6036); labels name routines in PG regions, and
-    # a host may run any label with EX, so no routine is private; labels share the 192-name table,
-    # so outlining stays modest (32 new labels at most)
-    "mcode": Dialect("mcode", "Lexium MCode", (".mxt", ".ixt", ".mcode"),
-                     "mcc.compiler.mcode.frontend", "mcc.backends.mcode", "lmd-c", ".mxt", "'",
-                     writes_jumps=True, program_regions=True, migration="mcc.compiler.mcode.migrate",
-                     # VM/VI/A/D in whole steps/s (steps/s^2) when converted, H in ms
-                     resolution=Resolution(1.0, False, 0.001)),
-    # X150: VARn hold decimals (parker-x150.md VAR); a host may start any sequence with XR/XG; the
-    # sequence text after XG is stored as written; every routine but the stream is a sequence
-    "x150": Dialect("x150", "Parker/Digiplan X150/X150E", (".x150",),
-                    "mcc.compiler.x150.frontend", "mcc.backends.x150", "x150-pdhx", ".x150", ";", 8000,
-                    variable_type="decimal", keeps_code_after_transfer=True,
-                    routine_numbers=RoutineNumbers("limits.sequences", (1, 64), every_routine=True),
-                    # V and A in rev/s to four decimals (parker-x150.md L4542, L199), T in s from 0.001 (L4104)
-                    resolution=Resolution(0.0001, True, 0.001)),
-    # Arcus: V1-V64 are 32-bit integers; a SUB runs only by GOSUB (or as SUB 31 on an error, which
-    # is never given to a new routine); program memory is priced per statement and per axis
-    "arcus": Dialect("arcus", "Arcus Performax PMX-4EX-SA", (".prg",),
-                     "mcc.compiler.arcus.frontend", "mcc.backends.arcus", "pmx-4ex-sa", ".prg", ";",
-                     private_routines=True,
-                     routine_numbers=RoutineNumbers("arcus.subroutines", (0, 31), "arcus.allocate_subroutines_from",
-                                                    first=1, reserved=(31,)),
-                     cost_key="arcus.cost",
-                     # HSPD/LSPD in pulses/s, ACC a ramp time in ms, DELAY in ms (L1198, L1735)
-                     resolution=Resolution(1.0, False, 0.001, ramp_times=True)),
-}
+    def load_link(self):
+        return importlib.import_module(self.link)
+
+    def load_device(self):
+        return importlib.import_module(self.device)
+
+    def noqa_comment_markers(self) -> str:
+        return self.noqa_markers or self.comment
+
+
+# The dialects, in the order the CLI and the documentation list them: one registration line each,
+# the module that declares the dialect's `DIALECT`.
+REGISTERED = (
+    "mcc.compiler.mcode.dialect",
+    "mcc.compiler.x150.dialect",
+    "mcc.compiler.arcus.dialect",
+)
+
+DIALECTS: dict[str, Dialect] = {}
+for _module in REGISTERED:
+    _dialect = importlib.import_module(_module).DIALECT
+    DIALECTS[_dialect.name] = _dialect
 
 
 def names() -> list[str]:
@@ -131,6 +156,12 @@ def from_path(path: str) -> Dialect | None:
         if lower.endswith(dialect.extensions):
             return dialect
     return None
+
+
+def from_image(path: str) -> Dialect | None:
+    """The dialect whose device memory image `path` is (by its extension), or None."""
+    lower = path.lower()
+    return next((d for d in DIALECTS.values() if d.image_extensions and lower.endswith(d.image_extensions)), None)
 
 
 def all_extensions() -> tuple[str, ...]:

@@ -37,7 +37,7 @@ from __future__ import annotations
 from collections import deque
 from typing import Iterator
 
-from mcc.compiler import ir
+from mcc.compiler import dialects, ir
 
 Key = tuple  # (param, axis), or (SETS, param), (WRITTEN, param, axis), (UNWRITTEN, param, axis)
 State = dict[Key, ir.Const]
@@ -51,7 +51,7 @@ ONE = ir.Const(1)
 # speed (its moves start from standstill, docs/dialects/x150.md), so a program written for it runs
 # with an initial speed of 0 at every point.
 FIXED: dict[str, State] = {
-    "x150": {(ir.MotionParam.INITIAL_SPEED, ALL): ir.Const(0, ir.Unit.STEPS_PER_S)},
+    d.name: {(ir.MotionParam.INITIAL_SPEED, ALL): ir.Const(0, ir.Unit.STEPS_PER_S)} for d in dialects.DIALECTS.values() if d.moves_from_standstill
 }
 
 

@@ -181,12 +181,12 @@ HANDLER_ENABLE_BITS: dict[int, str] = {1: "input", 2: "position", 4: "capture", 
 
 @dataclass(frozen=True)
 class SettingInfo:
-    """A device setting (`ir.Setting`): meaning, unit, and the dialects that have it."""
+    """A device setting (`ir.Setting`): meaning and unit. Which dialects have it is the dialects'
+    own fact (each `Dialect.settings`, compiler/<dialect>/dialect.py): `dialects` asks them."""
 
     name: str
     unit: Unit
     meaning: str
-    dialects: tuple[str, ...]
     # how the value is held: "int" (a whole number), "float" (printed in the product's float format),
     # "text" (a text the device keeps, e.g. a format); every setting can be read back as a reading
     # `Status(name)`: the value the run set, else the module's `device_values` (the product's default)
@@ -197,148 +197,124 @@ class SettingInfo:
     # warning (backends/drive_setup.py, G051)
     drive_only: bool = False
 
+    @property
+    def dialects(self) -> tuple[str, ...]:
+        """The dialects that have a statement for the setting, in the order of the table of dialects."""
+        from mcc.compiler import dialects
+
+        return tuple(d.name for d in dialects.DIALECTS.values() if self.name in d.settings)
+
 
 SETTINGS: dict[str, SettingInfo] = {s.name: s for s in (
     # RC and HC set the motor's current only (lexium-mcode.txt L5134, L3077); HT (hold_delay) is not
     # drive-only: MP and MV stay active through the HT and MT delays (L4207, L4429)
-    SettingInfo("run_current", Unit.PERCENT, "motor current while moving, % of the maximum", ("mcode",),
+    SettingInfo("run_current", Unit.PERCENT, "motor current while moving, % of the maximum",
                 drive_only=True),
-    SettingInfo("hold_current", Unit.PERCENT, "motor current at rest, % of the maximum", ("mcode",),
+    SettingInfo("hold_current", Unit.PERCENT, "motor current at rest, % of the maximum",
                 drive_only=True),
-    SettingInfo("hold_delay", Unit.S, "time after a move before the hold current applies", ("mcode",)),
-    SettingInfo("settle_time", Unit.S, "time the motor settles after a move before the next starts", ("mcode",)),
-    SettingInfo("encoder_enable", Unit.NONE, "1: the encoder is used (closed loop), 0: open loop",
-                ("mcode",)),
-    SettingInfo("error_code", Unit.NONE, "the device's error code: writing 0 clears the error",
-                ("mcode",)),
+    SettingInfo("hold_delay", Unit.S, "time after a move before the hold current applies"),
+    SettingInfo("settle_time", Unit.S, "time the motor settles after a move before the next starts"),
+    SettingInfo("encoder_enable", Unit.NONE, "1: the encoder is used (closed loop), 0: open loop"),
+    SettingInfo("error_code", Unit.NONE, "the device's error code: writing 0 clears the error"),
     SettingInfo("handler_enable", Unit.NONE, "which installed handlers may fire: a bit mask in "
-                "HANDLER_ENABLE_BITS order; a handler that fires clears its bit (MCode TE)", ("mcode",)),
-    SettingInfo("input_debounce", Unit.S, "time input `index` must hold a new level before it counts",
-                ("mcode",)),
-    SettingInfo("input_function", Unit.NONE, "what input `index` does: a name of INPUT_FUNCTIONS", ("mcode", "x150")),
-    SettingInfo("input_active_high", Unit.NONE, "1: input `index` is active at a high level, 0: low",
-                ("mcode", "x150")),
-    SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS",
-                ("mcode", "x150")),
-    SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low", ("mcode", "x150")),
+                "HANDLER_ENABLE_BITS order; a handler that fires clears its bit (MCode TE)"),
+    SettingInfo("input_debounce", Unit.S, "time input `index` must hold a new level before it counts"),
+    SettingInfo("input_function", Unit.NONE, "what input `index` does: a name of INPUT_FUNCTIONS"),
+    SettingInfo("input_active_high", Unit.NONE, "1: input `index` is active at a high level, 0: low"),
+    SettingInfo("output_function", Unit.NONE, "what output `index` shows: a name of OUTPUT_FUNCTIONS"),
+    SettingInfo("output_active_high", Unit.NONE, "1: output `index` is on at a high level, 0: low"),
     SettingInfo("io_sourcing", Unit.NONE, "1: I/O point `index` sources current, 0: it sinks (MDrivePlus S1-S4; "
-                "wiring on Lexium drives)", ("mcode",)),
+                "wiring on Lexium drives)"),
     SettingInfo("switch_active_high", Unit.NONE, "1: switch input `index` (SWITCH_INPUTS, 1 first) is active at a "
-                "high level, 0: low", ("x150",)),
-    SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis", ("arcus",)),
-    SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again",
-                ("arcus",)),
-    SettingInfo("enable_outputs", Unit.NONE, "every drive-enable output as a bit mask, the first axis in bit 0",
-                ("arcus",)),
-    SettingInfo("countdown", Unit.S, "loads the countdown timer, which then counts down to 0", ("arcus",)),
-    SettingInfo("speed_change", Unit.STEPS_PER_S, "changes the speed of the move in progress on the fly",
-                ("arcus",)),
+                "high level, 0: low"),
+    SettingInfo("encoder_position", Unit.STEPS, "sets the encoder counter of the axis"),
+    SettingInfo("clear_error", Unit.NONE, "1 clears the axis's limit/alarm error so that it accepts moves again"),
+    SettingInfo("enable_outputs", Unit.NONE, "every drive-enable output as a bit mask, the first axis in bit 0"),
+    SettingInfo("countdown", Unit.S, "loads the countdown timer, which then counts down to 0"),
+    SettingInfo("speed_change", Unit.STEPS_PER_S, "changes the speed of the move in progress on the fly"),
     SettingInfo("compare_condition", Unit.NONE, "when the position-compare output fires: 1 encoder = position, "
-                "2 encoder > position, 3 encoder < position", ("arcus",)),
-    SettingInfo("compare_position", Unit.STEPS, "the encoder position the position-compare output tests",
-                ("arcus",)),
-    SettingInfo("compare_pulse", Unit.S, "pulse width of the compare output at equality (0: while equal)",
-                ("arcus",)),
+                "2 encoder > position, 3 encoder < position"),
+    SettingInfo("compare_position", Unit.STEPS, "the encoder position the position-compare output tests"),
+    SettingInfo("compare_pulse", Unit.S, "pulse width of the compare output at equality (0: while equal)"),
     SettingInfo("compare_output", Unit.NONE, "1 arms the position-compare output, 0 turns it off (its digital "
-                "output is then the program's again)", ("arcus",)),
+                "output is then the program's again)"),
     SettingInfo("limits_disabled", Unit.NONE, "limit switches ignored, a bit mask: 1 the + limit, 2 the - limit "
-                "(0: both active)", ("x150",)),
+                "(0: both active)"),
     SettingInfo("position_maintenance", Unit.NONE, "1: a stepper is servoed back to its encoder position at rest, "
-                "0: off", ("x150", "mcode")),
+                "0: off"),
     SettingInfo("stop_on_stall", Unit.NONE, "1: a move stops (at its deceleration) when a stall is detected, 0: "
-                "it goes on", ("x150",)),
-    SettingInfo("encoder_resolution", Unit.NONE, "encoder counts per motor revolution (after quadrature)",
-                ("x150",)),
-    SettingInfo("motor_resolution", Unit.NONE, "motor steps per revolution of the drive (not the IR's step)",
-                ("x150",)),
+                "it goes on"),
+    SettingInfo("encoder_resolution", Unit.NONE, "encoder counts per motor revolution (after quadrature)"),
+    SettingInfo("motor_resolution", Unit.NONE, "motor steps per revolution of the drive (not the IR's step)"),
     SettingInfo("position_deadband", Unit.NONE, "position error, in motor steps, that position maintenance "
-                "leaves uncorrected", ("x150",)),
-    SettingInfo("encoder_step_mode", Unit.NONE, "1: distances count encoder steps, 0: motor steps", ("x150",)),
+                "leaves uncorrected"),
+    SettingInfo("encoder_step_mode", Unit.NONE, "1: distances count encoder steps, 0: motor steps"),
     SettingInfo("keep_buffer_on_stop", Unit.NONE, "1: a stop keeps the commands waiting in the buffer, 0: clears "
-                "them", ("x150",)),
-    SettingInfo("home_accel", Unit.STEPS_PER_S2, "acceleration of a homing move; 0: the largest the drive makes",
-                ("x150",)),
-    SettingInfo("home_final_speed", Unit.STEPS_PER_S, "speed of a homing move's final approach to the home edge",
-                ("x150",)),
+                "them"),
+    SettingInfo("home_accel", Unit.STEPS_PER_S2, "acceleration of a homing move; 0: the largest the drive makes"),
+    SettingInfo("home_final_speed", Unit.STEPS_PER_S, "speed of a homing move's final approach to the home edge"),
     SettingInfo("following_mode", Unit.NONE, "0: the axis is an indexer that runs its own moves; 1-6: it "
-                "follows a step/encoder input in one of the device's following modes", ("x150",)),
-    SettingInfo("following_ratio", Unit.PERCENT, "speed of a following axis as a percentage of its input",
-                ("x150",)),
+                "follows a step/encoder input in one of the device's following modes"),
+    SettingInfo("following_ratio", Unit.PERCENT, "speed of a following axis as a percentage of its input"),
     SettingInfo("command_source", Unit.NONE, "how the following input is counted: 0 quadrature x4, 1 x2, 2 x1, "
-                "3 step and direction", ("x150",)),
+                "3 step and direction"),
     SettingInfo("single_step", Unit.NONE, "1: a stored program runs one command per step request from the host, "
-                "0: it runs freely", ("x150",)),
-    SettingInfo("trace", Unit.NONE, "1: the device reports each program command to the host as it runs it, 0: off",
-                ("x150",)),
+                "0: it runs freely"),
+    SettingInfo("trace", Unit.NONE, "1: the device reports each program command to the host as it runs it, 0: off"),
     # the RP240 panel's keys (parker-x150.md L860-L885, L1237-L1253): on a target without the panel
     # no key can be pressed, so enabling one changes nothing the program does (drive-only, G051)
     SettingInfo("panel_pause_keys", Unit.NONE, "1: the operator panel's PAUSE and CONTINUE keys pause and resume "
-                "the program, 0: they are ignored", ("x150",), drive_only=True),
-    SettingInfo("limit_decel", Unit.STEPS_PER_S2, "deceleration of a stop at a limit switch", ("x150",)),
+                "the program, 0: they are ignored", drive_only=True),
+    SettingInfo("limit_decel", Unit.STEPS_PER_S2, "deceleration of a stop at a limit switch"),
     SettingInfo("position_error_limit", Unit.NONE, "position error, in motor steps, beyond which a servo faults; "
-                "0: no limit", ("x150",)),
+                "0: no limit"),
     SettingInfo("in_position_window", Unit.NONE, "position error, in motor steps, within which a move counts as "
-                "in position", ("x150",)),
-    SettingInfo("in_position_time", Unit.S, "time the position error must stay within the in-position window",
-                ("x150",)),
-    SettingInfo("servo_proportional_gain", Unit.NONE, "the servo loop's proportional gain (device units)",
-                ("x150",)),
-    SettingInfo("servo_integral_gain", Unit.NONE, "the servo loop's integral gain (device units)", ("x150",)),
-    SettingInfo("servo_velocity_gain", Unit.NONE, "the servo loop's velocity feedback gain (device units)",
-                ("x150",)),
-    SettingInfo("servo_feedforward_gain", Unit.NONE, "the servo loop's velocity feedforward gain (device units)",
-                ("x150",)),
-    SettingInfo("servo_filter_time", Unit.S, "time constant of the servo loop's output filter", ("x150",)),
-    SettingInfo("following_filter_time", Unit.S, "time constant of the filter on a following input", ("x150",)),
+                "in position"),
+    SettingInfo("in_position_time", Unit.S, "time the position error must stay within the in-position window"),
+    SettingInfo("servo_proportional_gain", Unit.NONE, "the servo loop's proportional gain (device units)"),
+    SettingInfo("servo_integral_gain", Unit.NONE, "the servo loop's integral gain (device units)"),
+    SettingInfo("servo_velocity_gain", Unit.NONE, "the servo loop's velocity feedback gain (device units)"),
+    SettingInfo("servo_feedforward_gain", Unit.NONE, "the servo loop's velocity feedforward gain (device units)"),
+    SettingInfo("servo_filter_time", Unit.S, "time constant of the servo loop's output filter"),
+    SettingInfo("following_filter_time", Unit.S, "time constant of the filter on a following input"),
     SettingInfo("panel_stop_key", Unit.NONE, "1: the operator panel's STOP key stops motion and ends every loop "
-                "and program, 0: it is ignored", ("x150",), drive_only=True),
+                "and program, 0: it is ignored", drive_only=True),
     # Drive registers the program may set and read back, whose effect the simulator does not model
     # (it keeps their value: docs/SIMULATOR.md, "Drive registers"); MCode's spelling in the catalog's
     # `setting` key (compiler/catalogs/mcode.toml)
-    SettingInfo("trip_pulse_width", Unit.NONE, "pulse width of the trip (clock) output, in 50 ns units", ("mcode",)),
-    SettingInfo("analog_filter", Unit.NONE, "samples of the analog input's running-average filter", ("mcode",)),
+    SettingInfo("trip_pulse_width", Unit.NONE, "pulse width of the trip (clock) output, in 50 ns units"),
+    SettingInfo("analog_filter", Unit.NONE, "samples of the analog input's running-average filter"),
     SettingInfo("decel_jerk", Unit.NONE, "samples of the deceleration ramp held at constant deceleration "
-                "(S-curve jerk)", ("mcode",)),
+                "(S-curve jerk)"),
     SettingInfo("echo_mode", Unit.NONE, "how the device echoes the host's commands (0 all, 1 none, 2 no prompt, "
-                "3 queued)", ("mcode",)),
-    SettingInfo("clock_input_filter", Unit.NONE, "digital filter of the clock inputs (a code of the filter time)",
-                ("mcode",)),
-    SettingInfo("jog_enable", Unit.NONE, "1: the jog inputs move the axis, 0: they are ignored", ("mcode",)),
+                "3 queued)"),
+    SettingInfo("clock_input_filter", Unit.NONE, "digital filter of the clock inputs (a code of the filter time)"),
+    SettingInfo("jog_enable", Unit.NONE, "1: the jog inputs move the axis, 0: they are ignored"),
     SettingInfo("lead_limit", Unit.NONE, "closed loop: the largest lead of the rotor, in motor steps, before a "
-                "fault", ("mcode",)),
-    SettingInfo("lag_limit", Unit.NONE, "closed loop: the largest lag of the rotor, in motor steps, before a fault",
-                ("mcode",)),
-    SettingInfo("program_lock", Unit.NONE, "1: the stored program cannot be listed, changed or uploaded",
-                ("mcode",)),
-    SettingInfo("limit_response", Unit.NONE, "how the axis responds to a limit switch (a mode number)", ("mcode",)),
+                "fault"),
+    SettingInfo("lag_limit", Unit.NONE, "closed loop: the largest lag of the rotor, in motor steps, before a fault"),
+    SettingInfo("program_lock", Unit.NONE, "1: the stored program cannot be listed, changed or uploaded"),
+    SettingInfo("limit_response", Unit.NONE, "how the axis responds to a limit switch (a mode number)"),
     SettingInfo("locked_rotor_timeout", Unit.S, "closed loop: time at the lag limit without rotor movement before "
-                "a locked rotor is declared", ("mcode",)),
-    SettingInfo("makeup_frequency", Unit.STEPS_PER_S, "closed loop: speed at which missed steps are made up",
-                ("mcode",)),
-    SettingInfo("makeup_mode", Unit.NONE, "closed loop: how missed steps are made up (a mode number)", ("mcode",)),
-    SettingInfo("numeric_move_enable", Unit.NONE, "1: a number typed alone repeats the last move kind with it",
-                ("mcode",)),
+                "a locked rotor is declared"),
+    SettingInfo("makeup_frequency", Unit.STEPS_PER_S, "closed loop: speed at which missed steps are made up"),
+    SettingInfo("makeup_mode", Unit.NONE, "closed loop: how missed steps are made up (a mode number)"),
+    SettingInfo("numeric_move_enable", Unit.NONE, "1: a number typed alone repeats the last move kind with it"),
     SettingInfo("float_format", Unit.NONE, "how floating-point values print: width, decimals, notation "
-                "(1 scientific), justification (1 left), as text `w,d,n,j`", ("mcode",), "text"),
-    SettingInfo("trig_radians", Unit.NONE, "1: the trigonometric functions work in radians, 0: in degrees",
-                ("mcode",)),
-    SettingInfo("direction_reversed", Unit.NONE, "1: the motor's plus and minus directions are swapped",
-                ("mcode",)),
-    SettingInfo("step_angle", Unit.NONE, "the motor's full-step angle in degrees", ("mcode",), "float"),
-    SettingInfo("stall_factor", Unit.NONE, "following error, in encoder counts, above which a stall is declared",
-                ("mcode",)),
-    SettingInfo("continue_on_stall", Unit.NONE, "1: a move goes on after a stall, 0: it stops", ("mcode",)),
-    SettingInfo("torque_direction", Unit.NONE, "closed-loop torque mode: 1 plus, 0 minus", ("mcode",)),
-    SettingInfo("torque_percent", Unit.PERCENT, "closed-loop torque mode: the largest torque", ("mcode",)),
-    SettingInfo("torque_speed", Unit.STEPS_PER_S, "closed-loop torque mode: the speed", ("mcode",)),
-    SettingInfo("velocity_filter", Unit.NONE, "closed loop: filtering of the measured velocity (0 none)",
-                ("mcode",)),
+                "(1 scientific), justification (1 left), as text `w,d,n,j`", "text"),
+    SettingInfo("trig_radians", Unit.NONE, "1: the trigonometric functions work in radians, 0: in degrees"),
+    SettingInfo("direction_reversed", Unit.NONE, "1: the motor's plus and minus directions are swapped"),
+    SettingInfo("step_angle", Unit.NONE, "the motor's full-step angle in degrees", "float"),
+    SettingInfo("stall_factor", Unit.NONE, "following error, in encoder counts, above which a stall is declared"),
+    SettingInfo("continue_on_stall", Unit.NONE, "1: a move goes on after a stall, 0: it stops"),
+    SettingInfo("torque_direction", Unit.NONE, "closed-loop torque mode: 1 plus, 0 minus"),
+    SettingInfo("torque_percent", Unit.PERCENT, "closed-loop torque mode: the largest torque"),
+    SettingInfo("torque_speed", Unit.STEPS_PER_S, "closed-loop torque mode: the speed"),
+    SettingInfo("velocity_filter", Unit.NONE, "closed loop: filtering of the measured velocity (0 none)"),
     SettingInfo("soft_limit_position", Unit.STEPS, "the position of software limit `index` (0 the minus limit, "
-                "1 the plus limit)", ("mcode",)),
-    SettingInfo("soft_limit_enable", Unit.NONE, "1: software limit `index` (0 minus, 1 plus) stops the axis, 0: off",
-                ("mcode",)),
-    SettingInfo("warning_temperature", Unit.NONE, "temperature, in °C, above which the device raises a warning",
-                ("mcode",)),
+                "1 the plus limit)"),
+    SettingInfo("soft_limit_enable", Unit.NONE, "1: software limit `index` (0 minus, 1 plus) stops the axis, 0: off"),
+    SettingInfo("warning_temperature", Unit.NONE, "temperature, in °C, above which the device raises a warning"),
 )}
 
 # The values of the input_function and output_function settings (an `ir.Text`).

@@ -30,9 +30,6 @@ from mcc.compiler.diagnostics import Diagnostic, Diagnostics
 from mcc.compiler.profiles import Profile, ProfileError, builtin_names, load
 from mcc.compiler.span import SourceFile, Span
 
-# The comment markers of each dialect a directive may be written with (MCode listings use the
-# backtick as well as the apostrophe; Arcus reads "'" comments too, L1201).
-MARKERS = {"mcode": "'`", "arcus": ";'", "x150": ";"}
 DIRECTIVE = re.compile(r"mcc\s*:\s*profile\s*=\s*(?P<spec>\S+)\s*$", re.IGNORECASE)
 HEAD_LINES = 50  # a directive is looked for in the comments before the first statement, this far
 
@@ -55,7 +52,13 @@ class Choice:
 
 
 def markers(dialect: str) -> str:
-    return MARKERS.get(dialect, dialects.get(dialect).comment if dialect in dialects.DIALECTS else ";")
+    """The comment markers a directive may be written with: every one the dialect reads
+    (`Dialect.comment_markers`: MCode listings use the backtick as well as the apostrophe, Arcus
+    reads "'" comments too, L1201)."""
+    if dialect not in dialects.DIALECTS:
+        return ";"
+    found = dialects.get(dialect)
+    return found.comment_markers or found.comment
 
 
 def directive(source: SourceFile, dialect: str) -> tuple[str, Span] | None:

@@ -173,3 +173,21 @@ class Protocol:
                   "; The standalone program itself is compiled code whose format is not documented: use",
                   "; mcc upload --image FILE to save it as an image that mcc download can put back."]
         return "\n".join([*header, *body, "END"]) + "\n"
+
+
+# -- what the link asks of the dialect (link/protocols.py) ------------------------------------
+def explain_code(code: str) -> str:
+    return f"SASTAT {code}: {SASTAT.get(code, 'undocumented')}"
+
+
+def describe(reply: Reply) -> str | None:
+    """SASTAT's number with its meaning."""
+    if reply.command.upper() != "SASTAT":
+        return None
+    data = " | ".join(reply.lines)
+    return f"{data}  ({SASTAT.get(data, 'undocumented')})"
+
+
+def upload(proto: Protocol, password: str, addresses: list[str] | None) -> str:
+    """The variables V0-V63 (no password, one controller)."""
+    return proto.upload()

@@ -343,3 +343,18 @@ class Protocol:
             return ""
         program = [f"PG {origin}", *lines, "PG"] if lines else []
         return "\n".join([*declared, *program]) + "\n"
+
+
+# -- what the link asks of the dialect (link/protocols.py) ------------------------------------
+def explain_code(code: str) -> str:
+    return f"error {code}: {explain(code)}"
+
+
+def describe(reply: Reply) -> str | None:
+    """An accepted reply's data says what it is."""
+    return None
+
+
+def upload(proto: Protocol, password: str, addresses: list[str] | None) -> str:
+    """The program memory as MCode text (no password, one device)."""
+    return proto.upload()

@@ -18,17 +18,9 @@ def explain(dialect: str, code: str) -> str:
 
         info = registry().get(code.upper())
         return info.page() if info is not None else f"unknown code {code} (see mcc explain --list)"
-    if dialect == "mcode":
-        from mcc.link.mcode import explain as mcode_explain
+    from mcc.link import protocols
 
-        return f"error {code}: {mcode_explain(code)}"
-    if dialect == "x150":
-        from mcc.link.x150 import explain as x150_explain
-
-        return x150_explain(code) or f"{code}: not a documented X150 report code"
-    from mcc.link.arcus import SASTAT
-
-    return f"SASTAT {code}: {SASTAT.get(code, 'undocumented')}"
+    return protocols.module(dialect).explain_code(code)
 
 
 class Terminal:
@@ -63,7 +55,7 @@ class Terminal:
                     pass
 
     def handle(self, line: str) -> bool:
-        from mcc.cli.link import describe
+        from mcc.link.protocols import describe
 
         if not line:
             return True

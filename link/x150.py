@@ -277,3 +277,20 @@ class Protocol:
             if password:
                 self.transact(f"{address}PASS{password}")
         return "\n".join(out) + "\n" if out else ""
+
+
+# -- what the link asks of the dialect (link/protocols.py) ------------------------------------
+def explain_code(code: str) -> str:
+    return explain(code) or f"{code}: not a documented X150 report code"
+
+
+def describe(reply: Reply) -> str | None:
+    """A single report line (`*R`, an XSD code) with its meaning."""
+    data = " | ".join(reply.lines)
+    words = explain(reply.lines[-1].strip())
+    return f"{data}  ({words})" if words and len(reply.lines) == 1 else data or "ok"
+
+
+def upload(proto: Protocol, password: str, addresses: list[str] | None) -> str:
+    """Every stored sequence of the devices at `addresses`, after the password if one is given."""
+    return proto.upload(password, addresses)

@@ -21,8 +21,6 @@ from mcc.compiler.lint import engine
 from mcc.compiler.span import SourceFile
 from mcc.lsp import incremental, model
 
-INDEXERS = {"mcode": "mcc.lsp.mcode_index", "arcus": "mcc.lsp.arcus_index", "x150": "mcc.lsp.x150_index"}
-
 
 @dataclass
 class Snapshot:
@@ -117,11 +115,14 @@ def with_index(snap: Snapshot) -> Snapshot:
 def build_index(snap: Snapshot, diags: list[Diagnostic]) -> model.Index:
     import importlib
 
-    if snap.dialect not in INDEXERS or snap.tree is None:
+    from mcc.lsp.editor import editor_of
+
+    indexer = editor_of(snap.dialect).indexer  # the dialect's own (lsp/<dialect>_index.py)
+    if not indexer or snap.tree is None:
         return model.Index(snap.dialect)
     profile = snap.profile or driver.profile_for(dialects.get(snap.dialect), None)
     try:
-        return importlib.import_module(INDEXERS[snap.dialect]).build(snap.tree, snap.source, profile)
+        return importlib.import_module(indexer).build(snap.tree, snap.source, profile)
     except Exception as exc:  # noqa: BLE001 - the editor model must never cost the diagnostics
         driver.internal_error(_Sink(diags), snap.path, exc, "building the editor model")
         return model.Index(snap.dialect)

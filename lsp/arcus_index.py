@@ -13,7 +13,7 @@ from mcc.compiler.arcus import syntax as st
 from mcc.compiler.arcus.resolve import VARIABLE, sub_span
 from mcc.compiler.span import SourceFile
 from mcc.lsp import model as m
-from mcc.lsp.mcode_index import comment_folds, span_lines
+from mcc.lsp.model import comment_folds, span_lines
 
 OPENERS = {"IF": "ENDIF", "WHILE": "ENDWHILE", "SUB": "ENDSUB"}
 

@@ -71,16 +71,10 @@ def hover_markdown(entry: Entry, profile, spelled: str = "") -> str:
     return "\n".join(lines)
 
 
-def snippet(entry: Entry, dialect: str) -> tuple[str, str]:
-    """(insert text as an LSP snippet, the syntax it came from) for a command."""
+def snippet(entry: Entry) -> tuple[str, str]:
+    """(insert text as an LSP snippet, the syntax it came from) for a command: each placeholder of
+    its first syntax a tab stop (a dialect's editor may write its own, lsp/editor.py)."""
     syntax = entry.syntax[0] if entry.syntax else entry.name
-    if dialect == "x150":
-        syntax = syntax.replace("<a>", "")
-        # X150 writes the value glued to the mnemonic: <a>D<s>n, <a>XRn, <a>VARn
-        body = syntax[len(entry.name):] if syntax.upper().startswith(entry.name.upper()) else ""
-        if entry.get("arg", "none") in ("none", "") or not body:
-            return entry.name, syntax
-        return entry.name + "${1:" + escape(body.replace("<s>", "±")) + "}", syntax
     counter = 0
 
     def field(match: re.Match) -> str:

@@ -5,7 +5,10 @@ where an MCode command takes one (`BR x`, `CL x`, `TI 1,x`, `TT=0.5,x`, `OE=x`, 
 after `BR x,`/`CL x,` (variables, flags and inputs, lexium-mcode.txt L1807, L2124), a subroutine
 number after `GOSUB` (Arcus), a sequence number after `XR`/`XG`/... (X150), a command at the start
 of a statement (as a snippet from the catalog's syntax, only what the target product has, and only
-what the program region allows), variables and readable registers elsewhere.
+what the program region allows), variables and readable registers elsewhere. This module is
+written once; what differs by dialect (the places, where a statement starts, which commands a
+place allows, snippets, the command before the cursor) is the dialect's Editor's
+(lsp/<dialect>_editor.py, lsp/editor.py).
 
 Every item carries the range it replaces (a `textEdit`): the word being typed as the dialect reads
 it, not as the editor's word pattern does. An X150 device address (`1D`, `2G`) and an Arcus axis
@@ -20,48 +23,25 @@ import re
 from lsprotocol import types as t
 
 from mcc.lsp import catalog_info, model
-
-MCODE_PREFIX = r"^\s*[!*^]?(?:[A-Za-z0-9]\s*)??"  # an optional party-mode device name
-MCODE_LABEL = re.compile(  # the label/address of L1764 BP, L1807 BR, L2124 CL, L2156 CP, L2787 EX,
-    # L4551 OE=, L5583 TA=, L5609 TC=, L5744 TM=, and after the first argument of L5711 TI,
-    # L5776 TP=, L5848 TR=, L5908 TT=
-    MCODE_PREFIX + r"(?:(?:BR|CL|BP|EX|CP)\s+|(?:OE|TA|TC|TM)\s*=\s*|(?:TI\s+|(?:TP|TR|TT)\s*=\s*)[^,]*,\s*)"
-    r"[A-Za-z0-9]*$", re.IGNORECASE)
-MCODE_CONDITION = re.compile(MCODE_PREFIX + r"(?:BR|CL)\s+[^,\s]+\s*,[^,]*$", re.IGNORECASE)  # L1807, L2124
-ARCUS_GOSUB = re.compile(r"^\s*GOSUB\s*(\d*)$", re.IGNORECASE)
-X150_SEQUENCE = re.compile(r"(?:^|\s)\d*(?:XRP|XR|XG|XE|XU|GOSUB|GOTO)\s*(\d*)$", re.IGNORECASE)
-STATEMENT_START = {
-    "mcode": re.compile(r"^\s*[!*^]?[A-Za-z]{0,3}$"),
-    "arcus": re.compile(r"^\s*[A-Za-z]*$"),
-    "x150": re.compile(r"(?:^|\s)\d*(B?[A-Za-z]*)$"),  # the command after its device address
-}
-WORD = re.compile(r"[A-Za-z0-9_]*$")
-COMMAND_KINDS = {"mcode": ("instruction", "variable", "flag"),
-                 "arcus": None, "x150": None}
-VALUE_KINDS = {"mcode": ("variable", "flag", "keyword", "function")}
+from mcc.lsp.editor import editor_of
 
 
 def complete(snap, line_text: str, character: int, line: int) -> t.CompletionList:
     before = line_text[:character]
-    dialect = snap.dialect
+    editor = editor_of(snap.dialect)
     items: list[t.CompletionItem] = []
-    start = word_start(dialect, before)
-    if dialect == "mcode" and MCODE_LABEL.match(before):
-        items = symbols(snap, model.SYMBOL_LABEL)
-    elif dialect == "mcode" and MCODE_CONDITION.match(before) and not in_comment(snap, before):
-        items = symbols(snap, model.SYMBOL_VARIABLE) + values(snap)
-    elif dialect == "arcus" and ARCUS_MOVE_VARIABLE.match(before):
-        items = symbols(snap, model.SYMBOL_VARIABLE)
-    elif dialect == "arcus" and ARCUS_GOSUB.match(before):
-        items = symbols(snap, model.SYMBOL_SUBROUTINE)
-    elif dialect == "x150" and (found := X150_SEQUENCE.search(before)):
-        items = symbols(snap, model.SYMBOL_SEQUENCE)
-        start = found.start(1)  # the number after `1XR`
-    elif dialect in STATEMENT_START and (found := STATEMENT_START[dialect].search(before)) \
-            and not in_comment(snap, before):
-        items = commands(snap, line) + (symbols(snap, model.SYMBOL_VARIABLE) if dialect != "x150" else [])
-        if dialect == "x150":
-            start = found.start(1)  # after the device address (`1` typed alone: nothing to replace)
+    start = word_start(snap.dialect, before)
+    place = next((p for p in editor.places if p.pattern.search(before)
+                  and not (p.outside_comment and in_comment(snap, before))), None)
+    statement = editor.statement_start.search(before) if editor.statement_start is not None else None
+    if place is not None:
+        items = [item for kind in place.symbols for item in symbols(snap, kind)] + (values(snap) if place.values else [])
+        if place.start_group is not None:
+            start = place.pattern.search(before).start(place.start_group)  # the number after `1XR`
+    elif statement is not None and not in_comment(snap, before):
+        items = commands(snap, line) + (symbols(snap, model.SYMBOL_VARIABLE) if editor.statement_symbols else [])
+        if editor.statement_group is not None:
+            start = statement.start(editor.statement_group)  # after the device address
     elif not in_comment(snap, before):
         items = symbols(snap, model.SYMBOL_VARIABLE) + values(snap)
     replaced = t.Range(t.Position(line, start), t.Position(line, character))
@@ -69,24 +49,13 @@ def complete(snap, line_text: str, character: int, line: int) -> t.CompletionLis
 
 
 TRAILING_WORD = re.compile(r"[A-Za-z0-9_]*$")
-X150_ADDRESSED = re.compile(r"^\d+(?=[A-Za-z])")  # `1D`, `12XR`: the device address before a command
-# `XV2`, `X1000YV2`: a variable as a move target (arcus-pmx-4ex-sa.txt L2759 `XV10`, L2665 `UV10`)
-ARCUS_MOVE_VARIABLE = re.compile(r"^\s*(?:[XYZU](?:[+-]?\d+|V\d+))*[XYZU](V\d*)$", re.IGNORECASE)
 
 
 def word_start(dialect: str, before: str) -> int:
-    """The column where the word being typed starts: the items replace from there to the cursor."""
+    """The column where the word being typed starts: the items replace from there to the cursor
+    (the dialect's editor moves it past what is not part of the word: a device address, an axis)."""
     start = len(before) - len(TRAILING_WORD.search(before).group(0))
-    word = before[start:]
-    if dialect == "x150":
-        found = X150_ADDRESSED.match(word)
-        if found is not None:
-            start += found.end()
-    elif dialect == "arcus":
-        found = ARCUS_MOVE_VARIABLE.match(before)
-        if found is not None:
-            start = found.start(1)
-    return start
+    return editor_of(dialect).word_start(before, start)
 
 
 def with_range(item: t.CompletionItem, replaced: t.Range) -> t.CompletionItem:
@@ -122,60 +91,36 @@ def symbols(snap, kind: str) -> list[t.CompletionItem]:
     return out
 
 
-def region_mode(snap, line: int) -> str:
-    """MCode: "program" inside a PG … PG region, else "immediate"."""
-    for routine in snap.index.routines:
-        if routine.kind == "program" and routine.span.line <= line + 1 <= routine.span.end_line:
-            return "program"
-    return "immediate"
-
-
-def inside_sequence(snap, line: int) -> bool:
-    return any(r.kind == "sequence" and r.span.line < line + 1 < r.span.end_line for r in snap.index.routines)
-
-
-def allowed_here(snap, entry, line: int) -> bool:
+def allowed_here(snap, entry, place: str) -> bool:
     ok, _ = catalog_info.availability(entry, snap.profile)
     if not ok or entry.kind in catalog_info.UNAVAILABLE_KINDS:
         return False
-    if snap.dialect == "mcode":
-        if entry.kind not in COMMAND_KINDS["mcode"]:
-            return False
-        mode = entry.get("mode", "both")
-        return mode == "both" or mode == region_mode(snap, line)
-    if snap.dialect == "x150" and inside_sequence(snap, line):
-        return entry.get("seq", "S") == "S"
-    if snap.dialect == "arcus":
-        return bool(entry.get("pattern"))
-    return True
+    return editor_of(snap.dialect).allows(entry, place)
 
 
 def commands(snap, line: int) -> list[t.CompletionItem]:
     """The commands allowed at `line`; the items depend only on the dialect, the profile and the
-    kind of place, so they are built once per combination."""
-    if snap.dialect == "mcode":
-        place = region_mode(snap, line)
-    elif snap.dialect == "x150":
-        place = "sequence" if inside_sequence(snap, line) else "immediate"
-    else:
-        place = ""
+    kind of place (the dialect's editor says which: a program region, a sequence), so they are
+    built once per combination."""
+    place = editor_of(snap.dialect).command_place(snap, line)
     key = (snap.dialect, getattr(snap.profile, "name", ""), getattr(snap.profile, "product", ""),
            getattr(snap.profile, "firmware", ""), place)
     found = COMMAND_ITEMS.get(key)
     if found is None:
-        found = COMMAND_ITEMS[key] = build_commands(snap, line)
+        found = COMMAND_ITEMS[key] = build_commands(snap, place)
     return list(found)
 
 
 COMMAND_ITEMS: dict[tuple, list[t.CompletionItem]] = {}
 
 
-def build_commands(snap, line: int) -> list[t.CompletionItem]:
+def build_commands(snap, place: str) -> list[t.CompletionItem]:
     out = []
+    editor = editor_of(snap.dialect)
     for entry in catalog_info.entries(snap.dialect):
-        if not allowed_here(snap, entry, line):
+        if not allowed_here(snap, entry, place):
             continue
-        text, syntax = catalog_info.snippet(entry, snap.dialect)
+        text, syntax = editor.snippet(entry)
         out.append(t.CompletionItem(
             label=entry.name, kind=t.CompletionItemKind.Function if entry.kind in ("instruction", "motion")
             else t.CompletionItemKind.Keyword,
@@ -188,7 +133,7 @@ def build_commands(snap, line: int) -> list[t.CompletionItem]:
 
 
 def values(snap) -> list[t.CompletionItem]:
-    kinds = VALUE_KINDS.get(snap.dialect)
+    kinds = editor_of(snap.dialect).value_kinds
     out = []
     for entry in catalog_info.entries(snap.dialect):
         if kinds is not None and entry.kind not in kinds:
@@ -225,20 +170,5 @@ def signature(snap, line_text: str, character: int) -> t.SignatureHelp | None:
 
 
 def command_before(snap, before: str):
-    if snap.dialect == "mcode":
-        match = re.match(r"^\s*[!*^]?([A-Za-z]{1,3}[0-9]?)(?:\s+|=)(.*)$", before)
-        if match:
-            return catalog_info.lookup("mcode", match.group(1)), match.group(2)
-    elif snap.dialect == "arcus":
-        match = re.match(r"^\s*([A-Za-z]+?)[XYZU]?(?:\s+|=|:)(.*)$", before)
-        if match:
-            return catalog_info.lookup("arcus", match.group(1)), match.group(2)
-    elif snap.dialect == "x150":
-        match = re.search(r"(?:^|\s)\d*B?([A-Za-z]+)([^\s]*)$", before)
-        if match:
-            word = match.group(1).upper()
-            for size in range(len(word), 0, -1):
-                entry = catalog_info.lookup("x150", word[:size])
-                if entry is not None:
-                    return entry, word[size:] + match.group(2)
-    return None, ""
+    """(the catalog entry of the command whose arguments are being typed, the arguments typed)."""
+    return editor_of(snap.dialect).command_before(before)

@@ -7,6 +7,7 @@ from lsprotocol import types as t
 
 from mcc.lsp import catalog_info, model
 from mcc.lsp.convert import range_of
+from mcc.lsp.editor import editor_of
 
 STEP_UNITS = ("steps", "user steps", "pulses", "motor steps")
 TIME_RATES = ("", "/s", "/sec", "/s²", "/s^2")
@@ -33,9 +34,10 @@ def symbol_markdown(snap, symbol: model.Symbol | None) -> str:
     if symbol is None:
         return ""
     lines = [f"**{symbol.label}** — {symbol.kind}"]
+    declared = editor_of(snap.dialect).variables_declared  # else every assignment is a definition
     if symbol.definitions:
         where = ", ".join(f"line {s.line}" for s in symbol.definitions[:5])
-        verb = "assigned" if symbol.kind == model.SYMBOL_VARIABLE and snap.dialect != "mcode" else "defined"
+        verb = "assigned" if symbol.kind == model.SYMBOL_VARIABLE and not declared else "defined"
         lines.append(f"- {verb} at {where}" + (" …" if len(symbol.definitions) > 5 else ""))
         first = symbol.definitions[0]
         lines += ["", "```", snap.source.line_text(first.line).strip(), "```"]
@@ -44,11 +46,11 @@ def symbol_markdown(snap, symbol: model.Symbol | None) -> str:
     uses = len(symbol.references)
     # one count, of the occurrences find-references lists (the data flow counts operations, which
     # differ from the text: `IC Q1` both reads and writes it); the data flow adds its verdict only
-    if symbol.kind != model.SYMBOL_VARIABLE or snap.dialect == "mcode":  # MCode: defined by its VA
+    if symbol.kind != model.SYMBOL_VARIABLE or declared:  # a declared variable (MCode VA): used
         lines.append(f"- used {times(uses)}")
         if symbol.kind != model.SYMBOL_VARIABLE:
             return "\n".join(lines)
-    else:  # Arcus and X150: every assignment is a definition
+    else:  # every assignment is a definition (Arcus, X150)
         lines.append(f"- written {times(len(symbol.definitions))}, read {times(uses)}")
     lines += data_flow(snap, symbol.name, uses)
     return "\n".join(lines)
@@ -80,12 +82,13 @@ def data_flow(snap, name: str, read_in_text: int) -> list[str]:
 
 
 def steps_per_rev(snap) -> float:
-    """The profile's steps per revolution; for MCode scaled by the file's own `MS=` (the profiles
-    give it at MS=256, a 1.8° motor)."""
+    """The profile's steps per revolution, scaled by the file's own microstep resolution where the
+    dialect's editor names one (MCode `MS=`: the profiles give it at MS=256, a 1.8° motor)."""
     profile = snap.profile
     base = float(getattr(profile, "steps_per_rev", 0) or 0)
-    if base and snap.dialect == "mcode" and "MS" in snap.index.settings:
-        return base * snap.index.settings["MS"] / 256.0
+    editor = editor_of(snap.dialect)
+    if base and editor.microstep_setting and editor.microstep_setting in snap.index.settings:
+        return base * snap.index.settings[editor.microstep_setting] / editor.microstep_reference
     return base
 
 
@@ -104,7 +107,8 @@ def number_markdown(snap, token: model.Token) -> str:
     lines = [f"**{name} {unit}** = {revs:g} rev{rest}"]
     if rest.strip() in ("/sec", "/s"):
         lines[0] += f" = {revs * 60:g} rpm"
-    ms = f" at MS={snap.index.settings['MS']:g}" if "MS" in snap.index.settings else ""
+    setting = editor_of(snap.dialect).microstep_setting
+    ms = f" at {setting}={snap.index.settings[setting]:g}" if setting and setting in snap.index.settings else ""
     lines.append(f"- {per_rev:g} {base} = 1 rev{ms} (target {snap.profile.name})")
     lines.append(f"- argument of {entry.name} ({entry.title})")
     return "\n".join(lines)

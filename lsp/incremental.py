@@ -218,11 +218,9 @@ def check_text(path: str, text: str, settings: Settings, dialect: str | None, ca
 def analyze_source(source: SourceFile, dialect: dialects.Dialect, profile, diags: Diagnostics, cache: LineCache):
     """`driver.analyze_source` with the parse going through the cache (cancel.Cancelled goes
     through: the cache is complete for the new text once the parse is done)."""
-    if dialect.name == "mcode" and "#" in source.text:
-        from mcc.compiler.mcode import preprocessor
-
-        if preprocessor.directive_lines(source):  # mcontrol preprocessor source: M142, as `mcc check`
-            return driver.analyze_source(source, dialect, profile, diags)
+    preprocessor = dialect.load_preprocessor()
+    if preprocessor is not None and preprocessor.directive_lines(source):
+        return driver.analyze_source(source, dialect, profile, diags)  # preprocessor source, as `mcc check` (M142)
     source = driver.without_long_lines(source, dialect.longest_line, diags)
     try:
         frontend = dialect.load_frontend()

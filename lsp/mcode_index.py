@@ -12,8 +12,9 @@ from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.mcode import catalog as mcat
 from mcc.compiler.mcode import syntax as st
 from mcc.compiler.mcode.resolve import Resolver
-from mcc.compiler.span import SourceFile, Span
+from mcc.compiler.span import SourceFile
 from mcc.lsp import model as m
+from mcc.lsp.model import comment_folds, span_lines
 
 
 def children(node: st.Node):
@@ -153,30 +154,3 @@ def finish_program(index: m.Index, program: m.Routine, source: SourceFile, end_l
             child.span = span_lines(source, child.span.line, program.span.end_line)
     if program.span.end_line > program.span.line:
         index.folds.append((program.span.line, program.span.end_line, "region"))
-
-
-def span_lines(source: SourceFile, first: int, last: int) -> Span:
-    last = min(last, source.line_count)
-    start = source.line_starts[first - 1]
-    end = source.line_starts[last - 1] + len(source.line_text(last))
-    return source.span(start, end)
-
-
-def comment_folds(index: m.Index, tree) -> None:
-    """Runs of three or more comment-only lines fold as one comment."""
-    run_start = None
-    previous = None
-    for line in tree.lines:
-        only = getattr(line, "comment", None) is not None and not has_code(line)
-        if only and run_start is not None and previous == line.number - 1:
-            previous = line.number
-            continue
-        if run_start is not None and previous - run_start >= 2:
-            index.folds.append((run_start, previous, "comment"))
-        run_start, previous = (line.number, line.number) if only else (None, None)
-    if run_start is not None and previous - run_start >= 2:
-        index.folds.append((run_start, previous, "comment"))
-
-
-def has_code(line) -> bool:
-    return bool(getattr(line, "statement", None) or getattr(line, "commands", None) or getattr(line, "error", False))

@@ -4,7 +4,8 @@ Arcus stores the compiled program in assembly lines (the backend's cost model, t
 budget); an X150 device stores each sequence as bytes (one per character and delimiter, L241)
 in an 8,000-byte store. The numbers come from the dialect's own backend (`Listing.detail` for
 Arcus, the listing's lines for X150), attributed to the routines of the editor model by the
-source lines they came from. MCode has no memory model in mcc, so it shows nothing.
+source lines they came from. Whether and how a dialect is priced is its editor's (lsp/editor.py:
+`prices_memory`, `memory`); MCode has no memory model in mcc, so it shows nothing.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ import bisect
 from dataclasses import dataclass, field
 
 from mcc.compiler import dialects, driver
+from mcc.lsp.editor import editor_of
 
 
 @dataclass
@@ -52,7 +54,7 @@ def priced(snap) -> bool:
     """Whether `usage` has anything to compute for the snapshot (the backend's work). A program
     with errors is priced too, from the lines that analyse (the lowering leaves a statement with
     an error out): analysis.figures_wanted decides when that is shown."""
-    return snap.dialect in ("arcus", "x150") and snap.module is not None
+    return editor_of(snap.dialect).prices_memory and snap.module is not None
 
 
 def carried(previous: Usage | None, snap) -> Usage | None:
@@ -61,7 +63,7 @@ def carried(previous: Usage | None, snap) -> Usage | None:
     errors: analysis.figures_wanted), so that the code lenses and inlay hints do not vanish or
     change while the user types. Figures that were already priced without some lines say so with
     this version's lines with errors."""
-    if previous is None or snap.dialect not in ("arcus", "x150"):
+    if previous is None or not editor_of(snap.dialect).prices_memory:
         return None
     lines = {routine.name: routine.span.line for routine in snap.index.routines}
     errors = snap.error_lines if previous.error_lines else ()
@@ -86,14 +88,16 @@ def usage(snap) -> Usage | None:
         listing = dialect.load_backend().emit(snap.module, driver.profile_for(dialect, snap.profile))
     except Exception:  # noqa: BLE001 - no memory figures is better than no editor
         return None
-    errors = tuple(snap.error_lines)
-    if snap.dialect == "x150":
-        result = Usage("bytes", int(listing.stats.get("sequence_bytes", 0)),
-                       int(listing.stats.get("sequence_budget", 0)), error_lines=errors)
-        return x150_sequences(snap, result)
+    return editor_of(snap.dialect).memory(snap, listing, tuple(snap.error_lines))
+
+
+def by_source_lines(snap, listing, unit: str, total_key: str, budget_key: str, errors: tuple[int, ...]) -> Usage:
+    """Usage from a listing whose `detail` rows each cost one `unit` (an assembly line) and name
+    the source lines they came from: each row is counted to the routine of its first source line;
+    the total and the budget are the listing's `stats[total_key]` and `stats[budget_key]`."""
     rows = [(sources, 1) for _, sources in (listing.detail or [])]
-    result = Usage("assembly lines", int(listing.stats.get("asm_lines", len(rows))),
-                   int(listing.stats.get("asm_budget", 0)), error_lines=errors)
+    result = Usage(unit, int(listing.stats.get(total_key, len(rows))),
+                   int(listing.stats.get(budget_key, 0)), error_lines=errors)
     routines = sorted(snap.index.routines, key=lambda r: r.span.line)
     starts = [r.span.line for r in routines]
     counts = [0] * len(routines)
@@ -107,31 +111,4 @@ def usage(snap) -> Usage | None:
     for routine, count in zip(routines, counts, strict=True):
         result.routines.append(RoutineUsage(routine.name, routine.span.line, count,
                                             routine_errors(snap, routine.name, errors)))
-    return result
-
-
-def x150_sequences(snap, result: Usage) -> Usage:
-    """Bytes per sequence as the X150 writer stores them (the figures of `mcc compile`)."""
-    from mcc.compiler.x150 import naming
-    from mcc.backends.x150.writer import write
-
-    dialect = dialects.get("x150")
-    try:
-        stored = write(snap.module, driver.profile_for(dialect, snap.profile)).sequence_bytes
-    except Exception:  # noqa: BLE001
-        return result
-    by_key: dict[tuple[int, int | None], int] = {}
-    for name, size in stored.items():
-        number = naming.sequence_number(name)
-        if number is not None:
-            key = (number, naming.device_of(name))
-            by_key[key] = by_key.get(key, 0) + size
-    for routine in sorted(snap.index.routines, key=lambda r: r.span.line):
-        if routine.kind != "sequence":
-            continue
-        number = int(routine.symbol.split(":")[1])
-        device = routine.name.rsplit("device ", 1)[1].rstrip(")") if "(device " in routine.name else None
-        used = by_key.get((number, int(device) if device else None), 0)
-        result.routines.append(RoutineUsage(routine.name, routine.span.line, used,
-                                            routine_errors(snap, routine.name, result.error_lines)))
     return result

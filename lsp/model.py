@@ -14,7 +14,7 @@ import bisect
 from dataclasses import dataclass, field
 from typing import Any
 
-from mcc.compiler.span import Span
+from mcc.compiler.span import SourceFile, Span
 
 # token kinds (also the semantic token types, see semantic.py)
 COMMAND, REGISTER, CONTROL, LABEL, VARIABLE, SUBROUTINE, NUMBER, STRING, COMMENT, OPERATOR, ADDRESS = (
@@ -111,3 +111,33 @@ class Index:
     def symbol_at(self, offset: int) -> Symbol | None:
         token = self.token_at(offset)
         return self.symbols.get(token.symbol) if token is not None and token.symbol else None
+
+
+# -- helpers the dialects' indexers share ----------------------------------------------------------
+def span_lines(source: SourceFile, first: int, last: int) -> Span:
+    """The span of lines `first` to `last` (1-based, inclusive, clipped to the file)."""
+    last = min(last, source.line_count)
+    start = source.line_starts[first - 1]
+    end = source.line_starts[last - 1] + len(source.line_text(last))
+    return source.span(start, end)
+
+
+def comment_folds(index: Index, tree) -> None:
+    """Runs of three or more comment-only lines fold as one comment."""
+    run_start = None
+    previous = None
+    for line in tree.lines:
+        only = getattr(line, "comment", None) is not None and not has_code(line)
+        if only and run_start is not None and previous == line.number - 1:
+            previous = line.number
+            continue
+        if run_start is not None and previous - run_start >= 2:
+            index.folds.append((run_start, previous, "comment"))
+        run_start, previous = (line.number, line.number) if only else (None, None)
+    if run_start is not None and previous - run_start >= 2:
+        index.folds.append((run_start, previous, "comment"))
+
+
+def has_code(line) -> bool:
+    """Whether a line of a dialect's syntax tree holds more than a comment."""
+    return bool(getattr(line, "statement", None) or getattr(line, "commands", None) or getattr(line, "error", False))

@@ -63,20 +63,27 @@ def rename(snap, offset: int, new_name: str) -> t.WorkspaceEdit | None:
 
 def validate(snap, symbol: model.Symbol, new: str):
     """(the renamed symbol's key, a function from the old text of one occurrence to its new text),
-    or RenameError with the reason."""
+    or RenameError with the reason: the dialect's editor knows its naming rules (lsp/editor.py)."""
+    from mcc.lsp.editor import editor_of
+
+    return editor_of(snap.dialect).validate_rename(snap, symbol, new)
+
+
+def validate_numbered(snap, symbol: model.Symbol, new: str, routine_entry: str, variable_prefix: str):
+    """`validate` for a dialect whose routines and variables are numbers: a routine number within the
+    range of the catalog's `routine_entry` (Arcus SUB, X150 XD), a variable `variable_prefix` and a
+    number within the catalog's index of that entry (Arcus V, X150 VAR)."""
     dialect = snap.dialect
-    if dialect == "mcode":
-        return validate_mcode(snap, symbol, new)
     if symbol.kind in (model.SYMBOL_SUBROUTINE, model.SYMBOL_SEQUENCE):
         number = parse_number(new, "", f"a {symbol.kind} is a number")
-        entry = catalog_info.lookup(dialect, "SUB" if dialect == "arcus" else "XD")
+        entry = catalog_info.lookup(dialect, routine_entry)
         low, high = entry.range if entry is not None and entry.range else (0, 2 ** 31)
         if not low <= number <= high:
             raise RenameError(f"{symbol.kind} numbers go from {low} to {high}; {number} is out of range")
         key = f"{symbol.kind}:{number}"
         taken(snap, symbol, key)
         return key, lambda old: re.sub(r"\d+", str(number), old, count=1)
-    prefix = "V" if dialect == "arcus" else "VAR"
+    prefix = variable_prefix
     number = parse_number(new, prefix, f"a variable is {prefix} and its number ({prefix}5)")
     entry = catalog_info.lookup(dialect, prefix)
     index = entry.get("index") if entry is not None else None
@@ -101,30 +108,3 @@ def taken(snap, symbol: model.Symbol, key: str) -> None:
         where = other.definitions[0] if other.definitions else other.references[0]
         raise RenameError(f"{other.label} already exists (line {where.line}): renaming would merge two "
                           f"{other.kind}s; choose another")
-
-
-def validate_mcode(snap, symbol: model.Symbol, new: str):
-    from mcc.compiler.mcode import catalog as mcat
-    from mcc.compiler.mcode.resolve import STRICT_USER_NAME, USER_NAME
-
-    relaxed = snap.profile is not None and snap.profile.get("limits.label_rule", "strict") == "relaxed"
-    pattern = USER_NAME if relaxed else STRICT_USER_NAME
-    if not pattern.match(new):
-        rule = "a letter then a letter or digit, exactly two characters" if not relaxed else \
-            "a letter followed by up to two letters or digits"
-        raise RenameError(f"'{new}' is not a valid MCode {symbol.kind} name ({rule})")
-    cat = mcat.load()
-    key = new.upper()
-    if cat.is_reserved(key) or key in cat.legacy:
-        entry = cat.lookup(key) or cat.functions.get(key)
-        what = f"the MCode {entry.kind} {key} ({entry.entry.title})" if entry else f"an MCode command ({key})"
-        raise RenameError(f"'{new}' is {what}: user names must not be MCode names")
-    if symbol.kind == model.SYMBOL_LABEL and key == "SU":
-        raise RenameError("SU is the power-up label: a label renamed to SU would run at power-up")
-    for kind in (model.SYMBOL_LABEL, model.SYMBOL_VARIABLE):
-        other = snap.index.symbols.get(f"{kind}:{key}")
-        if other is not None and other.key != symbol.key:
-            where = (other.definitions or other.references)[0].line
-            raise RenameError(f"{new} is already a {kind} (line {where}); labels and variables share one "
-                              "name table (L537): choose another")
-    return f"{symbol.kind}:{key}", lambda old: new

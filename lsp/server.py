@@ -61,10 +61,9 @@ registry = Lazy("mcc.compiler.codes", "registry")
 actions, completion, convert, formatting, hover, lenses, navigation, outline = (
     Lazy(f"mcc.lsp.{name}") for name in
     ("actions", "completion", "convert", "formatting", "hover", "lenses", "navigation", "outline"))
-WARM = ("mcc.lsp.documents", "mcc.lsp.analysis", "mcc.lsp.incremental", "mcc.lsp.mcode_index", "mcc.lsp.arcus_index",
-        "mcc.lsp.x150_index", "mcc.lsp.memory", "mcc.compiler.lint.rules", "mcc.lsp.actions", "mcc.lsp.completion",
-        "mcc.lsp.convert", "mcc.lsp.formatting", "mcc.lsp.hover", "mcc.lsp.lenses", "mcc.lsp.navigation",
-        "mcc.lsp.outline")
+WARM = ("mcc.lsp.documents", "mcc.lsp.analysis", "mcc.lsp.incremental", "mcc.lsp.editor", "mcc.lsp.memory",
+        "mcc.compiler.lint.rules", "mcc.lsp.actions", "mcc.lsp.completion", "mcc.lsp.convert", "mcc.lsp.formatting",
+        "mcc.lsp.hover", "mcc.lsp.lenses", "mcc.lsp.navigation", "mcc.lsp.outline")
 
 
 WARMING: list[threading.Thread] = []  # the thread of warm_up, once started
@@ -85,11 +84,15 @@ def warm_up() -> None:
         for name in WARM:
             importlib.import_module(name)
         from mcc.compiler import dialects as found
+        from mcc.lsp.editor import editor_of
 
-        for dialect in found.DIALECTS.values():  # the frontends and their parsers
+        for dialect in found.DIALECTS.values():  # the frontends and their parsers, the editors and indexers
             package = dialect.frontend.rsplit(".", 1)[0]
             dialect.load_frontend()
             importlib.import_module(package + ".parser")
+            indexer = editor_of(dialect.name).indexer
+            if indexer:
+                importlib.import_module(indexer)
     except Exception:  # noqa: BLE001 - what fails here fails again, and is reported, where it is used
         log.exception("importing the compiler failed")
 

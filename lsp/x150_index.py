@@ -12,7 +12,7 @@ from mcc.compiler import cancel
 from mcc.compiler.span import SourceFile
 from mcc.compiler.x150 import syntax as st
 from mcc.lsp import model as m
-from mcc.lsp.mcode_index import comment_folds, span_lines
+from mcc.lsp.model import comment_folds, span_lines
 
 BLOCKS = {"XD": "XT", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL", "L": "N"}
 

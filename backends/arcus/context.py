@@ -12,7 +12,7 @@ import re
 from functools import cached_property
 
 from mcc.backends.arcus.convert import Axes, Scale
-from mcc.backends.arcus.target import DIALECT, Config
+from mcc.backends.arcus.target import DEDICATED_INPUTS, DIALECT, Config
 from mcc.backends.arcus.temporaries import Temps
 from mcc.backends.input_setup import InputSetup
 from mcc.compiler import in_force, ir
@@ -39,7 +39,7 @@ class Context:
         self.scale = Scale(module.steps_per_rev, profile.steps_per_rev)
         self.axes = Axes(module, self.config.axes)
         self._in_force: dict[int, in_force.State] | None = None
-        self.input_setup = InputSetup(module, DIALECT)  # MCode IS lines the PMX-4EX-SA needs no set-up for
+        self.input_setup = InputSetup(module, DEDICATED_INPUTS)  # MCode IS lines the PMX-4EX-SA needs no set-up for
 
     @cached_property
     def sets_accel(self) -> bool:

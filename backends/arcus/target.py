@@ -12,6 +12,9 @@ from mcc.compiler import ir
 from mcc.compiler.profiles import Profile
 
 DIALECT = "arcus"
+# +limit, -limit, home and alarm inputs for each axis (arcus-pmx-4ex-sa.txt L333); DI1-DI8 are general
+# inputs with no function to choose: none of these needs a set-up in the program (backends/input_setup.py)
+DEDICATED_INPUTS = frozenset({"home", "limit_plus", "limit_minus", "general"})
 AXES = ("X", "Y", "Z", "U")
 # IR method -> ASCII homing mode (catalog home_mode); "limit" is LHOME, on the products that have it
 HOME_KEYWORDS = {"switch": 0, "limit": 1, "switch+index": 2, "index": 3}

@@ -43,6 +43,8 @@ from mcc.compiler.span import Span
 from mcc.compiler.x150 import catalog as cat
 
 DIALECT = "x150"
+# the home and limit switches are inputs of their own ("the HOME input", parker-x150.md L3841)
+DEDICATED_INPUTS = frozenset({"home", "limit_plus", "limit_minus"})
 HANDLER_COMMANDS = {"power": "XP", "fault": "XFK", "when": "XWHEN"}
 ARITHMETIC = "+-*/"
 MAX_CONDITION_NODES = 32  # far above any writable condition; bounds the work on odd input
@@ -169,7 +171,7 @@ class Writer:
             self.resolution = self.chosen_cur
         self.factor = units.ratio(self.source_spr, self.resolution)
         self.axes = self.axis_map()
-        self.input_setup = InputSetup(module, DIALECT)  # MCode IS lines X150 has inputs of its own for
+        self.input_setup = InputSetup(module, DEDICATED_INPUTS)  # MCode IS lines X150 has inputs of its own for
         self.in_force = InForce(module)
         self.numbers = self.sequence_numbers()
         self.variables = self.variable_numbers()

@@ -109,8 +109,8 @@ def format_source(path: str, text: str, dialect: str, settings: Settings) -> tup
     too_long = long_line(text, found.longest_line)
     if too_long:
         return text, f"{too_long}; the file was left unchanged (G007)"
-    if found.name == "mcode":
-        from mcc.compiler.mcode import preprocessor
+    preprocessor = found.load_preprocessor()
+    if preprocessor is not None:
         from mcc.compiler.span import SourceFile
 
         directives = preprocessor.directive_lines(SourceFile(path, text))

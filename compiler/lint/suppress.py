@@ -21,15 +21,14 @@ from mcc.compiler.config import deselectable
 from mcc.compiler.diagnostics import Diagnostic, Diagnostics, Edit, Fix
 from mcc.compiler.span import SourceFile, Span
 
-# MCode listings use the backtick although the manual documents the apostrophe (spec §1.5).
-EXTRA_MARKERS = {"mcode": "`"}
 DIRECTIVE = re.compile(r"(?i)(?<![A-Za-z0-9_])noqa(?![A-Za-z0-9_])"
                        r"(?:\s*:\s*(?P<codes>[A-Za-z]+[0-9]+(?:[\s,]+[A-Za-z]+[0-9]+)*))?")
 CODE = re.compile(r"[A-Za-z]+[0-9]+")
 
 
 def markers(dialect: str) -> str:
-    return dialects.get(dialect).comment + EXTRA_MARKERS.get(dialect, "") if dialect in dialects.DIALECTS else ""
+    """The markers a comment that may hold `noqa` starts with (the dialect's `noqa_comment_markers`)."""
+    return dialects.get(dialect).noqa_comment_markers() if dialect in dialects.DIALECTS else ""
 
 
 def comment_start(line: str, marks: str) -> int | None:

@@ -14,12 +14,16 @@ from __future__ import annotations
 
 import copy
 import re
+from typing import TYPE_CHECKING
 
 from mcc.compiler import ir
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
+
+if TYPE_CHECKING:
+    from mcc.link.device.virtual import DeviceOptions
 
 PROGRAM_LINES = 3230
 INVALID = "?Invalid Command"   # the manual: "?(Error Message)" (L1494), the text is undocumented
@@ -325,3 +329,13 @@ class ArcusDevice(VirtualDevice):
         for name, value in self.sim.variables.items():
             if re.fullmatch(r"V\d+", name) and int(name[1:]) < 64:
                 self.variables[int(name[1:])] = int(value)
+
+
+def make(faults: Faults | None, options: DeviceOptions) -> VirtualDevice:
+    """The virtual device `mcc device` runs (link/device/virtual.py): a controller at the options'
+    address, with the options' program image loaded."""
+    device = ArcusDevice(faults, address=options.address, run_limit=options.run_limit)
+    if options.program:
+        with open(options.program, encoding="utf-8", errors="replace") as handle:
+            device.load_program(handle.read(), options.program)
+    return device

@@ -17,6 +17,7 @@ import copy
 import re
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 from mcc.compiler import catalog, ir, ir_names
 from mcc.compiler.mcode.tables import STAND_IN_VERSION, TABLES
@@ -26,6 +27,9 @@ from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
 from mcc.sim import values
+
+if TYPE_CHECKING:
+    from mcc.link.device.virtual import DeviceOptions
 
 ACK, NAK = b"\x06", b"\x15"
 USER_NAME_TABLE = 192   # labels and user variables share one table (L537)
@@ -585,3 +589,13 @@ class MCodeBus(VirtualDevice):
 
     def command(self, raw: bytes) -> bytes:
         return b"".join(drive.command(raw) for drive in self.drives.values())
+
+
+def make(faults: Faults | None, options: DeviceOptions) -> VirtualDevice:
+    """The virtual device `mcc device` runs (link/device/virtual.py): a party of named devices when
+    the options name one, else one device; both report the options' product profile."""
+    if options.party:
+        return MCodeBus(options.party, faults, program_lines=options.program_lines, run_limit=options.run_limit,
+                        profile=options.profile)
+    return MCodeDevice(faults, program_lines=options.program_lines, run_limit=options.run_limit,
+                       profile=options.profile)

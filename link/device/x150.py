@@ -16,12 +16,16 @@ import copy
 import re
 from dataclasses import dataclass, field
 from functools import lru_cache
+from typing import TYPE_CHECKING
 
 from mcc.compiler import catalog
 from mcc.link.device.base import VirtualDevice
 from mcc.link.device.faults import Faults
 from mcc.link.device.machine import RUN_LIMIT, DeviceMachine
 from mcc.link.device.programs import module_of
+
+if TYPE_CHECKING:
+    from mcc.link.device.virtual import DeviceOptions
 
 SEQUENCE_BYTES = 8000   # L4871
 # Commands whose effect mcc's frontend resolves where the program is compiled (the distance D and
@@ -382,3 +386,9 @@ class Stepping:
 PROTOCOL = {"XD", "XT", "S", "STOP", "XE", "XEALL", "XSD", "XSS", "XSR", "XBS", "XU", "PASS", "SV", "EX", "SSA",
             "R", "PR", "IS", '"', "#"}
 
+
+def make(faults: Faults | None, options: DeviceOptions) -> VirtualDevice:
+    """The virtual device `mcc device` runs (link/device/virtual.py): the devices at the options'
+    addresses, each with a sequence store of the options' size."""
+    return X150Device(faults, addresses=options.addresses, capacity=options.sequence_bytes,
+                      run_limit=options.run_limit)
