@@ -23,7 +23,9 @@ import pytest
 from mcc.compiler import dialects, ir_names
 
 ROOT = Path(__file__).resolve().parent.parent
-NOT_PRODUCT = ("tests", "bench", ".venv", "build", "dist")  # the test suite, benchmarks, environments
+# the test suite, benchmarks, environments, and the editor packages (TypeScript; their node_modules
+# hold third-party Python once the extension's tests are installed)
+NOT_PRODUCT = ("tests", "bench", ".venv", "build", "dist", "editors")
 
 
 def own(path: Path) -> bool:
@@ -38,7 +40,7 @@ def product_files() -> list[Path]:
     found = []
     for path in ROOT.rglob("*.py"):
         parts = path.relative_to(ROOT).parts
-        if parts[0] in NOT_PRODUCT or "__pycache__" in parts or parts[0].endswith(".egg-info") or own(path):
+        if parts[0] in NOT_PRODUCT or "__pycache__" in parts or "node_modules" in parts or parts[0].endswith(".egg-info") or own(path):
             continue
         found.append(path)
     return sorted(found)
