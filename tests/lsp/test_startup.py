@@ -8,7 +8,7 @@ import json
 import subprocess
 import sys
 
-HEAVY = ("lark", "mcc.compiler.driver", "mcc.compiler.ir", "mcc.compiler.lint.engine", "mcc.compiler.catalog",
+HEAVY = ("lark", "mcc.grammars.lark_runtime", "mcc.compiler.driver", "mcc.compiler.ir", "mcc.compiler.lint.engine", "mcc.compiler.catalog",
          "mcc.lsp.documents", "mcc.lsp.analysis")
 
 
