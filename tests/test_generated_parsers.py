@@ -61,7 +61,8 @@ def test_the_generated_parser_parses_as_lark_does(path: Path) -> None:
     assert outcome(generated.parse, text, "start") == outcome(reference.parse, text, "start")
     for number, line in enumerate(text.splitlines()[:60]):
         for variant in (line, line[: len(line) // 2] + "(" + line[len(line) // 2:], line + " ="):
-            assert outcome(generated.parse, variant + "\n", "line") == outcome(reference.parse, variant + "\n", "line"), \
+            line_text = variant + "\n"
+            assert outcome(generated.parse, line_text, "line") == outcome(reference.parse, line_text, "line"), \
                 (number, variant)
 
 
