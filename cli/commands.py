@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import importlib
 import os
 import sys
 
@@ -37,8 +38,35 @@ CHECK_FORMATS = ["text", "json", "sarif", "github", "gitlab", "junit"]  # as `mc
 
 CONTEXT = {"help_option_names": ["-h", "--help"], "max_content_width": 100}
 
+# The commands defined in other modules of cli/, by name: each module registers its commands on
+# `cli` when it is imported, which `LazyGroup` does only when one of them is run or listed.
+LAZY_COMMANDS = {"lint": "mcc.cli.lint", "fmt": "mcc.cli.lint", "ir": "mcc.cli.ir", "lsp": "mcc.cli.lsp",
+                 "sim": "mcc.cli.sim", "download": "mcc.cli.link", "upload": "mcc.cli.link",
+                 "send": "mcc.cli.link", "terminal": "mcc.cli.link", "device": "mcc.cli.link",
+                 "debug": "mcc.cli.debug"}
 
-@click.group(context_settings=CONTEXT)
+
+class LazyGroup(click.Group):
+    """The `mcc` group, whose commands in other modules (LAZY_COMMANDS) are imported when they are
+    needed: `mcc check` does not build the options of `mcc lint`, `mcc sim` or the device link, nor
+    import what their modules import (issue 26: a small check is a whole process). `mcc --help`
+    lists every command, so it imports them all; so does an unknown command, so that click's
+    "did you mean" suggestions are made from every command, as before."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(set(self.commands) | set(LAZY_COMMANDS))
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in self.commands:
+            if cmd_name in LAZY_COMMANDS:
+                importlib.import_module(LAZY_COMMANDS[cmd_name])
+            else:
+                for module in sorted(set(LAZY_COMMANDS.values())):
+                    importlib.import_module(module)
+        return self.commands.get(cmd_name)
+
+
+@click.group(cls=LazyGroup, context_settings=CONTEXT)
 @click.version_option(__version__, "--version", prog_name="mcc", message="%(prog)s %(version)s")
 def cli() -> None:
     """mcc: check, lint, format and compile motion-controller programs.
@@ -185,7 +213,7 @@ def check(files: tuple[str, ...], dialect: str | None, fmt: str, rules_url: str 
         for result in results:
             driver.verify_ir(result)
     check_profile_dialect(prof, {r.dialect for r in results})
-    from mcc.cli.lint import machine_report
+    from mcc.cli.render import machine_report
 
     if not machine_report(results, fmt, rules_url):
         report(results, fmt)
@@ -432,12 +460,3 @@ def profiles() -> None:
     for name in profiles_mod.builtin_names():
         prof = profiles_mod.load(name)
         click.echo(f"{name:14} {prof.dialect:6} {prof.title}")
-
-# `mcc lint`, `mcc fmt`, `mcc ir`, `mcc lsp` and `mcc sim` register themselves on `cli` (cli/lint.py,
-# cli/ir.py, cli/lsp.py, cli/sim.py), imported last because they use `cli`.
-from mcc.cli import lint as _lint  # noqa: E402,F401
-from mcc.cli import ir as _ir  # noqa: E402,F401
-from mcc.cli import lsp as _lsp  # noqa: E402,F401
-from mcc.cli import sim as _sim  # noqa: E402,F401
-from mcc.cli import link as _link  # noqa: E402,F401  (download, upload, send, terminal, device)
-from mcc.cli import debug as _debug  # noqa: E402,F401  (the debug adapter)

@@ -260,27 +260,6 @@ def exit_code(outcomes, failing: dict[str, str], override: str | None) -> int:
     return EXIT_OK
 
 
-def machine_report(entries, fmt: str, rules_url: str | None = None) -> bool:
-    """The formats `mcc check` and `mcc lint` share (besides text and json): print and answer True."""
-    if fmt not in ("sarif", "github", "gitlab", "junit"):
-        return False  # text and json: the caller's (nothing here to import for them)
-    from mcc.cli import render
-    from mcc.compiler.lint import output
-
-    if fmt == "sarif":
-        click.echo(render.dump_json(output.to_sarif(entries, rules_url)))
-    elif fmt == "github":
-        for line in output.to_github(entries):
-            click.echo(line)
-    elif fmt == "gitlab":
-        click.echo(render.dump_json(output.to_gitlab(entries)))
-    elif fmt == "junit":
-        click.echo(output.to_junit(entries), nl=False)
-    else:
-        return False
-    return True
-
-
 def report_diff(outcomes) -> None:
     changed = [o for o in outcomes if o.diff]
     for outcome in changed:
@@ -310,7 +289,7 @@ def report(outcomes, fmt: str, statistics: bool, fixed_run: bool, unsafe: bool, 
     if fmt == "json":
         click.echo(render.dump_json(output.to_json(outcomes)))
         return
-    if machine_report(outcomes, fmt, rules_url):
+    if render.machine_report(outcomes, fmt, rules_url):
         return
     writer = render.TextWriter(sys.stdout, use_color(fmt))
     every = []

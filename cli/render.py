@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import json
-
 from mcc.compiler.diagnostics import Diagnostic, Severity
 from mcc.compiler.span import SourceFile
 
@@ -84,4 +82,29 @@ def write_text(writer: TextWriter, diags: list[Diagnostic], sources: dict[str, S
 
 
 def dump_json(payload: dict) -> str:
+    import json  # only the formats that write JSON pay for importing it
+
     return json.dumps(payload, indent=2, ensure_ascii=False)
+
+
+def machine_report(entries, fmt: str, rules_url: str | None = None) -> bool:
+    """The formats `mcc check` and `mcc lint` share (besides text and json): print and answer True."""
+    if fmt not in ("sarif", "github", "gitlab", "junit"):
+        return False  # text and json: the caller's (nothing here to import for them)
+    import click
+
+    from mcc.compiler.lint import output
+
+    if fmt == "sarif":
+        click.echo(dump_json(output.to_sarif(entries, rules_url)))
+    elif fmt == "github":
+        for line in output.to_github(entries):
+            click.echo(line)
+    elif fmt == "gitlab":
+        click.echo(dump_json(output.to_gitlab(entries)))
+    elif fmt == "junit":
+        click.echo(output.to_junit(entries), nl=False)
+    else:
+        return False
+    return True
+

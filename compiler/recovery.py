@@ -9,12 +9,11 @@ file (`line_delta`, `offset_delta`), so spans stay file-relative in both modes.
 
 from __future__ import annotations
 
+from types import ModuleType
 from typing import Callable
 
-from lark import Lark, Token, Transformer
-from lark.exceptions import LarkError, UnexpectedInput, UnexpectedToken
-
 from mcc.compiler.span import SourceFile, Span
+from mcc.grammars.lark_runtime import Lark, LarkError, Token, Transformer, UnexpectedInput, UnexpectedToken, load
 
 
 class PositionedBuilder(Transformer):
@@ -35,14 +34,21 @@ class PositionedBuilder(Transformer):
         return children
 
 
-def lalr_parser(grammar: str, builder: Transformer | None = None) -> Lark:
-    """The LALR parser of a line grammar. With a builder the syntax tree is built by the parser's
-    callbacks (starts "start" and "line", for recovery); without one it is the bare baseline the
-    benchmarks compare against, with the same lexer and grammar."""
-    if builder is None:
-        return Lark(grammar, parser="lalr", lexer="contextual")
-    return Lark(grammar, parser="lalr", lexer="contextual", start=["start", "line"], transformer=builder,
-                maybe_placeholders=False, cache=True)
+def lalr_parser(tables: ModuleType, builder: Transformer) -> Lark:
+    """The LALR parser of a line grammar, its syntax tree built by the parser's callbacks (starts
+    "start" and "line", for recovery). `tables` is the grammar's generated module
+    (`mcc.grammars.<name>_tables`, grammars/generate.py): loading it costs a fraction of importing
+    the `lark` package and building the parser from a cache (decision 0023)."""
+    return load(tables.DATA, tables.MEMO, transformer=builder)
+
+
+def bare_parser(grammar: str):
+    """The grammar's LALR parser by the `lark` package, with the contextual lexer and Lark's own
+    tree, no callbacks: the baseline the benchmarks compare a check against (docs/PERFORMANCE.md).
+    The check never uses it, so `lark` is imported only here."""
+    from lark import Lark as LarkPackage
+
+    return LarkPackage(grammar, parser="lalr", lexer="contextual")
 
 
 def with_final_newline(text: str) -> str:

@@ -22,12 +22,10 @@ from __future__ import annotations
 import re
 from typing import Callable
 
-from lark import Lark
-from lark.exceptions import LarkError
-
 from mcc.compiler import recovery
 from mcc.compiler.arcus import syntax as st
 from mcc.compiler.span import SourceFile, Span
+from mcc.grammars.lark_runtime import Lark, LarkError
 
 # The grammar's terminals, as the patterns below assume them (the test compares them).
 WORD_PATTERN = "[A-Za-z]+"
