@@ -166,6 +166,9 @@ class Resolver:
         self.module = module
         self.diags = diags
         self.devices = devices  # the devices an unaddressed G moves (the profile's and the file's)
+        self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
+        self.registers: dict[int, list] = {}  # id(block) -> its `liveness_entries` before the rewriting
+        self.changes: dict[int, bool] = {}  # id(block) -> it holds a mode command or sets a %D
         self.touched = self.touching()
         self.entries: dict[str, State | None] = {}
         self.exits: dict[str, State | None] = {}
@@ -173,7 +176,6 @@ class Resolver:
         # id(routine) -> (start, exits of what it calls, end, its call sites' states): the walk of a
         # routine is a function of these, so a later round whose inputs did not change reuses it
         self.memo: dict[int, tuple] = {}
-        self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
         self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
         self.plans: dict[int, tuple] = {}  # id(routine) -> what its walks look at (`plan`)
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
@@ -190,17 +192,16 @@ class Resolver:
         """Routines that may change a mode or D, themselves or through what they call."""
         direct: dict[str, bool] = {}
         calls: dict[str, set[str]] = {}
+        changes = self.changes
         for routine in self.module.routines:
             direct[routine.name] = False
-            calls[routine.name] = set()
+            called = calls[routine.name] = set()
             for block in routine.blocks:
-                for op in block.ops:
-                    kind = type(op)  # the IR's operation classes have no subclasses
-                    if (kind is ir.Native and op.mnemonic in MODE_COMMANDS) or \
-                            (kind is ir.Assign and op.target.name.startswith(DISTANCE)):
-                        direct[routine.name] = True
-                    elif kind is ir.Call:
-                        calls[routine.name].add(op.routine)
+                for op in self.ops_of(block):  # (the pass over the operations that finds `changes`)
+                    if type(op) is ir.Call:
+                        called.add(op.routine)
+                if changes[id(block)]:
+                    direct[routine.name] = True
         result = dict(direct)
         for name in self.module.externals:
             result[name] = True
@@ -290,21 +291,39 @@ class Resolver:
 
     def ops_of(self, block: ir.Block) -> list:
         """The operations of `block` that `transfer` or the rewriting look at (the others leave
-        the state as it is)."""
+        the state as it is). The same pass finds the block's `liveness_entries` (`registers`),
+        which the rewriting keeps for a block without a modal move."""
         found = self.relevant.get(id(block))
         if found is None:
             found = []
+            registers = []
+            changes = False  # a mode command (of any dialect) or an assignment to a %D: `touching`
+            op_reads = self.op_reads
             for op in block.ops:
                 kind = type(op)  # the IR's operation classes have no subclasses
                 if kind is ir.Native:
-                    if op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS:
-                        found.append(op)
+                    if op.mnemonic in MODE_COMMANDS:
+                        changes = True
+                        if op.dialect == DIALECT:
+                            found.append(op)
+                    elif op.mnemonic == "G":
+                        registers.append((READ, op, None, op_reads(op)))
                 elif kind is ir.Assign:
-                    if op.target.name.startswith(DISTANCE):
+                    name = op.target.name
+                    if name.startswith(DISTANCE):
+                        changes = True
                         found.append(op)
-                elif kind is ir.Call or (kind is ir.Move and op.mode is ir.MoveMode.MODAL):
+                        registers.append((ASSIGN, op, name, op_reads(op)))
+                elif kind is ir.Call:
                     found.append(op)
+                    registers.append((CALL, op, None, NOTHING))
+                elif kind is ir.Move:
+                    if op.mode is ir.MoveMode.MODAL:
+                        found.append(op)
+                    registers.append((READ, op, None, op_reads(op)))
             self.relevant[id(block)] = found
+            self.registers[id(block)] = registers
+            self.changes[id(block)] = changes
         return found
 
     def plan(self, routine: ir.Routine) -> tuple[dict[str, tuple], list]:
@@ -402,18 +421,21 @@ class Resolver:
             checkpoint()
             for block in routine.blocks:
                 relevant = self.ops_of(block)
-                if any(isinstance(op, ir.Move) and op.mode is modal for op in relevant):
+                registers = self.registers[id(block)]
+                if any(type(op) is ir.Move for op in relevant):  # a modal move (`ops_of` keeps no other)
                     out: list = []
                     for op in block.ops:
-                        if isinstance(op, ir.Move) and op.mode is modal:
+                        if type(op) is ir.Move and op.mode is modal:
                             out += self.rewrite_op(op, block.ops, out)
                         else:
                             out.append(op)
                     block.ops = out
-                # the block's register operations for the liveness, a G kept as text among them
-                registers = liveness[id(block)] = self.liveness_entries(block.ops)
-                kept_go = kept_go or any(type(entry[1]) is ir.Native for entry in registers)
-                if any(isinstance(op, ir.Native) for op in relevant):
+                    registers = self.liveness_entries(out)  # the moves are new, a G kept as text among them
+                # the block's register operations for the liveness
+                liveness[id(block)] = registers
+                if not kept_go:
+                    kept_go = any(type(entry[1]) is ir.Native for entry in registers)
+                if any(type(op) is ir.Native for op in relevant):
                     with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
             for block in with_modes:
