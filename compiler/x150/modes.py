@@ -108,8 +108,8 @@ def register_value(op: ir.Assign, state: State):
     """The constant D holds after an assignment to %D (None: not known)."""
     axis = op.target.name[len(DISTANCE):]
     value = op.value
-    if isinstance(value, ir.Const):
-        return ir.Const(value.value, ir.Unit.STEPS, value.span)
+    if isinstance(value, ir.Const):  # (the lowering's distances are in steps already: kept, not copied)
+        return value if value.unit is ir.Unit.STEPS else ir.Const(value.value, ir.Unit.STEPS, value.span)
     old = get_key(state, "D", axis)
     if not isinstance(old, ir.Const):
         return None

@@ -85,8 +85,18 @@ def _scanner() -> re.Pattern:
         name = terminal.name if terminal.name in ("CMD", "COMMENT", "NL") else "IGNORE"
         if name == "IGNORE" and terminal.name not in parser.lexer_conf.ignore:  # pragma: no cover
             raise ValueError(f"unexpected x150 terminal {terminal.name}")
-        groups[name].append(terminal.pattern.to_regexp())
+        groups[name].append(_runs(terminal.pattern.to_regexp()))
     return re.compile("|".join(f"((?:{'|'.join(patterns)}))" for patterns in groups.values()))
+
+
+def _runs(pattern: str) -> str:
+    """A terminal `(?:[class]|rest)+` as `(?:[class]+|rest)+`: the same tokens (a run of the
+    class's characters is the first alternative taken once per character; nothing follows the
+    group, so the engine never backtracks into it), but the engine loops inside the class over a
+    run instead of around the whole alternation once per character. The CMD terminal: about a
+    fifth of the scan."""
+    match = re.fullmatch(r"\(\?:(\[[^\]]*\])\|(.*)\)\+", pattern, re.S)
+    return f"(?:{match.group(1)}+|{match.group(2)})+" if match is not None else pattern
 
 
 def _scan(text: str) -> list | None:
