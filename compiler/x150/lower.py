@@ -236,7 +236,7 @@ class Lowering:
                 info = command.info
                 if info is None:
                     continue
-                remote = self.remote_run(command, device)
+                remote = self.remote_run(command, device) if command.mnemonic == '"' else None
                 if remote is not None:  # a sequence another device is told to run: a subroutine
                     for name in self.resolve(remote[1], remote[0]):
                         if KIND_RANK[ir.RoutineKind.SUBROUTINE] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:

@@ -98,6 +98,16 @@ def meet(a: State | None, b: State) -> State:
     return {k: v for k, v in a.items() if k in b and ((other := b[k]) is v or same(other, v))}
 
 
+def keeps(a: State, b: State) -> bool:
+    """`meet(a, b)` is `a` again (`states_equal`): `b` has every key of `a` with the same value.
+    Found without making the meet, which a walk asks at every edge it follows."""
+    for key, value in a.items():
+        other = b.get(key, b)  # (`b` itself: no state holds itself)
+        if other is not value and (other is b or not same(other, value)):
+            return False
+    return True
+
+
 def same(a, b) -> bool:
     if isinstance(a, ir.Const) and isinstance(b, ir.Const):
         return a.value == b.value
@@ -404,11 +414,11 @@ class Resolver:
                     if visits.get(succ, 0) < 64:
                         work.append(succ)
                     continue
-                new = meet(old, state)
-                if not states_equal(old, new):
-                    entry[succ] = new
-                    if visits.get(succ, 0) < 64:
-                        work.append(succ)
+                if old is state or keeps(old, state):
+                    continue  # the meet is `old` again: nothing changes
+                entry[succ] = meet(old, state)
+                if visits.get(succ, 0) < 64:
+                    work.append(succ)
         return end
 
     # -- rewriting ---------------------------------------------------------------------------------
