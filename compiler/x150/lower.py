@@ -123,6 +123,7 @@ class Lowering:
         self.routine: ir.Routine | None = None
         self.block: ir.Block | None = None
         self.device: int | None = None
+        self.device_axis = ir.ALL_AXES
         self.frames: list[Frame] = []
         self.leading = True
         self.after_skip: st.Command | None = None  # the SKE/SKN whose next command may be skipped
@@ -303,6 +304,7 @@ class Lowering:
         self.routine = ir.Routine(unit.name, kind, span=span, number=number)
         self.module.routines.append(self.routine)
         self.device = naming.device_of(unit.name)
+        self.device_axis = str(self.device) if self.device is not None else ir.ALL_AXES  # `axis` without an address
         self.frames = []
         self.after_skip = None
         self.leading = unit.is_sequence
@@ -349,9 +351,8 @@ class Lowering:
 
     # -- commands ----------------------------------------------------------------------------------
     def axis(self, command: st.Command) -> str:
-        if command.address is not None:
-            return str(command.address)
-        return str(self.device) if self.device is not None else ir.ALL_AXES
+        address = command.address
+        return str(address) if address is not None else self.device_axis
 
     def fits(self, command: st.Command) -> bool:
         """True when the routine's device says the command's address (so an address-less IR

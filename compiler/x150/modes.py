@@ -159,6 +159,16 @@ def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State 
                 set_key(state, "move", op.axis, op.mnemonic)
     elif kind is ir.Assign and is_distance(op.target.name):
         axis = op.target.name[len(DISTANCE):]
+        value = op.value
+        if type(value) is ir.Const and axis != ir.ALL_AXES:
+            # `D4000` on a device, most assignments: what the lines below do, without the calls
+            # (`register_value`, `register_sign`, `set_key` with a known value on one device)
+            if value.unit is not ir.Unit.STEPS:
+                value = ir.Const(value.value, ir.Unit.STEPS, value.span)
+            state[("sign", axis)] = -1 if value.value < 0 else 1
+            state[("D", axis)] = value
+            state[("reg", axis)] = op.target.name
+            return state
         value = register_value(op, state)
         set_key(state, "sign", axis, register_sign(op, state, value))
         set_key(state, "D", axis, value)
@@ -462,22 +472,21 @@ class Resolver:
         devices = self.devices
         move = lookup(state, "move", axis, devices)
         register = lookup(state, "D", axis, devices)
-        go = ir.Native(DIALECT, "G", (), axis=axis, span=op.span)
         if move == "MC":
             sign = lookup(state, "sign", axis, devices)
             if sign is not None:
                 return [ir.Slew(axis, None, sign, op.span)]
             self.report(op.span, "G in MC runs in the direction of D's sign, which is not known here")
-            return [go]
+            return [ir.Native(DIALECT, "G", (), axis=axis, span=op.span)]
         if move not in ("MN", "MQ"):
             self.report(op.span, "G moves in the move mode in force (MN, MC or MQ), which differs on the paths "
                                  "that reach it")
-            return [go]
+            return [ir.Native(DIALECT, "G", (), axis=axis, span=op.span)]
         pos = lookup(state, "pos", axis, devices)
         if pos not in POSITION_MODES:
             self.report(op.span, "G moves by D in the position mode in force (MPA or MPI), which differs on the "
                                  "paths that reach it")
-            return [go]
+            return [ir.Native(DIALECT, "G", (), axis=axis, span=op.span)]
         span = op.span
         if isinstance(register, ir.Const):
             source = self.last_distance(done, axis)

@@ -233,9 +233,14 @@ def _bad_line(source: SourceFile, reader: CommandReader, number: int, text: str,
 def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[str, int]],
                   diags: Diagnostics) -> list[st.Command]:
     """Read the command tokens of one line, re-joining an argument written after a space."""
+    count = len(pieces)
+    if count == 1:  # most lines: one command, which takes no next word
+        command = reader.read_token(pieces[0][0], pieces[0][1], spans)
+        for problem in command.problems:
+            diags.add(problem.code, problem.span, problem.message)
+        return [command]
     commands: list[st.Command] = []
     index = 0
-    count = len(pieces)
     while index < count:
         text, start = pieces[index]
         command = reader.read_token(text, start, spans)
