@@ -31,6 +31,8 @@ ASCII_DIGITS = "0123456789"
 VAR_SUBST = re.compile(r"\(\s*[Vv][Aa][Rr]([0-9]+)\s*\)")
 VAR_NAME = re.compile(r"[Vv][Aa][Rr]([0-9]+)")
 WORD = re.compile(r"[A-Za-z]+")
+# An operand of VARn=: VAR_NAME, WORD or NUMBER, the first that matches (read_operand)
+OPERAND = re.compile(rf"{VAR_NAME.pattern}|({WORD.pattern})|{NUMBER.pattern}")
 IO_FUNCTION = re.compile(r"([0-9]+)([A-Za-z])")
 PATTERN_CHARS = re.compile(r"[01Xx_]*")
 RELOP = re.compile(r"[<>=!]+")
@@ -455,15 +457,18 @@ class CommandReader:
         return st.VarStatement(var, chain, sub(pos, len(text)))
 
     def read_operand(self, text: str, pos: int, sub) -> tuple[st.Operand, int]:
-        var = VAR_NAME.match(text, pos)
-        if var:
-            return st.VarRef(whole(var.group(1)), sub(pos, var.end())), var.end()
-        word = WORD.match(text, pos)
-        if word and word.group().upper() in self.sources:
-            return st.Source(word.group().upper(), sub(pos, word.end())), word.end()
-        number = NUMBER.match(text, pos)
-        if number:
-            return st.Number(number.group(), number_value(number.group()), sub(pos, number.end())), number.end()
+        # VAR_NAME, else WORD (a source), else NUMBER, tried in that order by one expression
+        found = OPERAND.match(text, pos)
+        if found is not None:
+            number, word = found.group(1, 2)
+            end = found.end()
+            if number is not None:
+                return st.VarRef(whole(number), sub(pos, end)), end
+            if word is None:
+                written = found.group()
+                return st.Number(written, number_value(written), sub(pos, end)), end
+            if word.upper() in self.sources:
+                return st.Source(word.upper(), sub(pos, end)), end
         raise ArgError("expected VARn, a number or one of " + " ".join(sorted(self.sources))
                        + (f", not '{text[pos:]}'" if pos < len(text) else " after the operator"), pos, len(text))
 
