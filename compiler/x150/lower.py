@@ -123,6 +123,7 @@ class Lowering:
         self.routine: ir.Routine | None = None
         self.block: ir.Block | None = None
         self.device: int | None = None
+        self.device_axis = ir.ALL_AXES
         self.frames: list[Frame] = []
         self.leading = True
         self.after_skip: st.Command | None = None  # the SKE/SKN whose next command may be skipped
@@ -131,14 +132,27 @@ class Lowering:
     def run(self) -> ir.Module:
         self.cur: dict[str, int] = {}  # user steps per revolution of each device (CUR)
         self.factors: dict[int, Fraction] = {}  # CUR -> IR steps per user step (see `distance`)
-        self.addresses = {c.address for c in self.tree.commands() if c.address is not None}
+        # One pass over the commands for what the lowering needs to know of the whole file first:
+        # the addresses written, the CUR commands (`resolution`), and whether the trace is on.
+        addresses: set[int] = set()
+        resolutions: list[st.Command] = []
+        tracing = False
+        for command in self.tree.commands():
+            if command.address is not None:
+                addresses.add(command.address)
+            mnemonic = command.mnemonic
+            if mnemonic == "CUR":
+                resolutions.append(command)
+            elif mnemonic == "XTR" or mnemonic == "XST":
+                tracing = True
+        self.addresses = addresses
         self.own_device: dict[int, bool] = {}  # address -> `fits` for a command outside a sequence
-        self.module.steps_per_rev = self.resolution()
+        self.module.steps_per_rev = self.resolution(resolutions)
         self.units = split_units(self.tree, self.diags)
         self.on_receipt: dict[int, ir.Native] = {}  # an immediate setting's op -> the command as written
         # trace reports (XTR, L5384-L5433): only a program that turns the trace on sends them; they
         # also mark where each command starts, which single step (XST, L5330-L5345) counts
-        self.tracing = any(c.mnemonic in ("XTR", "XST") for c in self.tree.commands())
+        self.tracing = tracing
         self.name_units()
         self.device_list = sorted({u.address for u in self.units if u.is_sequence and u.address is not None})
         kinds = self.routine_kinds()
@@ -151,13 +165,13 @@ class Lowering:
         neutral.loops_ended_on_receipt(self.module, LOOP_VAR)
         return self.module
 
-    def resolution(self) -> int:
+    def resolution(self, commands: list[st.Command]) -> int:
         """User steps per revolution: the CUR the program sets with a number (the IR's step), else
         the profile's. A second, different CUR or a CUR(VARn) is reported (X141): positions written
-        after it are in other steps than mcc converts with."""
+        after it are in other steps than mcc converts with. `commands`: the file's CUR commands."""
         found: int | None = None
-        for command in self.tree.commands():
-            if command.mnemonic != "CUR" or command.info is None or not command.ok or command.arg is None:
+        for command in commands:
+            if command.info is None or not command.ok or command.arg is None:
                 continue
             arg = command.arg
             device = str(command.address) if command.address is not None else ir.ALL_AXES
@@ -223,7 +237,7 @@ class Lowering:
                 info = command.info
                 if info is None:
                     continue
-                remote = self.remote_run(command, device)
+                remote = self.remote_run(command, device) if command.mnemonic == '"' else None
                 if remote is not None:  # a sequence another device is told to run: a subroutine
                     for name in self.resolve(remote[1], remote[0]):
                         if KIND_RANK[ir.RoutineKind.SUBROUTINE] > KIND_RANK[kinds.get(name, ir.RoutineKind.MAIN)]:
@@ -290,6 +304,7 @@ class Lowering:
         self.routine = ir.Routine(unit.name, kind, span=span, number=number)
         self.module.routines.append(self.routine)
         self.device = naming.device_of(unit.name)
+        self.device_axis = str(self.device) if self.device is not None else ir.ALL_AXES  # `axis` without an address
         self.frames = []
         self.after_skip = None
         self.leading = unit.is_sequence
@@ -336,9 +351,8 @@ class Lowering:
 
     # -- commands ----------------------------------------------------------------------------------
     def axis(self, command: st.Command) -> str:
-        if command.address is not None:
-            return str(command.address)
-        return str(self.device) if self.device is not None else ir.ALL_AXES
+        address = command.address
+        return str(address) if address is not None else self.device_axis
 
     def fits(self, command: st.Command) -> bool:
         """True when the routine's device says the command's address (so an address-less IR
@@ -815,11 +829,19 @@ class Lowering:
 
 def external_routines(module: ir.Module) -> list[str]:
     """Sequences a program calls or jumps to without defining them (stored on the controller)."""
-    defined = {r.name for r in module.routines}
+    known = {r.name for r in module.routines}  # defined, or already in `used`
     used: list[str] = []
-    for _, block in module.blocks():
-        names = [op.routine for op in block.ops if isinstance(op, (ir.Call, ir.SetHandler)) and op.routine]
-        if isinstance(block.terminator, ir.GotoRoutine):
-            names.append(block.terminator.routine)
-        used += [n for n in names if n not in defined and n not in used]
+    naming_routines = (ir.Call, ir.SetHandler)  # the IR's operation classes have no subclasses
+    for routine in module.routines:
+        for block in routine.blocks:
+            for op in block.ops:
+                if type(op) in naming_routines:
+                    name = op.routine
+                    if name and name not in known:
+                        known.add(name)
+                        used.append(name)
+            term = block.terminator
+            if type(term) is ir.GotoRoutine and term.routine not in known:
+                known.add(term.routine)
+                used.append(term.routine)
     return used

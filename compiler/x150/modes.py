@@ -42,6 +42,7 @@ MODE_COMMANDS = frozenset((*POSITION_MODES, *MOVE_MODES))
 DEFAULTS = {("pos", ir.ALL_AXES): "MPI", ("move", ir.ALL_AXES): "MN", ("sign", ir.ALL_AXES): 1}
 
 NOTHING: frozenset[str] = frozenset()
+ASSIGN, CALL, READ = 0, 1, 2  # the kinds of `Resolver.liveness_entries`
 State = dict  # ("pos"|"move"|"D", axis) -> "MPA"/"MPI", "MN"/"MC"/"MQ", or an ir.Const
 
 
@@ -97,6 +98,16 @@ def meet(a: State | None, b: State) -> State:
     return {k: v for k, v in a.items() if k in b and ((other := b[k]) is v or same(other, v))}
 
 
+def keeps(a: State, b: State) -> bool:
+    """`meet(a, b)` is `a` again (`states_equal`): `b` has every key of `a` with the same value.
+    Found without making the meet, which a walk asks at every edge it follows."""
+    for key, value in a.items():
+        other = b.get(key, b)  # (`b` itself: no state holds itself)
+        if other is not value and (other is b or not same(other, value)):
+            return False
+    return True
+
+
 def same(a, b) -> bool:
     if isinstance(a, ir.Const) and isinstance(b, ir.Const):
         return a.value == b.value
@@ -107,8 +118,8 @@ def register_value(op: ir.Assign, state: State):
     """The constant D holds after an assignment to %D (None: not known)."""
     axis = op.target.name[len(DISTANCE):]
     value = op.value
-    if isinstance(value, ir.Const):
-        return ir.Const(value.value, ir.Unit.STEPS, value.span)
+    if isinstance(value, ir.Const):  # (the lowering's distances are in steps already: kept, not copied)
+        return value if value.unit is ir.Unit.STEPS else ir.Const(value.value, ir.Unit.STEPS, value.span)
     old = get_key(state, "D", axis)
     if not isinstance(old, ir.Const):
         return None
@@ -148,6 +159,16 @@ def transfer(state: State, op, touched: dict[str, bool], exits: dict[str, State 
                 set_key(state, "move", op.axis, op.mnemonic)
     elif kind is ir.Assign and is_distance(op.target.name):
         axis = op.target.name[len(DISTANCE):]
+        value = op.value
+        if type(value) is ir.Const and axis != ir.ALL_AXES:
+            # `D4000` on a device, most assignments: what the lines below do, without the calls
+            # (`register_value`, `register_sign`, `set_key` with a known value on one device)
+            if value.unit is not ir.Unit.STEPS:
+                value = ir.Const(value.value, ir.Unit.STEPS, value.span)
+            state[("sign", axis)] = -1 if value.value < 0 else 1
+            state[("D", axis)] = value
+            state[("reg", axis)] = op.target.name
+            return state
         value = register_value(op, state)
         set_key(state, "sign", axis, register_sign(op, state, value))
         set_key(state, "D", axis, value)
@@ -165,6 +186,9 @@ class Resolver:
         self.module = module
         self.diags = diags
         self.devices = devices  # the devices an unaddressed G moves (the profile's and the file's)
+        self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
+        self.registers: dict[int, list] = {}  # id(block) -> its `liveness_entries` before the rewriting
+        self.changes: dict[int, bool] = {}  # id(block) -> it holds a mode command or sets a %D
         self.touched = self.touching()
         self.entries: dict[str, State | None] = {}
         self.exits: dict[str, State | None] = {}
@@ -172,7 +196,6 @@ class Resolver:
         # id(routine) -> (start, exits of what it calls, end, its call sites' states): the walk of a
         # routine is a function of these, so a later round whose inputs did not change reuses it
         self.memo: dict[int, tuple] = {}
-        self.relevant: dict[int, list] = {}  # id(block) -> its ops that read or change the state
         self.call_ops: dict[int, list] = {}  # id(routine) -> its calls
         self.plans: dict[int, tuple] = {}  # id(routine) -> what its walks look at (`plan`)
         self.analysed: set[str] = set()  # routines analysed at least once (their exit state is known)
@@ -189,17 +212,16 @@ class Resolver:
         """Routines that may change a mode or D, themselves or through what they call."""
         direct: dict[str, bool] = {}
         calls: dict[str, set[str]] = {}
+        changes = self.changes
         for routine in self.module.routines:
             direct[routine.name] = False
-            calls[routine.name] = set()
+            called = calls[routine.name] = set()
             for block in routine.blocks:
-                for op in block.ops:
-                    kind = type(op)  # the IR's operation classes have no subclasses
-                    if (kind is ir.Native and op.mnemonic in MODE_COMMANDS) or \
-                            (kind is ir.Assign and op.target.name.startswith(DISTANCE)):
-                        direct[routine.name] = True
-                    elif kind is ir.Call:
-                        calls[routine.name].add(op.routine)
+                for op in self.ops_of(block):  # (the pass over the operations that finds `changes`)
+                    if type(op) is ir.Call:
+                        called.add(op.routine)
+                if changes[id(block)]:
+                    direct[routine.name] = True
         result = dict(direct)
         for name in self.module.externals:
             result[name] = True
@@ -289,21 +311,39 @@ class Resolver:
 
     def ops_of(self, block: ir.Block) -> list:
         """The operations of `block` that `transfer` or the rewriting look at (the others leave
-        the state as it is)."""
+        the state as it is). The same pass finds the block's `liveness_entries` (`registers`),
+        which the rewriting keeps for a block without a modal move."""
         found = self.relevant.get(id(block))
         if found is None:
             found = []
+            registers = []
+            changes = False  # a mode command (of any dialect) or an assignment to a %D: `touching`
+            op_reads = self.op_reads
             for op in block.ops:
                 kind = type(op)  # the IR's operation classes have no subclasses
                 if kind is ir.Native:
-                    if op.dialect == DIALECT and op.mnemonic in MODE_COMMANDS:
-                        found.append(op)
+                    if op.mnemonic in MODE_COMMANDS:
+                        changes = True
+                        if op.dialect == DIALECT:
+                            found.append(op)
+                    elif op.mnemonic == "G":
+                        registers.append((READ, op, None, op_reads(op)))
                 elif kind is ir.Assign:
-                    if op.target.name.startswith(DISTANCE):
+                    name = op.target.name
+                    if name.startswith(DISTANCE):
+                        changes = True
                         found.append(op)
-                elif kind is ir.Call or (kind is ir.Move and op.mode is ir.MoveMode.MODAL):
+                        registers.append((ASSIGN, op, name, op_reads(op)))
+                elif kind is ir.Call:
                     found.append(op)
+                    registers.append((CALL, op, None, NOTHING))
+                elif kind is ir.Move:
+                    if op.mode is ir.MoveMode.MODAL:
+                        found.append(op)
+                    registers.append((READ, op, None, op_reads(op)))
             self.relevant[id(block)] = found
+            self.registers[id(block)] = registers
+            self.changes[id(block)] = changes
         return found
 
     def plan(self, routine: ir.Routine) -> tuple[dict[str, tuple], list]:
@@ -384,11 +424,11 @@ class Resolver:
                     if visits.get(succ, 0) < 64:
                         work.append(succ)
                     continue
-                new = meet(old, state)
-                if not states_equal(old, new):
-                    entry[succ] = new
-                    if visits.get(succ, 0) < 64:
-                        work.append(succ)
+                if old is state or keeps(old, state):
+                    continue  # the meet is `old` again: nothing changes
+                entry[succ] = meet(old, state)
+                if visits.get(succ, 0) < 64:
+                    work.append(succ)
         return end
 
     # -- rewriting ---------------------------------------------------------------------------------
@@ -396,23 +436,26 @@ class Resolver:
         modal = ir.MoveMode.MODAL
         kept_go = False
         with_modes: list[ir.Block] = []  # the blocks holding a mode command (MPA MPI MN MC MQ)
-        liveness: dict[int, list] = {}  # id(block) -> its `liveness_ops` (no mode command among them)
+        liveness: dict[int, list] = {}  # id(block) -> its `liveness_entries` (no mode command among them)
         for routine in self.module.routines:
             checkpoint()
             for block in routine.blocks:
                 relevant = self.ops_of(block)
-                if any(isinstance(op, ir.Move) and op.mode is modal for op in relevant):
+                registers = self.registers[id(block)]
+                if any(type(op) is ir.Move for op in relevant):  # a modal move (`ops_of` keeps no other)
                     out: list = []
                     for op in block.ops:
-                        if isinstance(op, ir.Move) and op.mode is modal:
+                        if type(op) is ir.Move and op.mode is modal:
                             out += self.rewrite_op(op, block.ops, out)
                         else:
                             out.append(op)
                     block.ops = out
-                # the block's register operations for the liveness, a G kept as text among them
-                registers = liveness[id(block)] = liveness_ops(block.ops)
-                kept_go = kept_go or any(type(op) is ir.Native for op in registers)
-                if any(isinstance(op, ir.Native) for op in relevant):
+                    registers = self.liveness_entries(out)  # the moves are new, a G kept as text among them
+                # the block's register operations for the liveness
+                liveness[id(block)] = registers
+                if not kept_go:
+                    kept_go = any(type(entry[1]) is ir.Native for entry in registers)
+                if any(type(op) is ir.Native for op in relevant):
                     with_modes.append(block)
         if not kept_go:  # the modes are in the moves now; a G kept as text still needs them
             for block in with_modes:
@@ -429,22 +472,21 @@ class Resolver:
         devices = self.devices
         move = lookup(state, "move", axis, devices)
         register = lookup(state, "D", axis, devices)
-        go = ir.Native(DIALECT, "G", (), axis=axis, span=op.span)
         if move == "MC":
             sign = lookup(state, "sign", axis, devices)
             if sign is not None:
                 return [ir.Slew(axis, None, sign, op.span)]
             self.report(op.span, "G in MC runs in the direction of D's sign, which is not known here")
-            return [go]
+            return [ir.Native(DIALECT, "G", (), axis=axis, span=op.span)]
         if move not in ("MN", "MQ"):
             self.report(op.span, "G moves in the move mode in force (MN, MC or MQ), which differs on the paths "
                                  "that reach it")
-            return [go]
+            return [ir.Native(DIALECT, "G", (), axis=axis, span=op.span)]
         pos = lookup(state, "pos", axis, devices)
         if pos not in POSITION_MODES:
             self.report(op.span, "G moves by D in the position mode in force (MPA or MPI), which differs on the "
                                  "paths that reach it")
-            return [go]
+            return [ir.Native(DIALECT, "G", (), axis=axis, span=op.span)]
         span = op.span
         if isinstance(register, ir.Const):
             source = self.last_distance(done, axis)
@@ -476,35 +518,64 @@ class Resolver:
     def drop_unread_distances(self, relevant: dict[int, list] | None = None) -> None:
         """Assignments to a %D that no move, native G or later H can read (backward liveness; a call,
         a transfer and the end of a routine read every %D something in the module reads) are dropped,
-        and so is a %D variable nothing reads. `relevant`: each block's `liveness_ops` when the
+        and so is a %D variable nothing reads. `relevant`: each block's `liveness_entries` when the
         caller has them (found in one pass over the module); everything below looks at these only."""
         if relevant is None:
-            relevant = {id(block): liveness_ops(block.ops) for routine in self.module.routines
+            relevant = {id(block): self.liveness_entries(block.ops) for routine in self.module.routines
                         for block in routine.blocks}
-        op_reads = self.op_reads
         # Until nothing more goes: an assignment dropped (an `H` whose D is set again before any G)
         # may be the only reader of an earlier one (the `D4000` before that `H`), which the output,
         # compiled again, would drop; dropping it now makes compile(compile(p)) == compile(p).
+        # A routine's drops depend only on its own operations and on `read`: a later round walks
+        # again only the routines that lost an assignment which read a register, unless `read`
+        # changed (then all). An assignment that reads none (D4000) and is dropped, being dead,
+        # changes no register's liveness anywhere (before it, `(live - {target}) | {}` is `live`
+        # since its target is not live after it): the next round would find the same.
+        pending = self.module.routines
+        last_read = None
         for _ in range(16):
-            before = sum(map(len, relevant.values()))
             if self.module.externals:
                 read = {n for n in self.module.variables if is_distance(n)}
             else:
-                read = {name for ops in relevant.values() for op in ops if type(op) is not ir.Call
-                        for name in op_reads(op)}
-            for routine in self.module.routines:
-                self.drop_dead_in(routine, read, relevant)
-            if sum(map(len, relevant.values())) == before:
+                read = set()
+                for entries in relevant.values():
+                    for code, _, _, reads in entries:
+                        if code != CALL and reads:
+                            read |= reads
+            if last_read is not None and read != last_read:
+                pending = self.module.routines
+            pending = [routine for routine in pending if self.drop_dead_in(routine, read, relevant)]
+            if not pending:
                 break
+            last_read = read
         used: set[str] = set()
-        for ops in relevant.values():
-            for op in ops:
-                if type(op) is not ir.Call:
-                    used |= op_reads(op)
-                    if type(op) is ir.Assign:  # to a %D (liveness_ops)
-                        used.add(op.target.name)
+        for entries in relevant.values():
+            for code, _, target, reads in entries:
+                if code != CALL:
+                    used |= reads
+                    if code == ASSIGN:
+                        used.add(target)
         for name in [n for n in self.module.variables if is_distance(n) and n not in used]:
             del self.module.variables[name]
+
+    def liveness_entries(self, ops: list) -> list[tuple]:
+        """The operations of a block that the register liveness looks at, each as (ASSIGN, CALL or
+        READ, the operation, the register it assigns or None, the registers it reads): assignments
+        to a %D, calls (which read every register: their reads are not listed), moves, and a G kept
+        as text; every other operation reads no register and assigns none (`op_reads`). The reads
+        are found once here, not in every round of the liveness."""
+        out = []
+        op_reads = self.op_reads
+        for op in ops:
+            kind = type(op)  # the IR's operation classes have no subclasses
+            if kind is ir.Assign:
+                if op.target.name.startswith(DISTANCE):
+                    out.append((ASSIGN, op, op.target.name, op_reads(op)))
+            elif kind is ir.Call:
+                out.append((CALL, op, None, NOTHING))
+            elif kind is ir.Move or (kind is ir.Native and op.mnemonic == "G"):
+                out.append((READ, op, None, op_reads(op)))
+        return out
 
     def op_reads(self, op) -> frozenset[str] | set[str]:
         """The registers an operation reads: only moves, a G kept as text and H/H+/H- (the lowering
@@ -520,13 +591,14 @@ class Resolver:
             return {node.name for node in ir.walk_expr(op.value) if isinstance(node, ir.Var) and is_distance(node.name)}
         return NOTHING
 
-    def drop_dead_in(self, routine: ir.Routine, read: set[str], relevant: dict[int, list]) -> None:
-        """`relevant`: each block's `liveness_ops`, kept up to date when assignments are dropped."""
-        if not any(type(op) is ir.Assign for b in routine.blocks for op in relevant[id(b)]):
-            return
+    def drop_dead_in(self, routine: ir.Routine, read: set[str], relevant: dict[int, list]) -> bool:
+        """`relevant`: each block's `liveness_entries`, kept up to date when assignments are dropped.
+        True when an assignment that reads a register (H, H+, H-) was dropped: only then can
+        another round with the same `read` drop more here (see `drop_unread_distances`)."""
+        if not any(entry[0] == ASSIGN for b in routine.blocks for entry in relevant[id(b)]):
+            return False
         blocks = {b.label: b for b in routine.blocks}
         live_in: dict[str, set[str] | frozenset[str]] = dict.fromkeys(blocks, NOTHING)  # replaced, never changed
-        op_reads = self.op_reads
 
         def live_out(block) -> set[str] | frozenset[str]:
             """Not to be changed by the caller (it may be `read` itself)."""
@@ -538,44 +610,48 @@ class Resolver:
                 out |= live_in[succ] if succ in live_in else read
             return out
 
-        def through(block, live: set[str]) -> None:
+        def through(block, live: set[str]) -> bool:
             """The block without the assignments to a %D that nothing reads after them."""
             dropped = []
-            for op in reversed(relevant[id(block)]):
-                kind = type(op)
-                if kind is ir.Assign:  # to a %D (liveness_ops)
-                    if op.target.name not in live:
+            reading = False  # a dropped assignment read a register
+            for code, op, target, reads in reversed(relevant[id(block)]):
+                if code == ASSIGN:
+                    if target not in live:
                         dropped.append(op)
+                        reading = reading or bool(reads)
                         continue
-                    live = (live - {op.target.name}) | op_reads(op)
-                elif kind is ir.Call:
+                    live = (live - {target}) | reads
+                elif code == CALL:
                     live = live | read
                 else:
-                    live = live | op_reads(op)
+                    live = live | reads
             if dropped:
                 gone = {id(op) for op in dropped}
                 block.ops = [op for op in block.ops if id(op) not in gone]
-                relevant[id(block)] = [op for op in relevant[id(block)] if id(op) not in gone]
+                relevant[id(block)] = [entry for entry in relevant[id(block)] if id(entry[1]) not in gone]
+            return reading
 
-        def summary(block) -> tuple[set[str], set[str]]:
+        def summary(entries: list) -> tuple[set[str], set[str]]:
             """The block's effect on the live registers, `(live - kill) | gen`: its operations
             composed once, so that each round of the fixed point costs a set operation per block."""
             kill: set[str] = set()
             gen: set[str] = set()
-            for op in reversed(relevant[id(block)]):
-                kind = type(op)
-                if kind is ir.Assign:  # to a %D (liveness_ops)
-                    gen.discard(op.target.name)
-                    kill.add(op.target.name)
-                    gen |= op_reads(op)
-                elif kind is ir.Call:
+            for code, _, target, reads in reversed(entries):
+                if code == ASSIGN:
+                    gen.discard(target)
+                    kill.add(target)
+                    gen |= reads
+                elif code == CALL:
                     gen |= read
                 else:
-                    gen |= op_reads(op)
+                    gen |= reads
             return kill, gen
 
         nothing = (NOTHING, NOTHING)  # the summary of a block without register operations
-        summaries = {id(block): summary(block) if relevant[id(block)] else nothing for block in routine.blocks}
+        summaries = {}
+        for block in routine.blocks:
+            entries = relevant[id(block)]
+            summaries[id(block)] = summary(entries) if entries else nothing
         # Each block as (label, kill, gen, the labels after it, what its exits read): `live_out`
         # worked out once, so that a round of the fixed point is set operations only.
         plan = []
@@ -602,29 +678,16 @@ class Resolver:
                 if new != live_in[label]:
                     live_in[label] = new
                     changed = True
+        dropped = False
         for block in routine.blocks:
             if summaries[id(block)][0]:  # a block that assigns no %D keeps its operations
-                through(block, live_out(block))
+                dropped = through(block, live_out(block)) or dropped
+        return dropped
 
     def report(self, span, why: str) -> None:
         if span is not None:
             self.diags.add("X142", span, f"{why}: mcc keeps this G as X150 text, so it compiles to X150 only; "
                                          "set the mode (MN/MC, MPA/MPI) and D on every path before G")
-
-
-def liveness_ops(ops: list) -> list:
-    """The operations of a block that the register liveness looks at: assignments to a %D, calls
-    (which read every register), moves, and a G kept as text; every other operation reads no
-    register and assigns none (`Resolver.op_reads`)."""
-    out = []
-    for op in ops:
-        kind = type(op)  # the IR's operation classes have no subclasses
-        if kind is ir.Assign:
-            if op.target.name.startswith(DISTANCE):
-                out.append(op)
-        elif kind is ir.Call or kind is ir.Move or (kind is ir.Native and op.mnemonic == "G"):
-            out.append(op)
-    return out
 
 
 def identical(a: State | None, b: State | None) -> bool:

@@ -285,6 +285,8 @@ def stops_in_turn(module: ir.Module, on_receipt: dict | None = None) -> None:
             continue
         if len(routine.blocks) != 1:
             in_turn = False  # a loop or a branch: what runs before a later command depends on time
+            if not on_receipt:
+                return  # nothing later is in its turn, and no setting waits to go back
         for block in routine.blocks:
             for index, op in enumerate(block.ops):
                 if isinstance(op, ir.Native) and op.dialect == "x150" and op.mnemonic in RECEIPT_STOPS \
@@ -297,6 +299,8 @@ def stops_in_turn(module: ir.Module, on_receipt: dict | None = None) -> None:
                     continue
                 if isinstance(op, WAITING_OPS) or isinstance(op, MOTION_OPS) and moved:
                     in_turn = False
+                    if not on_receipt:
+                        return  # nothing later is in its turn, and no setting waits to go back
                 moved = moved or isinstance(op, MOTION_OPS)
 
 

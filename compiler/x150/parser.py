@@ -87,8 +87,18 @@ def _scanner() -> re.Pattern:
         name = terminal.name if terminal.name in ("CMD", "COMMENT", "NL") else "IGNORE"
         if name == "IGNORE" and terminal.name not in parser.lexer_conf.ignore:  # pragma: no cover
             raise ValueError(f"unexpected x150 terminal {terminal.name}")
-        groups[name].append(terminal.pattern.to_regexp())
+        groups[name].append(_runs(terminal.pattern.to_regexp()))
     return re.compile("|".join(f"((?:{'|'.join(patterns)}))" for patterns in groups.values()))
+
+
+def _runs(pattern: str) -> str:
+    """A terminal `(?:[class]|rest)+` as `(?:[class]+|rest)+`: the same tokens (a run of the
+    class's characters is the first alternative taken once per character; nothing follows the
+    group, so the engine never backtracks into it), but the engine loops inside the class over a
+    run instead of around the whole alternation once per character. The CMD terminal: about a
+    fifth of the scan."""
+    match = re.fullmatch(r"\(\?:(\[[^\]]*\])\|(.*)\)\+", pattern, re.S)
+    return f"(?:{match.group(1)}+|{match.group(2)})+" if match is not None else pattern
 
 
 def _scan(text: str) -> list | None:
@@ -225,9 +235,14 @@ def _bad_line(source: SourceFile, reader: CommandReader, number: int, text: str,
 def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[str, int]],
                   diags: Diagnostics) -> list[st.Command]:
     """Read the command tokens of one line, re-joining an argument written after a space."""
+    count = len(pieces)
+    if count == 1:  # most lines: one command, which takes no next word
+        command = reader.read_token(pieces[0][0], pieces[0][1], spans)
+        for problem in command.problems:
+            diags.add(problem.code, problem.span, problem.message)
+        return [command]
     commands: list[st.Command] = []
     index = 0
-    count = len(pieces)
     while index < count:
         text, start = pieces[index]
         command = reader.read_token(text, start, spans)

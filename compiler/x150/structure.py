@@ -46,12 +46,35 @@ def sequence_number(command: st.Command) -> int | None:
     return arg.value if isinstance(arg, st.Number) and isinstance(arg.value, int) else None
 
 
+UNIT_MARKS = ("XD", "XT")
+
+
 def split_units(tree: st.SyntaxTree, diags: Diagnostics) -> list[Unit]:
     units: list[Unit] = []
     stream: Unit | None = None
     sequence: Unit | None = None
-    for command in tree.commands():
-        name = command.mnemonic if command.info is not None else ""
+    commands = list(tree.commands())
+    # Only XD and XT start or end a unit: the commands between two of them go to the unit in
+    # force as one slice (a file has tens of thousands of commands and a few hundred of these).
+    marks = [index for index, command in enumerate(commands)
+             if command.mnemonic in UNIT_MARKS and command.info is not None]
+    marks.append(len(commands))  # the end: the commands after the last mark
+    done = 0
+    for index in marks:
+        if index > done:
+            between = commands[done:index]
+            if sequence is not None:
+                sequence.commands += between
+            else:
+                if stream is None:
+                    stream = Unit("immediate")
+                    units.append(stream)
+                stream.commands += between
+        done = index + 1
+        if index == len(commands):
+            break
+        command = commands[index]
+        name = command.mnemonic
         if name == "XD":
             if sequence is not None:
                 diags.add("X106", command.span,
@@ -77,13 +100,6 @@ def split_units(tree: st.SyntaxTree, diags: Diagnostics) -> list[Unit]:
             else:
                 sequence.end = command
                 sequence = None
-        elif sequence is not None:
-            sequence.commands.append(command)
-        else:
-            if stream is None:
-                stream = Unit("immediate")
-                units.append(stream)
-            stream.commands.append(command)
     if sequence is not None:
         start = sequence.start
         diags.add("X105", start.span, f"sequence {sequence.number} is never closed: add XT after its last command "

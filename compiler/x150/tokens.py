@@ -27,9 +27,12 @@ from mcc.compiler.x150.catalog import X150Catalog
 
 NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[Ee][+-]?[0-9]+)?")
 DIGITS = re.compile(r"[0-9]+")
+ASCII_DIGITS = "0123456789"
 VAR_SUBST = re.compile(r"\(\s*[Vv][Aa][Rr]([0-9]+)\s*\)")
 VAR_NAME = re.compile(r"[Vv][Aa][Rr]([0-9]+)")
 WORD = re.compile(r"[A-Za-z]+")
+# An operand of VARn=: VAR_NAME, WORD or NUMBER, the first that matches (read_operand)
+OPERAND = re.compile(rf"{VAR_NAME.pattern}|({WORD.pattern})|{NUMBER.pattern}")
 IO_FUNCTION = re.compile(r"([0-9]+)([A-Za-z])")
 PATTERN_CHARS = re.compile(r"[01Xx_]*")
 RELOP = re.compile(r"[<>=!]+")
@@ -171,8 +174,8 @@ class CommandReader:
             return self.read_host(cmd, text, sub)
         pos = 0
         if "0" <= first <= "9":
-            digits = DIGITS.match(text).group()
-            pos = len(digits)
+            pos = len(text) - len(text.lstrip(ASCII_DIGITS))  # DIGITS.match, without the expression
+            digits = text[:pos]
             cmd.address = int(digits) if pos <= 18 else whole(digits)
             if lazy:
                 cmd.address_chars = pos  # sub(0, pos): pos > 0
@@ -280,13 +283,15 @@ class CommandReader:
             found = self.read_subst(cmd, text, pos, sub)
             if found is not None:
                 return found
+        written = text[pos:]
+        if written.isdigit() and written.isascii():  # the common case, without the expression: [0-9]+
+            return st.Number(written, int(written) if size - pos <= 18 else whole(written), sub(pos, size))
         if NUMBER.fullmatch(text, pos) is None:
             match = NUMBER.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a number (10, -2.5, 1.2E-3)"
                            + (" or (VARn)" if cmd.info and cmd.info.var_subst else "")
                            + f"; '{text[bad:]}' is not part of one", bad, size)
-        written = text[pos:]
         return st.Number(written, number_value(written), sub(pos, size))
 
     def read_int(self, cmd: st.Command, text: str, pos: int, sub):
@@ -297,12 +302,12 @@ class CommandReader:
             found = self.read_subst(cmd, text, pos, sub)
             if found is not None:
                 return found
-        if DIGITS.fullmatch(text, pos) is None:
+        written = text[pos:]
+        if not (written.isdigit() and written.isascii()):  # [0-9]+ (ASCII: `isdigit` takes other digits too)
             match = DIGITS.match(text, pos)
             bad = match.end() if match else pos
             raise ArgError(f"{cmd.mnemonic} takes a whole number; '{text[bad:]}' is not part of one",
                            bad, size)
-        written = text[pos:]
         return st.Number(written, int(written) if size - pos <= 18 else whole(written), sub(pos, size))
 
     def pattern17(self, text: str, pos: int, end: int, sub, what: str) -> st.Pattern:
@@ -452,15 +457,18 @@ class CommandReader:
         return st.VarStatement(var, chain, sub(pos, len(text)))
 
     def read_operand(self, text: str, pos: int, sub) -> tuple[st.Operand, int]:
-        var = VAR_NAME.match(text, pos)
-        if var:
-            return st.VarRef(whole(var.group(1)), sub(pos, var.end())), var.end()
-        word = WORD.match(text, pos)
-        if word and word.group().upper() in self.sources:
-            return st.Source(word.group().upper(), sub(pos, word.end())), word.end()
-        number = NUMBER.match(text, pos)
-        if number:
-            return st.Number(number.group(), number_value(number.group()), sub(pos, number.end())), number.end()
+        # VAR_NAME, else WORD (a source), else NUMBER, tried in that order by one expression
+        found = OPERAND.match(text, pos)
+        if found is not None:
+            number, word = found.group(1, 2)
+            end = found.end()
+            if number is not None:
+                return st.VarRef(whole(number), sub(pos, end)), end
+            if word is None:
+                written = found.group()
+                return st.Number(written, number_value(written), sub(pos, end)), end
+            if word.upper() in self.sources:
+                return st.Source(word.upper(), sub(pos, end)), end
         raise ArgError("expected VARn, a number or one of " + " ".join(sorted(self.sources))
                        + (f", not '{text[pos:]}'" if pos < len(text) else " after the operator"), pos, len(text))
 

@@ -62,11 +62,19 @@ def not_saved(ctx: Context) -> None:
     if anchor is None:
         return
     command, why = anchor
-    after = False
-    for other in lowering.tree.commands():
-        if other is command:
-            after = True
-        elif after and other.info is not None and other.info.ir == "save":
-            return
+    # Is there an SV after the anchor? Read from the end back to it: the anchor is most often the
+    # last definition, near the end of the file.
+    saved = False
+    for line in reversed(lowering.tree.lines):
+        for other in reversed(line.commands):
+            if other is command:
+                if saved:
+                    return
+                break
+            if other.info is not None and other.info.ir == "save":
+                saved = True
+        else:
+            continue
+        break
     ctx.report(command.span, f"{why}: add SV (addressed, e.g. 1SV) after the definitions if the program must "
                              "survive a power cycle")
