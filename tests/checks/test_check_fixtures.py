@@ -15,35 +15,22 @@ A check without a fixture or a fixture without a check fails
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import pytest
+from fixture_annotations import MANUAL_LINE, expected
 
 from mcc.compiler import checks, dialects, profiles
 from mcc.compiler.span import SourceFile
 
 FIXTURES = Path(__file__).parent / "fixtures"
 CHECKS = checks.load_all()
-ANNOTATION = re.compile(r"\b(error|warning|info): ([A-Z]\d{3}(?:\s*,\s*[A-Z]\d{3})*)")
 
 
 def fixture_of(code: str) -> Path:
     found = sorted(FIXTURES.glob(f"{code}.*"))
     assert len(found) == 1, f"{code} needs exactly one fixture tests/checks/fixtures/{code}.<ext>, found {found}"
     return found[0]
-
-
-def expected(text: str, comment: str) -> set[tuple[int, str, str]]:
-    """(line, severity, code) of every annotation: a comment holding `<severity>: <CODE>[, <CODE>]`."""
-    found = set()
-    for number, line in enumerate(text.splitlines(), start=1):
-        at = line.find(comment)
-        if at < 0:
-            continue
-        for severity, codes in ANNOTATION.findall(line[at:]):
-            found |= {(number, severity, code.strip()) for code in codes.split(",")}
-    return found
 
 
 def test_every_check_has_one_fixture_and_every_fixture_a_check() -> None:
@@ -60,7 +47,7 @@ def test_check_reports_exactly_the_annotated_lines(code: str) -> None:
     path = fixture_of(code)
     text = path.read_text(encoding="utf-8")
     head = "\n".join(text.splitlines()[:3])
-    assert re.search(r"\b(lexium-mcode\.txt|parker-x150\.md|arcus-pmx-4ex-sa\.txt) L\d+", head), \
+    assert MANUAL_LINE.search(head), \
         f"{path.name}: the header comment cites the manual line the check rests on"
     dialect = dialects.from_path(path.name)
     analysis = dialect.load_frontend().analyze(SourceFile(path.name, text), profiles.load(dialect.default_profile))

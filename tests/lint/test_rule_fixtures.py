@@ -17,10 +17,10 @@ from __future__ import annotations
 
 import dataclasses
 import os
-import re
 from pathlib import Path
 
 import pytest
+from fixture_annotations import MANUAL_LINE, expected
 
 from mcc.compiler import config, dialects
 from mcc.compiler.codes import registry
@@ -30,7 +30,6 @@ from mcc.compiler.lint.rules import load_all
 
 FIXTURES = Path(__file__).parent / "fixtures"
 RULES = sorted(load_all())
-ANNOTATION = re.compile(r"\b(error|warning|info): ([A-Z]\d{3}(?:\s*,\s*[A-Z]\d{3})*)")
 UPDATE = os.environ.get("MCC_UPDATE_SNAPSHOTS") == "1"
 
 
@@ -47,18 +46,6 @@ def fixed_of(path: Path) -> Path:
 def dialect_of(path: Path) -> dialects.Dialect:
     found = dialects.from_path(path.name)
     assert found is not None, f"{path.name}: not an extension of any dialect"
-    return found
-
-
-def expected(text: str, comment: str) -> set[tuple[int, str, str]]:
-    """(line, severity, code) of every annotation: a comment holding `<severity>: <CODE>[, <CODE>]`."""
-    found = set()
-    for number, line in enumerate(text.splitlines(), start=1):
-        at = line.find(comment)
-        if at < 0:
-            continue
-        for severity, codes in ANNOTATION.findall(line[at:]):
-            found |= {(number, severity, code.strip()) for code in codes.split(",")}
     return found
 
 
@@ -100,7 +87,7 @@ def test_every_rule_has_one_fixture_and_every_fixture_a_rule() -> None:
 def test_rule_reports_exactly_the_annotated_lines(code: str) -> None:
     path, text, diags = run(code)
     head = "\n".join(text.splitlines()[:3])
-    assert re.search(r"\b(lexium-mcode\.txt|parker-x150\.md|arcus-pmx-4ex-sa\.txt) L\d+", head), \
+    assert MANUAL_LINE.search(head), \
         f"{path.name}: the header comment cites the manual line the rule rests on"
     others = [(d.code, d.span.line, d.message) for d in diags if d.code != code]
     assert not others, f"{path.name} must be a program the frontend reads: {others}"
