@@ -18,6 +18,7 @@ import re
 from pathlib import Path
 
 import pytest
+from module_pages import page_of
 
 from mcc.compiler import checks, codes
 from mcc.compiler.diagnostics import Kind
@@ -103,17 +104,11 @@ def test_every_check_module_is_a_registered_check_and_every_check_has_a_module()
 @pytest.mark.parametrize("code", sorted(MODULES))
 def test_the_docstring_is_the_page_and_names_the_module(code: str) -> None:
     path = MODULES[code]
-    text = path.read_text(encoding="utf-8")
-    page = codes.module_docstring(text)
-    assert page == ast.get_docstring(ast.parse(text), clean=False), f"{path.name}: start it with r\"\"\"<the page>"
-    info = codes.parse_page(page, path.name)
-    assert info.page() == page, f"{path.name}: the page is not in the form `mcc explain` prints"
-    assert path.stem == f"{code.lower()}_{info.name.replace('-', '_')}"
-    assert codes.registry().get(code) == info
+    info = page_of(code, path)
     assert info.kind is Kind.SEMANTIC and info.dialects == (path.parent.name,), path.name
     assert codes.registry().get(code).emitted == (path.relative_to(ROOT).as_posix(),)
     module = importlib.import_module(f"mcc.compiler.checks.{path.parent.name}.{path.stem}")
-    assert module.__doc__ == page
+    assert module.__doc__ == info.page()
 
 
 @pytest.mark.parametrize("code", sorted(CHECKS))

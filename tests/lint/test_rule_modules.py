@@ -8,13 +8,13 @@ dialect (envelope), so a check of MCode files never imports the Arcus or X150 ru
 
 from __future__ import annotations
 
-import ast
 import importlib
 import json
 import subprocess
 import sys
 
 import pytest
+from module_pages import page_of
 
 from mcc.compiler import codes
 from mcc.compiler.lint.rules import RULES, load_all
@@ -32,18 +32,12 @@ def test_every_rule_module_is_a_registered_rule_and_every_rule_has_a_module() ->
 @pytest.mark.parametrize("code", sorted(MODULES))
 def test_the_docstring_is_the_page_and_names_the_module(code: str) -> None:
     path = MODULES[code]
-    text = path.read_text(encoding="utf-8")
-    page = codes.module_docstring(text)
-    assert page == ast.get_docstring(ast.parse(text), clean=False), f"{path.name}: start it with r\"\"\"<the page>"
-    info = codes.parse_page(page, path.name)
-    assert info.page() == page, f"{path.name}: the page is not in the form `mcc explain` prints (docs/LINT.md)"
-    assert path.stem == f"{code.lower()}_{info.name.replace('-', '_')}"
-    assert codes.registry().get(code) == info
+    info = page_of(code, path)
     package = path.parent.name
     assert info.kind.value == "lint" and info.dialects
     assert package == "envelope" or info.dialects == (package,), f"{path.name} is in the {package} package"
     module = importlib.import_module(f"mcc.compiler.lint.rules.{package}.{path.stem}")
-    assert module.__doc__ == page
+    assert module.__doc__ == info.page()
 
 
 def test_a_page_is_described_once(tmp_path) -> None:
