@@ -680,105 +680,116 @@ class Writer:
             self.previous = op
 
     def write_one(self, op) -> None:
-        span = op.span
-        if isinstance(op, ir.Native):
-            if op.dialect != DIALECT:
-                raise CannotWrite(f"{op.dialect} command {op.mnemonic} has no X150 equivalent; rewrite this part "
-                                  "with X150 commands or compile to its own dialect", "G003")
-            self.emit(self.native_text(op), span)
-            if op.mnemonic in ("MN", "MC", "MQ"):  # the move mode written: a move in it needs no repeat
-                key = self.address(op.axis) or ir.ALL_AXES
-                self.state = {k: v for k, v in self.state.items() if k[0] != "move"}
-                self.state[("move", key)] = op.mnemonic
-            elif op.mnemonic in MODE_COMMANDS:
-                self.state = {}
-        elif isinstance(op, ir.SetMotion):
-            self.motion(op)
-        elif isinstance(op, ir.Move):
-            self.move(op)
-        elif isinstance(op, ir.Slew):
-            self.slew(op)
-        elif isinstance(op, ir.Stop):
-            if op.ramp:  # SB stops in its turn, like the IR's Stop; S acts on receipt and clears the buffer
-                self.emit(self.address(op.axis) + "SB", span)
-            elif not self.in_sequence:
-                self.emit(self.address(op.axis) + "K", span)
-            elif not self.native and id(op) in self.settled:
-                pass  # no move can run here: the source's abort stops nothing (docs/CROSS.md, "Abort")
-            else:
-                raise CannotWrite("X150 cannot store a kill in a sequence (K is never saved); stop with a "
-                                  "ramp, or send K from the host", "G003")
-        elif isinstance(op, ir.Delay):
-            self.emit(self.address() + "T" + self.seconds(op.duration), span)
-        elif isinstance(op, ir.WaitInput):
-            self.emit(self.address() + self.wait(op.cond), span)
-        elif isinstance(op, ir.Home):
-            for line in self.home(op):
-                self.emit(self.address(op.axis) + line, span)
-        elif isinstance(op, ir.WaitMotion) and id(op) in self.homing_waits:
-            pass  # GH has waited already
-        elif isinstance(op, ir.WaitMotion):
-            # in MN the command after G runs when the move has ended (MQ exists to change that, L2631)
+        """One handler per operation of the table (compiler/ir_ops.py), `WRITE_METHODS`; an operation
+        without one has no X150 equivalent and is refused at its line (tests/ir/test_handlers.py)."""
+        method = WRITE_METHODS.get(type(op))
+        if method is None:
+            raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
+        method(self, op)
+
+    def _write_native(self, op: ir.Native) -> None:
+        if op.dialect != DIALECT:
+            raise CannotWrite(f"{op.dialect} command {op.mnemonic} has no X150 equivalent; rewrite this part "
+                              "with X150 commands or compile to its own dialect", "G003")
+        self.emit(self.native_text(op), op.span)
+        if op.mnemonic in ("MN", "MC", "MQ"):  # the move mode written: a move in it needs no repeat
             key = self.address(op.axis) or ir.ALL_AXES
-            if self.known("move", key) != "MN":
-                self.emit(self.address(op.axis) + "TRIP", span)
-        elif isinstance(op, ir.SetOutput):
-            self.emit(self.address() + "O" + self.outputs(op), span)
-        elif isinstance(op, ir.DriveEnable) and not self.native \
-                and enable_outputs.undriven(self.module, op, set(self.axes)):
-            self.out.diagnostics.add("G060", span or self.fallback_span(),
+            self.state = {k: v for k, v in self.state.items() if k[0] != "move"}
+            self.state[("move", key)] = op.mnemonic
+        elif op.mnemonic in MODE_COMMANDS:
+            self.state = {}
+
+    def _write_stop(self, op: ir.Stop) -> None:
+        if op.ramp:  # SB stops in its turn, like the IR's Stop; S acts on receipt and clears the buffer
+            self.emit(self.address(op.axis) + "SB", op.span)
+        elif not self.in_sequence:
+            self.emit(self.address(op.axis) + "K", op.span)
+        elif not self.native and id(op) in self.settled:
+            pass  # no move can run here: the source's abort stops nothing (docs/CROSS.md, "Abort")
+        else:
+            raise CannotWrite("X150 cannot store a kill in a sequence (K is never saved); stop with a "
+                              "ramp, or send K from the host", "G003")
+
+    def _write_delay(self, op: ir.Delay) -> None:
+        self.emit(self.address() + "T" + self.seconds(op.duration), op.span)
+
+    def _write_wait_input(self, op: ir.WaitInput) -> None:
+        self.emit(self.address() + self.wait(op.cond), op.span)
+
+    def _write_home(self, op: ir.Home) -> None:
+        for line in self.home(op):
+            self.emit(self.address(op.axis) + line, op.span)
+
+    def _write_wait_motion(self, op: ir.WaitMotion) -> None:
+        if id(op) in self.homing_waits:
+            return  # GH has waited already
+        # in MN the command after G runs when the move has ended (MQ exists to change that, L2631)
+        key = self.address(op.axis) or ir.ALL_AXES
+        if self.known("move", key) != "MN":
+            self.emit(self.address(op.axis) + "TRIP", op.span)
+
+    def _write_output(self, op: ir.SetOutput) -> None:
+        self.emit(self.address() + "O" + self.outputs(op), op.span)
+
+    def _write_drive_enable(self, op: ir.DriveEnable) -> None:
+        if not self.native and enable_outputs.undriven(self.module, op, set(self.axes)):
+            self.out.diagnostics.add("G060", op.span or self.fallback_span(),
                                      f"the enable of axis {op.axis} is left out: this program never moves axis "
                                      f"{op.axis}, which profile {self.profile.name} does not drive (ST enables "
                                      "the drive itself, parker-x150.md L4010-L4031)")
-        elif isinstance(op, ir.Setting) and op.name == "enable_outputs" and not self.native:
-            self.enable_outputs(op, span)
-        elif isinstance(op, ir.DriveEnable):
-            if not isinstance(op.on, ir.Const):
-                raise CannotWrite("X150 enables (ST0) or shuts down (ST1) the drive with a constant only")
-            # ST is buffered and only enables/disables; OFF would also kill and dump the buffer (L2789)
-            self.emit(self.address(op.axis) + ("ST0" if op.on.value else "ST1"), span)
-        elif isinstance(op, ir.SetPosition):
-            if not (isinstance(op.value, ir.Const) and op.value.value == 0):
-                raise CannotWrite("X150 sets the position counter to zero only (PZ); setting it to another value "
-                                  "has no equivalent", "G003")
-            self.emit(self.address(op.axis) + "PZ", span)
-        elif isinstance(op, ir.Assign) and op.target.name.startswith(DISTANCE):
+            return
+        if not isinstance(op.on, ir.Const):
+            raise CannotWrite("X150 enables (ST0) or shuts down (ST1) the drive with a constant only")
+        # ST is buffered and only enables/disables; OFF would also kill and dump the buffer (L2789)
+        self.emit(self.address(op.axis) + ("ST0" if op.on.value else "ST1"), op.span)
+
+    def _write_set_position(self, op: ir.SetPosition) -> None:
+        if not (isinstance(op.value, ir.Const) and op.value.value == 0):
+            raise CannotWrite("X150 sets the position counter to zero only (PZ); setting it to another value "
+                              "has no equivalent", "G003")
+        self.emit(self.address(op.axis) + "PZ", op.span)
+
+    def _write_assign(self, op: ir.Assign) -> None:
+        if op.target.name.startswith(DISTANCE):
             self.register(op)
-        elif isinstance(op, ir.Assign):
-            self.emit(self.address() + self.assign(op), span)
-        elif isinstance(op, ir.Save):
-            if self.in_sequence:
-                raise CannotWrite("X150 saves with SV, an immediate command that a sequence cannot store "
-                                  "(\"Immediate, Device Specific\", L4087): save from the host, after the "
-                                  "definitions", "G003")
-            for device in self.save_addresses():
-                self.emit(device + "SV", span)
-        elif isinstance(op, ir.Call):
-            prefix, n = self.target(op.routine)
-            call = f"{prefix}XR{n}"
-            other = naming.device_of(op.routine) if self.native else None
-            if self.device is not None and other is not None and other != self.device:
-                # a sequence of another device, run from device a's stream or sequence: device a sends
-                # the command string to it over the daisy chain (the quote command, L5593, L5614)
-                call = f'{self.device}"{other}XR{n}"'
-            if op.cond is None:
-                self.emit(call, span)
-            else:
-                self.conditional_call(op.cond, call, span)
-            if op.routine in self.touches:
-                self.state = {}
-        elif isinstance(op, ir.SetHandler):
-            self.handler(op)
-        elif isinstance(op, ir.Print):
-            prefix = "" if report_command(op) else self.address(op.axis) if op.axis else self.address()
-            self.emit(prefix + self.print_text(op), span)
-        elif isinstance(op, ir.Setting):
-            if not self.input_setup.needs_none(op):
-                self.emit(self.setting(op), span)
-        elif isinstance(op, (ir.Pause, ir.Resume, ir.Step)):
-            self.emit(self.host_control(op), span)
         else:
-            raise CannotWrite(f"{describe_op(op)} has no X150 equivalent", "G003")
+            self.emit(self.address() + self.assign(op), op.span)
+
+    def _write_save(self, op: ir.Save) -> None:
+        if self.in_sequence:
+            raise CannotWrite("X150 saves with SV, an immediate command that a sequence cannot store "
+                              "(\"Immediate, Device Specific\", L4087): save from the host, after the "
+                              "definitions", "G003")
+        for device in self.save_addresses():
+            self.emit(device + "SV", op.span)
+
+    def _write_call(self, op: ir.Call) -> None:
+        prefix, n = self.target(op.routine)
+        call = f"{prefix}XR{n}"
+        other = naming.device_of(op.routine) if self.native else None
+        if self.device is not None and other is not None and other != self.device:
+            # a sequence of another device, run from device a's stream or sequence: device a sends
+            # the command string to it over the daisy chain (the quote command, L5593, L5614)
+            call = f'{self.device}"{other}XR{n}"'
+        if op.cond is None:
+            self.emit(call, op.span)
+        else:
+            self.conditional_call(op.cond, call, op.span)
+        if op.routine in self.touches:
+            self.state = {}
+
+    def _write_print(self, op: ir.Print) -> None:
+        prefix = "" if report_command(op) else self.address(op.axis) if op.axis else self.address()
+        self.emit(prefix + self.print_text(op), op.span)
+
+    def _write_setting(self, op: ir.Setting) -> None:
+        if op.name == "enable_outputs" and not self.native:
+            self.enable_outputs(op, op.span)
+        elif not self.input_setup.needs_none(op):
+            self.emit(self.setting(op), op.span)
+
+    def _write_host_control(self, op: ir.Pause | ir.Resume | ir.Step) -> None:
+        self.emit(self.host_control(op), op.span)
 
     def host_control(self, op: ir.Pause | ir.Resume | ir.Step) -> str:
         """PS (buffered, pauses command execution, L3151), C and #n (immediate, never saved: only
@@ -796,8 +807,9 @@ class Writer:
             return address + "C"
         if not isinstance(op.count, ir.Const) or not float(op.count.value).is_integer() \
                 or not 1 <= op.count.value <= 255:
-            raise CannotWrite(f"X150 steps 1-255 commands with #n (L5548); {expr_text(op.count)} has no "
-                              "equivalent", "G003")
+            count = f"{op.count.value:g} commands" if isinstance(op.count, ir.Const) else "a count known only at run time"
+            raise CannotWrite(f"X150 steps 1-255 commands with #n (L5548); stepping {count} has no equivalent",
+                              "G003")
         count = int(op.count.value)
         return address + "#" + (str(count) if count != 1 else "")
 
@@ -1772,3 +1784,30 @@ def describe_op(op) -> str:
 
 def write(module: ir.Module, profile: Profile) -> Written:
     return Writer(module, profile).write_module()
+
+
+# One handler per operation of the table (compiler/ir_ops.py) that X150 can write; the others (an
+# arc: X150 moves one axis per device) are refused at their line by `Writer.write_one`.
+WRITE_METHODS = {
+    ir.Native: Writer._write_native,
+    ir.SetMotion: Writer.motion,
+    ir.Move: Writer.move,
+    ir.Slew: Writer.slew,
+    ir.Stop: Writer._write_stop,
+    ir.Delay: Writer._write_delay,
+    ir.WaitInput: Writer._write_wait_input,
+    ir.Home: Writer._write_home,
+    ir.WaitMotion: Writer._write_wait_motion,
+    ir.SetOutput: Writer._write_output,
+    ir.DriveEnable: Writer._write_drive_enable,
+    ir.SetPosition: Writer._write_set_position,
+    ir.Assign: Writer._write_assign,
+    ir.Save: Writer._write_save,
+    ir.Call: Writer._write_call,
+    ir.SetHandler: Writer.handler,
+    ir.Print: Writer._write_print,
+    ir.Setting: Writer._write_setting,
+    ir.Pause: Writer._write_host_control,
+    ir.Resume: Writer._write_host_control,
+    ir.Step: Writer._write_host_control,
+}

@@ -72,6 +72,7 @@ VARIANTS = {
     "SetHandler": ["on input(1, 1) off", "on time(1 s) -> S1 once gated"],
     "Setting": ["setting input_function[4] {a} = 0"],
     "Pause": ["pause {a} stop motion"],
+    "Step": ["step {a} V1"],  # a count known only at run time (X150's #n takes a constant, L5548)
 }
 # A backend that handles an operation by writing nothing for it, and why.
 WRITES_NOTHING = {
