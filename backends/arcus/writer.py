@@ -118,65 +118,83 @@ class Writer:
             self.stmts[index].jumps["end"] = end
 
     def simple(self, op: ir.Op) -> None:
-        """One operation as one statement (WAIT on every axis is one per axis)."""
-        span = op.span
-        text = self.text
-        if isinstance(op, ir.Assign):
-            value = op.value
-            target = op.target.name
-            if isinstance(value, ir.BinOp):
-                rows = [("LOAD", text(value.left)), (OPCODES[value.op], f"{text(value.right)} -> {target}")]
-                self.add(f"{target}={text(value)}", "V_OP", span, rows)
-            elif isinstance(value, ir.UnOp):
-                rows = [("LOAD", text(value.operand)), ("NOT", f"-> {target}")]
-                self.add(f"{target}={text(value)}", "V_OP", span, rows)
-            else:
-                self.add(f"{target}={text(value)}", "V", span, [("LET", f"{target} <- {text(value)}")])
-        elif isinstance(op, ir.SetMotion):
-            keyword = self.by_ir[MOTION_IR[op.param]]
-            name = keyword.spell(op.axis if op.axis != ir.ALL_AXES else "")
-            self.write(name, keyword.name, op.value, span)
-        elif isinstance(op, ir.Move):
-            parts = "".join(f"{axis}{text(value)}" for axis, value in op.targets)
-            rows = [("MOVE", f"{axis} <- {text(value)}") for axis, value in op.targets]
-            self.add(parts, " ".join(axis for axis, _ in op.targets), span, rows)
-        elif isinstance(op, ir.Arc):
-            keyword = self.by_ir["arc" if op.angle is not None else "circle"]
-            suffix = "P" if op.clockwise else "N"
-            operands = [text(c) for c in op.center] + ([text(op.angle)] if op.angle is not None else [])
-            name = keyword.spell(suffix=suffix)
-            rows = [("ARG", v) for v in operands] + [(name, "")]
-            self.add(f"{name}{':'.join(operands)}", keyword.name, span, rows)
-        elif isinstance(op, ir.Slew):
-            self.bare(self.by_ir["jog"], span, axis=op.axis, direction=op.direction)
-        elif isinstance(op, ir.Home):
-            self.bare(self.homes[HOME_KEYWORDS[op.method]], span, axis=op.axis, direction=op.direction)
-        elif isinstance(op, ir.Stop):
-            keyword = self.by_ir["stop" if op.ramp else "abort"]
-            self.bare(keyword, span, axis=op.axis if op.axis != ir.ALL_AXES else "")
-        elif isinstance(op, ir.WaitMotion):
-            for axis in (self.ctx.config.axes if op.axis == ir.ALL_AXES else (op.axis,)):
-                self.bare(self.by_ir["wait_motion"], span, axis=axis)
-        elif isinstance(op, ir.Delay):
-            self.write("DELAY", "DELAY", op.duration, span)
-        elif isinstance(op, ir.SetOutput):
-            keyword = self.ctx.cat.lookup("DO", index=op.index)
-            self.write(keyword.spell(index=op.index), keyword.name, op.value, span)
-        elif isinstance(op, ir.SetPosition):
-            keyword = self.by_ir["position"]
-            self.write(keyword.spell(op.axis), keyword.name, op.value, span)
-        elif isinstance(op, ir.Call):
-            number = self.ctx.sub_numbers.get(op.routine)
-            if number is None:
-                return  # the legaliser reported the call to a subroutine without a number
-            self.add(f"GOSUB {number}", "GOSUB", span, [("CALL", "{sub%d}" % number)])
-        elif isinstance(op, ir.Native):
-            keyword = self.ctx.keyword_of(op.mnemonic)
-            key = keyword.name if keyword is not None else op.mnemonic
-            if op.args:
-                self.write(op.mnemonic, key, op.args[0], span, form=op.form or "=")
-            else:
-                self.add(op.mnemonic, key, span, [("EXEC", op.mnemonic)])
+        """One operation as one statement (WAIT on every axis is one per axis), by its handler in
+        `WRITE_METHODS`. The legaliser (legalize.py) has refused or rewritten every operation the
+        table lacks, so one reaching here without a handler is mcc's mistake: an internal error, never
+        a statement dropped silently."""
+        method = WRITE_METHODS.get(type(op))
+        if method is None:
+            raise AssertionError(f"the Arcus writer has no handler for {type(op).__name__}: the legaliser "
+                                 "should have rewritten or refused it")
+        method(self, op)
+
+    def _assign(self, op: ir.Assign) -> None:
+        value, target, text = op.value, op.target.name, self.text
+        if isinstance(value, ir.BinOp):
+            rows = [("LOAD", text(value.left)), (OPCODES[value.op], f"{text(value.right)} -> {target}")]
+            self.add(f"{target}={text(value)}", "V_OP", op.span, rows)
+        elif isinstance(value, ir.UnOp):
+            rows = [("LOAD", text(value.operand)), ("NOT", f"-> {target}")]
+            self.add(f"{target}={text(value)}", "V_OP", op.span, rows)
+        else:
+            self.add(f"{target}={text(value)}", "V", op.span, [("LET", f"{target} <- {text(value)}")])
+
+    def _set_motion(self, op: ir.SetMotion) -> None:
+        keyword = self.by_ir[MOTION_IR[op.param]]
+        name = keyword.spell(op.axis if op.axis != ir.ALL_AXES else "")
+        self.write(name, keyword.name, op.value, op.span)
+
+    def _move(self, op: ir.Move) -> None:
+        parts = "".join(f"{axis}{self.text(value)}" for axis, value in op.targets)
+        rows = [("MOVE", f"{axis} <- {self.text(value)}") for axis, value in op.targets]
+        self.add(parts, " ".join(axis for axis, _ in op.targets), op.span, rows)
+
+    def _arc(self, op: ir.Arc) -> None:
+        keyword = self.by_ir["arc" if op.angle is not None else "circle"]
+        suffix = "P" if op.clockwise else "N"
+        operands = [self.text(c) for c in op.center] + ([self.text(op.angle)] if op.angle is not None else [])
+        name = keyword.spell(suffix=suffix)
+        rows = [("ARG", v) for v in operands] + [(name, "")]
+        self.add(f"{name}{':'.join(operands)}", keyword.name, op.span, rows)
+
+    def _slew(self, op: ir.Slew) -> None:
+        self.bare(self.by_ir["jog"], op.span, axis=op.axis, direction=op.direction)
+
+    def _home(self, op: ir.Home) -> None:
+        self.bare(self.homes[HOME_KEYWORDS[op.method]], op.span, axis=op.axis, direction=op.direction)
+
+    def _stop(self, op: ir.Stop) -> None:
+        keyword = self.by_ir["stop" if op.ramp else "abort"]
+        self.bare(keyword, op.span, axis=op.axis if op.axis != ir.ALL_AXES else "")
+
+    def _wait_motion(self, op: ir.WaitMotion) -> None:
+        for axis in (self.ctx.config.axes if op.axis == ir.ALL_AXES else (op.axis,)):
+            self.bare(self.by_ir["wait_motion"], op.span, axis=axis)
+
+    def _delay(self, op: ir.Delay) -> None:
+        self.write("DELAY", "DELAY", op.duration, op.span)
+
+    def _set_output(self, op: ir.SetOutput) -> None:
+        keyword = self.ctx.cat.lookup("DO", index=op.index)
+        self.write(keyword.spell(index=op.index), keyword.name, op.value, op.span)
+
+    def _set_position(self, op: ir.SetPosition) -> None:
+        keyword = self.by_ir["position"]
+        self.write(keyword.spell(op.axis), keyword.name, op.value, op.span)
+
+    def _call(self, op: ir.Call) -> None:
+        number = self.ctx.sub_numbers.get(op.routine)
+        if number is None:
+            return  # the legaliser reported the call to a subroutine without a number
+        self.add(f"GOSUB {number}", "GOSUB", op.span, [("CALL", "{sub%d}" % number)])
+
+    def _native(self, op: ir.Native) -> None:
+        keyword = self.ctx.keyword_of(op.mnemonic)
+        key = keyword.name if keyword is not None else op.mnemonic
+        if op.args:
+            self.write(op.mnemonic, key, op.args[0], op.span, form=op.form or "=")
+        else:
+            self.add(op.mnemonic, key, op.span, [("EXEC", op.mnemonic)])
 
     def write(self, name: str, key: str, value: ir.Expr, span: Span | None, form: str = "=") -> None:
         self.add(f"{name}{form}{self.text(value)}", key, span, [("SET", f"{name} <- {self.text(value)}")])
@@ -204,3 +222,22 @@ class Writer:
 
     def cond_text(self, cond: ir.Compare) -> str:
         return f"{self.text(cond.left)}{cond.op}{self.text(cond.right)}"
+
+
+# One handler per operation of the table (compiler/ir_ops.py) that reaches the writer; the legaliser
+# rewrites the others into these or refuses them at their line (tests/ir/test_handlers.py).
+WRITE_METHODS = {
+    ir.Assign: Writer._assign,
+    ir.SetMotion: Writer._set_motion,
+    ir.Move: Writer._move,
+    ir.Arc: Writer._arc,
+    ir.Slew: Writer._slew,
+    ir.Home: Writer._home,
+    ir.Stop: Writer._stop,
+    ir.WaitMotion: Writer._wait_motion,
+    ir.Delay: Writer._delay,
+    ir.SetOutput: Writer._set_output,
+    ir.SetPosition: Writer._set_position,
+    ir.Call: Writer._call,
+    ir.Native: Writer._native,
+}
