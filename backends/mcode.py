@@ -709,92 +709,102 @@ class Writer:
             return ""
         return axis if axis != ir.ALL_AXES else "*"
 
-    def op_text(self, op) -> str | None:  # noqa: C901 - one case per operation kind
-        if isinstance(op, ir.Native):
-            return self.native(op)
-        if isinstance(op, ir.Assign):
-            return self.assign(op)
-        if isinstance(op, ir.SetMotion):
-            return self.motion_setting(op)
-        if isinstance(op, ir.Setting) and op.name == "enable_outputs" and self.foreign:
+    def op_text(self, op) -> str | None:
+        """The statement of one operation (None: nothing to write), by its handler in `TEXT_METHODS`,
+        one per operation of the table (compiler/ir_ops.py); one without a handler is refused."""
+        method = TEXT_METHODS.get(type(op))
+        if method is None:
+            raise Unsupported(f"the operation {type(op).__name__}")
+        return method(self, op)
+
+    def _setting_text(self, op: ir.Setting) -> str | None:
+        if op.name == "enable_outputs" and self.foreign:
             return self.enable_outputs(op)
-        if isinstance(op, ir.Setting):
-            return self.setting(op)
-        if isinstance(op, ir.Move):
-            axes = {self.prefix(axis) for axis, _ in op.targets}
-            if len(op.targets) != 1 or len(axes) != 1:
-                raise Unsupported(f"a linear interpolation of {len(op.targets)} axes "
-                                  f"({', '.join(a for a, _ in op.targets)}): an MCode drive moves one axis")
-            if op.mode is ir.MoveMode.MODAL:
-                raise Unsupported("a move whose absolute or relative mode is not known")
-            axis, target = op.targets[0]
-            name = "MA" if op.mode is ir.MoveMode.ABSOLUTE else "MR"
-            args = [self.position(target)] + [self.expr(value) for _, value in op.options]
-            return f"{self.prefix(axis)}{name} {','.join(args)}"
-        if isinstance(op, ir.Slew):
-            if op.velocity is None:
-                return f"{self.prefix(op.axis)}SL {'-' if op.direction < 0 else ''}VM"
-            return f"{self.prefix(op.axis)}SL {self.rate(op.velocity)}"
-        if isinstance(op, ir.Home):
-            return self.home(op)
-        if isinstance(op, ir.WaitMotion):
-            return f"{self.prefix(op.axis)}H"
-        if isinstance(op, ir.Delay):
-            return f"H {self.delay(op.duration)}"
-        if isinstance(op, ir.SetPosition):
-            return f"{self.prefix(op.axis)}P={self.position(op.value)}"
-        if isinstance(op, ir.SetOutput):
-            if op.index not in range(1, 4):
-                raise Unsupported(f"output {op.index} (the drive has outputs 1 to 3)")
-            return f"O{op.index}={self.expr(op.value)}"
-        if isinstance(op, ir.Print):
-            if op.signed:
-                raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
-                                  "MCode prints positive numbers unsigned),")
-            if op.traced:
-                raise Unsupported("a trace report of the command the device runs (a trace mode, X150 XTR, "
-                                  "parker-x150.md L5384),")
-            op = self.with_known_address(op)
-            formatted = [spec for spec in op.formats if spec]
-            if formatted:
-                raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "
-                                  "MCode's PR prints a number as it is, floats in the PF format),")
-            table = table_listing(op)
-            if table is not None:  # one line of PR OS / PR LS: the statement is written at its first line
-                return f"PR {table[0]}" if table[1] else None
-            items = ",".join(self.item(item) for item in op.items)
-            prefix = self.prefix(op.axis) if op.axis else ""
-            return f"{prefix}PR {items}{'' if op.newline else ';'}"
-        if isinstance(op, ir.DriveEnable):
-            if self.foreign and enable_outputs.undriven(self.module, op, set(self.axis_map)):
-                self.undriven_enable(op)
-                return None
-            return f"{self.prefix(op.axis)}DE={self.expr(op.on)}"
-        if isinstance(op, ir.Call):
-            target = self.call_label(op.routine)
-            return f"CL {target}" + (f",{self.cond(simplify(op.cond))}" if op.cond is not None else "")
-        if isinstance(op, ir.SetHandler):
-            return self.handler(op)
-        if isinstance(op, ir.Save):
-            return "S"
-        if isinstance(op, ir.Stop):
-            if op.ramp:
-                return f"{self.prefix(op.axis)}SL 0"
-            if self.foreign and id(op) in self.settled:
-                return None  # no move can run here: the source's abort stops nothing (docs/CROSS.md, "Abort")
-            raise Unsupported("an abort without deceleration while a move may run (MCode stops at once only with "
-                              "ESC from the host, not a statement; stop with a ramp, SL 0, or wait for the move)")
-        if isinstance(op, ir.Pause):
-            if not op.stop_motion and id(op) not in self.settled:
-                raise Unsupported("a pause that lets a move in progress run on (MCode's PS ramps the move down, "
-                                  "L4931; wait for the move to end before the pause)")
-            return f"{self.prefix(op.axis)}PS"
-        if isinstance(op, ir.Resume):
-            return f"{self.prefix(op.axis)}RS"
-        if isinstance(op, ir.Step):
-            raise Unsupported("a single step sent by the host (MCode steps with a space typed in EX mode 2, which "
-                              "a program cannot hold)")
-        raise Unsupported(f"the operation {type(op).__name__}")
+        return self.setting(op)
+
+    def _move_text(self, op: ir.Move) -> str:
+        axes = {self.prefix(axis) for axis, _ in op.targets}
+        if len(op.targets) != 1 or len(axes) != 1:
+            raise Unsupported(f"a linear interpolation of {len(op.targets)} axes "
+                              f"({', '.join(a for a, _ in op.targets)}): an MCode drive moves one axis")
+        if op.mode is ir.MoveMode.MODAL:
+            raise Unsupported("a move whose absolute or relative mode is not known")
+        axis, target = op.targets[0]
+        name = "MA" if op.mode is ir.MoveMode.ABSOLUTE else "MR"
+        args = [self.position(target)] + [self.expr(value) for _, value in op.options]
+        return f"{self.prefix(axis)}{name} {','.join(args)}"
+
+    def _slew_text(self, op: ir.Slew) -> str:
+        if op.velocity is None:
+            return f"{self.prefix(op.axis)}SL {'-' if op.direction < 0 else ''}VM"
+        return f"{self.prefix(op.axis)}SL {self.rate(op.velocity)}"
+
+    def _wait_motion_text(self, op: ir.WaitMotion) -> str:
+        return f"{self.prefix(op.axis)}H"
+
+    def _delay_text(self, op: ir.Delay) -> str:
+        return f"H {self.delay(op.duration)}"
+
+    def _set_position_text(self, op: ir.SetPosition) -> str:
+        return f"{self.prefix(op.axis)}P={self.position(op.value)}"
+
+    def _output_text(self, op: ir.SetOutput) -> str:
+        if op.index not in range(1, 4):
+            raise Unsupported(f"output {op.index} (the drive has outputs 1 to 3)")
+        return f"O{op.index}={self.expr(op.value)}"
+
+    def _print_text(self, op: ir.Print) -> str | None:
+        if op.signed:
+            raise Unsupported("a report with the sign of every number, + included (X150 PR: *+4000, L3141; "
+                              "MCode prints positive numbers unsigned),")
+        if op.traced:
+            raise Unsupported("a trace report of the command the device runs (a trace mode, X150 XTR, "
+                              "parker-x150.md L5384),")
+        op = self.with_known_address(op)
+        formatted = [spec for spec in op.formats if spec]
+        if formatted:
+            raise Unsupported(f"a value printed in the format '{formatted[0]}' (docs/IR.md, \"Print formats\"; "
+                              "MCode's PR prints a number as it is, floats in the PF format),")
+        table = table_listing(op)
+        if table is not None:  # one line of PR OS / PR LS: the statement is written at its first line
+            return f"PR {table[0]}" if table[1] else None
+        items = ",".join(self.item(item) for item in op.items)
+        prefix = self.prefix(op.axis) if op.axis else ""
+        return f"{prefix}PR {items}{'' if op.newline else ';'}"
+
+    def _enable_text(self, op: ir.DriveEnable) -> str | None:
+        if self.foreign and enable_outputs.undriven(self.module, op, set(self.axis_map)):
+            self.undriven_enable(op)
+            return None
+        return f"{self.prefix(op.axis)}DE={self.expr(op.on)}"
+
+    def _call_text(self, op: ir.Call) -> str:
+        target = self.call_label(op.routine)
+        return f"CL {target}" + (f",{self.cond(simplify(op.cond))}" if op.cond is not None else "")
+
+    def _save_text(self, op: ir.Save) -> str:
+        return "S"
+
+    def _stop_text(self, op: ir.Stop) -> str | None:
+        if op.ramp:
+            return f"{self.prefix(op.axis)}SL 0"
+        if self.foreign and id(op) in self.settled:
+            return None  # no move can run here: the source's abort stops nothing (docs/CROSS.md, "Abort")
+        raise Unsupported("an abort without deceleration while a move may run (MCode stops at once only with "
+                          "ESC from the host, not a statement; stop with a ramp, SL 0, or wait for the move)")
+
+    def _pause_text(self, op: ir.Pause) -> str:
+        if not op.stop_motion and id(op) not in self.settled:
+            raise Unsupported("a pause that lets a move in progress run on (MCode's PS ramps the move down, "
+                              "L4931; wait for the move to end before the pause)")
+        return f"{self.prefix(op.axis)}PS"
+
+    def _resume_text(self, op: ir.Resume) -> str:
+        return f"{self.prefix(op.axis)}RS"
+
+    def _step_text(self, op: ir.Step) -> str:
+        raise Unsupported("a single step sent by the host (MCode steps with a space typed in EX mode 2, which "
+                          "a program cannot hold)")
 
     def enable_outputs(self, op: ir.Setting) -> str:
         """Another product's enable outputs as one mask (Arcus `EO=3`, arcus-pmx-4ex-sa.txt L748):
@@ -1378,6 +1388,33 @@ class Writer:
             return self.expr(node.expr)
         raise Unsupported("a condition with AND/OR or an input pattern here (MCode tests one condition)")
 
+
+
+# One handler per operation of the table (compiler/ir_ops.py): the statement it is written as (None:
+# nothing to write), or `Unsupported` at its line; an operation without one (an arc: an MCode drive
+# moves one axis) is refused by `Writer.op_text` (tests/ir/test_handlers.py).
+TEXT_METHODS = {
+    ir.Native: Writer.native,
+    ir.Assign: Writer.assign,
+    ir.SetMotion: Writer.motion_setting,
+    ir.Setting: Writer._setting_text,
+    ir.Move: Writer._move_text,
+    ir.Slew: Writer._slew_text,
+    ir.Home: Writer.home,
+    ir.WaitMotion: Writer._wait_motion_text,
+    ir.Delay: Writer._delay_text,
+    ir.SetPosition: Writer._set_position_text,
+    ir.SetOutput: Writer._output_text,
+    ir.Print: Writer._print_text,
+    ir.DriveEnable: Writer._enable_text,
+    ir.Call: Writer._call_text,
+    ir.SetHandler: Writer.handler,
+    ir.Save: Writer._save_text,
+    ir.Stop: Writer._stop_text,
+    ir.Pause: Writer._pause_text,
+    ir.Resume: Writer._resume_text,
+    ir.Step: Writer._step_text,
+}
 
 def line_of(routine: ir.Routine) -> int:
     """The source line a routine starts on (its first spanned operation when it has no span)."""
