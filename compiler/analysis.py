@@ -26,6 +26,10 @@ class Analysis:
     # program memory against the target's budget, from the same model as the backend's listing
     # (X150 sequence bytes, Arcus assembly lines); filled by the frontend or by `measure_memory`
     memory: dict = field(default_factory=dict)
+    # the frontend's reading of each statement, in order, where the editor's model needs it (MCode:
+    # (line, Resolved) pairs, read once with the names the whole file declares), so the language
+    # server builds its model from the same reading instead of resolving every statement again
+    statements: list = field(default_factory=list)
     _tables: tuple[Symbols, DefUse] | None = field(default=None, repr=False, compare=False)
 
     def _built(self) -> tuple[Symbols, DefUse]:

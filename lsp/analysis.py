@@ -122,7 +122,7 @@ def build_index(snap: Snapshot, diags: list[Diagnostic]) -> model.Index:
         return model.Index(snap.dialect)
     profile = snap.profile or driver.profile_for(dialects.get(snap.dialect), None)
     try:
-        return importlib.import_module(indexer).build(snap.tree, snap.source, profile)
+        return importlib.import_module(indexer).build(snap.tree, snap.source, profile, snap.analysis)
     except Exception as exc:  # noqa: BLE001 - the editor model must never cost the diagnostics
         driver.internal_error(_Sink(diags), snap.path, exc, "building the editor model")
         return model.Index(snap.dialect)

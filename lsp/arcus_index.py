@@ -18,7 +18,8 @@ from mcc.lsp.model import comment_folds, span_lines
 OPENERS = {"IF": "ENDIF", "WHILE": "ENDWHILE", "SUB": "ENDSUB"}
 
 
-def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
+def build(tree: st.SyntaxTree, source: SourceFile, profile, analysis=None) -> m.Index:
+    """The editor model of the file (`analysis`, the frontend's result, is not needed here)."""
     index = m.Index("arcus")
     cat = acat.load(getattr(profile, "product", acat.DEFAULT_PRODUCT))  # the product's statements (PRG on the siblings)
     for line in tree.lines:

@@ -37,20 +37,19 @@ def walk(node: st.Node):
         stack.extend(reversed(children(item)))
 
 
-def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
+def build(tree: st.SyntaxTree, source: SourceFile, profile, analysis=None) -> m.Index:
+    """The editor model of the file, from the frontend's reading of its statements (`analysis`,
+    `Analysis.statements`) when it read this tree; read again only without one."""
     index = m.Index("mcode")
     cat = mcat.load()
-    resolver = Resolver(profile, Diagnostics())
-    resolved = []
     for line in tree.lines:
         cancel.every(line.number)  # a newer keystroke abandons this model (compiler/cancel.py)
         if line.comment is not None:
             index.add(line.comment.span, m.COMMENT)
-        if line.statement is not None:
-            try:
-                resolved.append((line, resolver.resolve(line.statement)))
-            except Exception:  # noqa: BLE001 - a line the resolver cannot read is just not indexed
-                continue
+    if analysis is not None and analysis.tree is tree:
+        resolved = analysis.statements
+    else:
+        resolved = resolve_again(tree, profile)
     # pass 1: definitions
     for _line, res in resolved:
         name = res.command.name if res.command else ""
@@ -67,6 +66,19 @@ def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
         add_statement(index, cat, res)
     structure(index, tree, resolved, source)
     return index.finish()
+
+
+def resolve_again(tree: st.SyntaxTree, profile) -> list:
+    """Each statement's reading, for a tree no frontend analysis came with."""
+    resolver = Resolver(profile, Diagnostics())
+    resolved = []
+    for line in tree.lines:
+        if line.statement is not None:
+            try:
+                resolved.append((line, resolver.resolve(line.statement)))
+            except Exception:  # noqa: BLE001 - a line the resolver cannot read is just not indexed
+                continue
+    return resolved
 
 
 def name_symbol(index: m.Index, key: str) -> str:

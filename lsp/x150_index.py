@@ -17,7 +17,8 @@ from mcc.lsp.model import comment_folds, span_lines
 BLOCKS = {"XD": "XT", "IF": "NIF", "WHILE": "NWHILE", "REPEAT": "UNTIL", "L": "N"}
 
 
-def build(tree: st.SyntaxTree, source: SourceFile, profile) -> m.Index:
+def build(tree: st.SyntaxTree, source: SourceFile, profile, analysis=None) -> m.Index:
+    """The editor model of the file (`analysis`, the frontend's result, is not needed here)."""
     index = m.Index("x150")
     for command in tree.commands():
         if command.mnemonic == "XD" and isinstance(command.arg, st.Number):

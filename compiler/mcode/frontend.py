@@ -19,7 +19,7 @@ def analyze(source: SourceFile, profile: Profile) -> Analysis:
         text = preprocessor.blanked(source, directives)
         analysis = analyze_tree(text, parser.parse(text, Diagnostics()), profile, Diagnostics())
         preprocessor.report(source, directives, diags)
-        return Analysis(source, analysis.tree, analysis.module, diags)
+        return Analysis(source, analysis.tree, analysis.module, diags, statements=analysis.statements)
     tree = parser.parse(source, diags)
     return analyze_tree(source, tree, profile, diags)
 
@@ -31,4 +31,4 @@ def analyze_tree(source: SourceFile, tree, profile: Profile, diags: Diagnostics)
     module = lowering.run()
     checkpoint()  # the editor server abandons a stale analysis here (compiler/cancel.py)
     checks.run(checks.Program("mcode", source, tree, lowering, profile), diags)  # compiler/checks/mcode/
-    return Analysis(source, tree, module, diags)
+    return Analysis(source, tree, module, diags, statements=[(line, res) for line, res, _ in lowering.resolved])
