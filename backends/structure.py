@@ -54,6 +54,9 @@ from dataclasses import dataclass
 from typing import Callable, Union
 
 from mcc.compiler import ir
+from mcc.compiler.cfg.loops import back_edges, latches, natural_loop, reducible
+from mcc.compiler.cfg.dominators import DominatorTree
+from mcc.compiler.cfg.graph import all_paths_reach, depth_first, predecessors
 from mcc.compiler.span import Span
 
 EXIT = "%exit"  # the virtual node every routine end leads to
@@ -172,7 +175,9 @@ def copy_block(block: ir.Block) -> ir.Block:
 
 
 class Graph:
-    """Reachability, dominators and loops of one routine's CFG (with a virtual exit node)."""
+    """Reachability, dominators and loops of one routine's CFG (with a virtual exit node), from
+    the analysis library (`mcc.compiler.cfg`): this class only adds the structurer's view of a
+    routine (which terminators end it, the virtual EXIT) and keeps the answers together."""
 
     def __init__(self, routine: ir.Routine, stops: tuple = (ir.End,)):
         self.stops = stops
@@ -187,144 +192,39 @@ class Graph:
             else:
                 self.succ[label] = [t for t in ir.successors(term) if t in self.blocks]
         self.succ[EXIT] = []
-        self.order = self.reverse_postorder()
+        walk = depth_first(self.entry, self.succ)
+        self.retreating = walk.retreating
+        self.order = walk.reverse_postorder
         self.index = {label: i for i, label in enumerate(self.order)}
-        self.preds: dict[str, list[str]] = {label: [] for label in self.order}
-        for label in self.order:
-            for s in self.succ[label]:
-                self.preds[s].append(label)
-        self.idom = self.dominators()
-        self.children: dict[str, list[str]] = {label: [] for label in self.order}
-        for label in self.order:
-            parent = self.idom.get(label)
-            if parent is not None and parent != label:
-                self.children[parent].append(label)
-        self.number_dominator_tree()
-        self.back_edges = {(u, v) for u in self.order for v in self.succ[u] if self.dominates(v, u)}
+        self.preds = predecessors(self.order, self.succ)
+        tree = DominatorTree(self.order, self.preds)
+        self.idom, self.children, self.pre, self.post = tree.idom, tree.children, tree.pre, tree.post
+        self.dominates = tree.dominates
+        self.back_edges = back_edges(self.order, self.succ, tree)
         self.headers = {v for _, v in self.back_edges}
-        # Each loop header's back-edge sources, in one pass: scanning every back edge for each
-        # header made the structurer quadratic in the number of loops (issue 26).
-        self.latches: dict[str, list[str]] = {}
-        for u in self.order:
-            for v in self.succ[u]:
-                if (u, v) in self.back_edges:
-                    self.latches.setdefault(v, []).append(u)
-        self.reducible = self.check_reducible()
-
-    def reverse_postorder(self) -> list[str]:
-        """The blocks in reverse postorder of a depth-first walk from the entry. The walk also keeps
-        its retreating edges (to a block still on its stack) for `check_reducible`."""
-        seen = {self.entry}
-        on_stack = {self.entry}
-        post: list[str] = []
-        self.retreating: list[tuple[str, str]] = []
-        stack = [(self.entry, iter(self.succ[self.entry]))]
-        while stack:
-            label, it = stack[-1]
-            for s in it:
-                if s in on_stack:
-                    self.retreating.append((label, s))
-                if s not in seen:
-                    seen.add(s)
-                    on_stack.add(s)
-                    stack.append((s, iter(self.succ[s])))
-                    break
-            else:
-                stack.pop()
-                on_stack.discard(label)
-                post.append(label)
-        return post[::-1]
-
-    def dominators(self) -> dict[str, str]:
-        """Cooper, Harvey and Kennedy's iterative algorithm over the reverse postorder."""
-        idom = {self.entry: self.entry}
-        index = self.index
-        changed = True
-        while changed:
-            changed = False
-            for label in self.order[1:]:
-                new = None
-                for p in self.preds[label]:
-                    if p not in idom:
-                        continue
-                    if new is None:
-                        new = p
-                        continue
-                    a, b = p, new
-                    while a != b:
-                        while index[a] > index[b]:
-                            a = idom[a]
-                        while index[b] > index[a]:
-                            b = idom[b]
-                    new = a
-                if new is not None and idom.get(label) != new:
-                    idom[label] = new
-                    changed = True
-        return idom
-
-    def number_dominator_tree(self) -> None:
-        """Pre- and post-order numbers of the dominator tree: a dominates b when b's interval lies in
-        a's, a constant-time test (walking up the tree would make long programs quadratic)."""
-        self.pre: dict[str, int] = {}
-        self.post: dict[str, int] = {}
-        counter = 0
-        stack = [(self.entry, iter(self.children.get(self.entry, ())))]
-        self.pre[self.entry] = counter
-        while stack:
-            label, it = stack[-1]
-            child = next(it, None)
-            if child is None:
-                stack.pop()
-                counter += 1
-                self.post[label] = counter
-            else:
-                counter += 1
-                self.pre[child] = counter
-                stack.append((child, iter(self.children[child])))
-
-    def dominates(self, a: str, b: str) -> bool:
-        """a dominates b."""
-        if a not in self.pre or b not in self.pre:
-            return False
-        return self.pre[a] <= self.pre[b] and self.post[b] <= self.post[a]
-
-    def check_reducible(self) -> bool:
-        """Every retreating edge of the depth-first walk must be a back edge (target dominates source)."""
-        return all(self.dominates(target, source) for source, target in self.retreating)
+        self.latches = latches(self.order, self.succ, self.back_edges)
+        self.reducible = reducible(walk, tree)
+        self._bodies: dict[str, set[str]] = {}
 
     def forward_preds(self, label: str) -> int:
         return sum(1 for p in self.preds.get(label, ()) if (p, label) not in self.back_edges)
 
     def loop_body(self, header: str) -> set[str]:
-        body = {header}
-        work = list(self.latches.get(header, ()))
-        while work:
-            label = work.pop()
-            if label in body:
-                continue
-            body.add(label)
-            work.extend(self.preds.get(label, ()))
+        """The natural loop of `header` (computed once per header: flag_loops and the structurer
+        both ask; callers only read it)."""
+        body = self._bodies.get(header)
+        if body is None:
+            body = self._bodies[header] = natural_loop(header, self.latches.get(header, ()), self.preds)
         return body
 
     def terminating(self) -> set[str]:
         """Blocks from which every path ends at an END (never falls through to anything after).
         Computed once per graph (a graph is not changed once built); callers only read the set."""
-        if self._terminating is not None:
-            return self._terminating
-        result: set[str] = set()
-        changed = True
-        while changed:
-            changed = False
-            for label in reversed(self.order):
-                if label in result or label == EXIT:
-                    continue
-                block = self.blocks[label]
-                succ = self.succ[label]
-                if isinstance(block.terminator, self.stops) or (succ and all(s in result for s in succ)):
-                    result.add(label)
-                    changed = True
-        self._terminating = result
-        return result
+        if self._terminating is None:
+            stops = [label for label in self.order if label != EXIT
+                     and isinstance(self.blocks[label].terminator, self.stops)]
+            self._terminating = all_paths_reach(self.order, self.succ, stops)
+        return self._terminating
 
     def exits(self, header: str, body: set[str], ends: set[str]) -> list[tuple[str, str]]:
         return [(u, v) for u in body for v in self.succ[u] if v not in body and v not in ends]

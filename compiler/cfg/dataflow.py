@@ -1,0 +1,69 @@
+"""One worklist solver for data-flow problems over a graph, forward or backward.
+
+Every analysis that asks "what holds at the start of each block, on every path (or on some path)"
+is the same loop: start from the entry's state, push each block's result along its edges, merge
+(`join`) where paths meet, and revisit a block whenever what reaches it changed, until nothing does.
+Only the state, the transfer and the join differ, so they are the parameters and the loop is here.
+
+The worklist is a priority queue on the rank of each node in an order the caller chooses: for a
+forward problem a reverse postorder (a block waits until its forward predecessors are done, so a
+loop nest settles in a few passes instead of one pass per queued change); for a backward problem,
+pass the predecessors as `succ` and a reverse postorder of the reversed graph (or the postorder of
+the forward one). The result is the least fixed point the transfer and join reach from the starts;
+for a monotone framework over a finite lattice it does not depend on the order, only the number of
+visits does.
+"""
+
+from __future__ import annotations
+
+import heapq
+from dataclasses import dataclass
+from typing import Callable, Generic, Hashable, Mapping, Sequence, TypeVar
+
+N = TypeVar("N", bound=Hashable)
+S = TypeVar("S")
+
+
+@dataclass(frozen=True)
+class Ordering(Generic[N]):
+    """Nodes in the order the worklist prefers them, with each node's rank in it."""
+
+    nodes: Sequence[N]
+    rank: Mapping[N, int]
+
+    @classmethod
+    def of(cls, nodes: Sequence[N]) -> "Ordering[N]":
+        return cls(nodes, {node: i for i, node in enumerate(nodes)})
+
+
+def solve(ordering: Ordering[N], succ: Mapping[N, Sequence[N]], starts: Mapping[N, S],
+          transfer: Callable[[N, S], S], join: Callable[[S, S], S],
+          edge: Callable[[S, N, N], S] | None = None) -> dict[N, S]:
+    """The state at the start of each node reached from `starts` (node -> its initial state), to a
+    fixed point.
+
+    `transfer(node, state)` is the state after the node (the state it gets must not be changed in
+    place: it is kept as the node's result); `edge(state, node, successor)` may refine it along
+    one edge (the branch's condition holds on its taken edge); `join(old, new)` merges what
+    reaches a node by several paths. States are compared with `!=`, so they must be values
+    (frozensets, dictionaries of constants) and the lattice of finite height. Every node reached
+    must be in `ordering`."""
+    rank, nodes = ordering.rank, ordering.nodes
+    states: dict[N, S] = dict(starts)
+    queue = [rank[node] for node in starts]
+    heapq.heapify(queue)
+    queued = set(starts)
+    while queue:
+        node = nodes[heapq.heappop(queue)]
+        queued.discard(node)
+        state = transfer(node, states[node])
+        for nxt in succ.get(node, ()):
+            out = edge(state, node, nxt) if edge is not None else state
+            old = states.get(nxt)
+            new = out if old is None else join(old, out)
+            if old is None or new != old:
+                states[nxt] = new
+                if nxt not in queued:
+                    queued.add(nxt)
+                    heapq.heappush(queue, rank[nxt])
+    return states
