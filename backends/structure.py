@@ -56,7 +56,7 @@ from typing import Callable, Union
 from mcc.compiler import ir
 from mcc.compiler.cfg.loops import back_edges, latches, natural_loop, reducible
 from mcc.compiler.cfg.dominators import DominatorTree
-from mcc.compiler.cfg.graph import all_paths_reach, depth_first, predecessors
+from mcc.compiler.cfg.graph import BlockIndex, all_paths_reach, depth_first, predecessors
 from mcc.compiler.span import Span
 
 EXIT = "%exit"  # the virtual node every routine end leads to
@@ -176,8 +176,9 @@ def copy_block(block: ir.Block) -> ir.Block:
 
 class Graph:
     """Reachability, dominators and loops of one routine's CFG (with a virtual exit node), from
-    the analysis library (`mcc.compiler.cfg`): this class only adds the structurer's view of a
-    routine (which terminators end it, the virtual EXIT) and keeps the answers together."""
+    the analysis library (`mcc.compiler.cfg`): this class adds the structurer's view of a routine
+    (which terminators end it, the virtual EXIT) and answers by label. The library computes over
+    block numbers (`self.nodes`); the label-keyed answers the structurer asks for are built once."""
 
     def __init__(self, routine: ir.Routine, stops: tuple = (ir.End,)):
         self.stops = stops
@@ -185,45 +186,75 @@ class Graph:
         self.blocks = {b.label: b for b in routine.blocks}
         self.entry = routine.blocks[0].label if routine.blocks else EXIT
         self.succ: dict[str, list[str]] = {}
+        ending: list[str] = []  # the blocks whose terminator stops the program
         for label, block in self.blocks.items():
             term = block.terminator
             if (isinstance(term, (ir.Return, ir.FallOff)) and not isinstance(term, stops)) or term is None:
                 self.succ[label] = [EXIT]
             else:
                 self.succ[label] = [t for t in ir.successors(term) if t in self.blocks]
+                if isinstance(term, stops):
+                    ending.append(label)
         self.succ[EXIT] = []
-        walk = depth_first(self.entry, self.succ)
-        self.retreating = walk.retreating
-        self.order = walk.reverse_postorder
-        self.index = {label: i for i, label in enumerate(self.order)}
-        self.preds = predecessors(self.order, self.succ)
-        tree = DominatorTree(self.order, self.preds)
-        self.idom, self.children, self.pre, self.post = tree.idom, tree.children, tree.pre, tree.post
-        self.dominates = tree.dominates
-        self.back_edges = back_edges(self.order, self.succ, tree)
-        self.headers = {v for _, v in self.back_edges}
-        self.latches = latches(self.order, self.succ, self.back_edges)
-        self.reducible = reducible(walk, tree)
+        nodes = self.nodes = BlockIndex.of(list(self.succ), self.succ.values())
+        labels, size = nodes.labels, len(nodes.labels)
+        walk = depth_first(nodes.number[self.entry], nodes.succ)
+        rpo = self._rpo = walk.reverse_postorder
+        self.order = [labels[n] for n in rpo]
+        self._rank = [-1] * size
+        for i, n in enumerate(rpo):
+            self._rank[n] = i
+        self._preds = predecessors(rpo, nodes.succ, size)
+        self._tree = DominatorTree(rpo, self._preds, size)
+        back = back_edges(rpo, nodes.succ, self._tree)
+        self.headers = {labels[v] for _, v in back}
+        self._latches = latches(rpo, nodes.succ, back)
+        # each block's predecessors along forward (not back) edges, which IF merges and elifs count
+        self._forward_in = [0] * size
+        for u in rpo:
+            for v in nodes.succ[u]:
+                if (u, v) not in back:
+                    self._forward_in[v] += 1
+        self.reducible = reducible(walk, self._tree)
+        self._ending = [nodes.number[label] for label in ending]
         self._bodies: dict[str, set[str]] = {}
 
+    def rank(self, label: str) -> int:
+        """The block's place in the reverse postorder (`order`)."""
+        return self._rank[self.nodes.number[label]]
+
+    def children(self, label: str) -> list[str]:
+        """The block's children in the dominator tree, in reverse postorder."""
+        labels = self.nodes.labels
+        return [labels[n] for n in self._tree.children[self.nodes.number[label]]]
+
     def forward_preds(self, label: str) -> int:
-        return sum(1 for p in self.preds.get(label, ()) if (p, label) not in self.back_edges)
+        number = self.nodes.number.get(label)
+        return self._forward_in[number] if number is not None else 0
 
     def loop_body(self, header: str) -> set[str]:
         """The natural loop of `header` (computed once per header: flag_loops and the structurer
         both ask; callers only read it)."""
         body = self._bodies.get(header)
         if body is None:
-            body = self._bodies[header] = natural_loop(header, self.latches.get(header, ()), self.preds)
+            number = self.nodes.number[header]
+            labels = self.nodes.labels
+            found = natural_loop(number, self._latches.get(number, ()), self._preds)
+            body = self._bodies[header] = {labels[n] for n in found}
         return body
+
+    def latches(self, header: str) -> list[str]:
+        """The sources of the back edges to `header`, in reverse postorder."""
+        labels = self.nodes.labels
+        return [labels[n] for n in self._latches.get(self.nodes.number[header], ())]
 
     def terminating(self) -> set[str]:
         """Blocks from which every path ends at an END (never falls through to anything after).
         Computed once per graph (a graph is not changed once built); callers only read the set."""
         if self._terminating is None:
-            stops = [label for label in self.order if label != EXIT
-                     and isinstance(self.blocks[label].terminator, self.stops)]
-            self._terminating = all_paths_reach(self.order, self.succ, stops)
+            labels = self.nodes.labels
+            found = all_paths_reach(self._rpo, self.nodes.succ, self._preds, self._ending)
+            self._terminating = {labels[n] for n in found}
         return self._terminating
 
     def exits(self, header: str, body: set[str], ends: set[str]) -> list[tuple[str, str]]:
@@ -232,7 +263,7 @@ class Graph:
     def repeat_latch(self, header: str, body: set[str], ends: set[str]) -> str | None:
         """The block that ends a loop tested at its end: the one way back to `header`, a branch whose
         other arm is the loop's only exit (edges to blocks that END excepted); else None."""
-        latches = list(self.latches.get(header, ()))
+        latches = self.latches(header)
         if len(latches) != 1:
             return None
         latch = latches[0]
@@ -270,7 +301,7 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
             raise Unstructurable("the control-flow graph is irreducible (a loop is entered at two places)")
         ends = graph.terminating()
         loops = [(graph.loop_body(h), h) for h in graph.headers]
-        loops.sort(key=lambda item: (len(item[0]), graph.index[item[1]]))
+        loops.sort(key=lambda item: (len(item[0]), graph.rank(item[1])))
         target = None
         for body, header in loops:
             if header in done:
@@ -384,7 +415,7 @@ class Structurer:
                 and self.graph.forward_preds(label) == 1)
 
     def join(self, label: str, follow: str) -> str:
-        merges = [c for c in self.graph.children[label] if self.graph.forward_preds(c) >= 2]
+        merges = [c for c in self.graph.children(label) if self.graph.forward_preds(c) >= 2]
         if not merges:
             return follow
         if len(merges) > 1:

@@ -1,9 +1,10 @@
 """The analysis library over the IR's control-flow graphs (issue 26): one implementation of each
 question that lint, the structurer, the optimizer and the move-mode and in-force analyses ask.
 
-One module per job, all over a plain graph (`succ`: node -> successor nodes, in order; nodes are
-hashable, in practice block labels), so the same code serves a routine's blocks, a graph with a
-virtual exit node (the structurer's) or a call graph:
+One module per job, all over a plain graph: nodes numbered 0..n-1 and `succ[i]`, node i's
+successors in order. A `BlockIndex` numbers a routine's blocks (or any labelled nodes: the
+structurer adds a virtual exit) and maps the numbers back to labels; lists indexed by number keep
+the walks fast and linear where dictionaries keyed by label strings were not (issue 26).
 
 - `graph`: the block index of a routine (its local successors), predecessors, the depth-first
   walk (preorder, reverse postorder, retreating edges) and `all_paths_reach`;

@@ -18,27 +18,32 @@ from __future__ import annotations
 
 import heapq
 from dataclasses import dataclass
-from typing import Callable, Generic, Hashable, Mapping, Sequence, TypeVar
+from typing import Callable, Mapping, Sequence, TypeVar
 
-N = TypeVar("N", bound=Hashable)
+from mcc.compiler.cfg.graph import Succ
+
 S = TypeVar("S")
 
 
 @dataclass(frozen=True)
-class Ordering(Generic[N]):
-    """Nodes in the order the worklist prefers them, with each node's rank in it."""
+class Ordering:
+    """Nodes (numbers 0..size-1) in the order the worklist prefers them, with each node's rank in
+    it (-1: not in the order)."""
 
-    nodes: Sequence[N]
-    rank: Mapping[N, int]
+    nodes: Sequence[int]
+    rank: Sequence[int]
 
     @classmethod
-    def of(cls, nodes: Sequence[N]) -> "Ordering[N]":
-        return cls(nodes, {node: i for i, node in enumerate(nodes)})
+    def of(cls, nodes: Sequence[int], size: int) -> "Ordering":
+        rank = [-1] * size
+        for i, node in enumerate(nodes):
+            rank[node] = i
+        return cls(nodes, rank)
 
 
-def solve(ordering: Ordering[N], succ: Mapping[N, Sequence[N]], starts: Mapping[N, S],
-          transfer: Callable[[N, S], S], join: Callable[[S, S], S],
-          edge: Callable[[S, N, N], S] | None = None) -> dict[N, S]:
+def solve(ordering: Ordering, succ: Succ, starts: Mapping[int, S],
+          transfer: Callable[[int, S], S], join: Callable[[S, S], S],
+          edge: Callable[[S, int, int], S] | None = None) -> dict[int, S]:
     """The state at the start of each node reached from `starts` (node -> its initial state), to a
     fixed point.
 
@@ -49,7 +54,7 @@ def solve(ordering: Ordering[N], succ: Mapping[N, Sequence[N]], starts: Mapping[
     (frozensets, dictionaries of constants) and the lattice of finite height. Every node reached
     must be in `ordering`."""
     rank, nodes = ordering.rank, ordering.nodes
-    states: dict[N, S] = dict(starts)
+    states: dict[int, S] = dict(starts)
     queue = [rank[node] for node in starts]
     heapq.heapify(queue)
     queued = set(starts)
@@ -57,7 +62,7 @@ def solve(ordering: Ordering[N], succ: Mapping[N, Sequence[N]], starts: Mapping[
         node = nodes[heapq.heappop(queue)]
         queued.discard(node)
         state = transfer(node, states[node])
-        for nxt in succ.get(node, ()):
+        for nxt in succ[node]:
             out = edge(state, node, nxt) if edge is not None else state
             old = states.get(nxt)
             new = out if old is None else join(old, out)

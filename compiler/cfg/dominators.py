@@ -2,37 +2,38 @@
 
 The structurer places an IF's end at a branch's merge child in the dominator tree and finds loops
 by their back edges (an edge to a node that dominates its source); reducibility is tested with it.
+Nodes are numbers 0..size-1 (compiler/cfg/graph.py, `BlockIndex`).
 """
 
 from __future__ import annotations
 
-from typing import Hashable, Mapping, Sequence, TypeVar
-
-N = TypeVar("N", bound=Hashable)
+from typing import Sequence
 
 
-def immediate_dominators(order: Sequence[N], preds: Mapping[N, Sequence[N]]) -> dict[N, N]:
-    """Node -> its immediate dominator (the entry, `order[0]`, maps to itself), for the nodes of
-    `order`, a reverse postorder of the nodes reachable from the entry.
+def immediate_dominators(order: Sequence[int], preds: Sequence[Sequence[int]], size: int) -> list[int]:
+    """Each node's immediate dominator (the entry, `order[0]`, its own; -1 for a node not in
+    `order`), for `order` a reverse postorder of the nodes reachable from the entry.
 
     Cooper, Harvey and Kennedy, "A Simple, Fast Dominance Algorithm" (2001): iterate over the
     reverse postorder, intersecting the dominator-tree paths of the processed predecessors by
-    walking up by postorder rank. Simpler than Lengauer-Tarjan and as fast for graphs of programs
-    (two or three passes); predecessors outside `order` (unreachable) are ignored."""
+    walking up by reverse-postorder rank. Simpler than Lengauer-Tarjan and as fast for graphs of
+    programs (two or three passes); predecessors outside `order` (unreachable) are ignored."""
+    idom = [-1] * size
     if not order:
-        return {}
-    entry = order[0]
-    index = {node: i for i, node in enumerate(order)}
-    idom: dict[N, N] = {entry: entry}
+        return idom
+    index = [-1] * size
+    for i, node in enumerate(order):
+        index[node] = i
+    idom[order[0]] = order[0]
     changed = True
     while changed:
         changed = False
         for node in order[1:]:
-            new = None
-            for p in preds.get(node, ()):
-                if p not in idom:
+            new = -1
+            for p in preds[node]:
+                if idom[p] < 0:
                     continue
-                if new is None:
+                if new < 0:
                     new = p
                     continue
                 a, b = p, new
@@ -42,48 +43,49 @@ def immediate_dominators(order: Sequence[N], preds: Mapping[N, Sequence[N]]) -> 
                     while index[b] > index[a]:
                         b = idom[b]
                 new = a
-            if new is not None and idom.get(node) != new:
+            if new >= 0 and idom[node] != new:
                 idom[node] = new
                 changed = True
     return idom
 
 
 class DominatorTree:
-    """The dominator tree of the nodes of `order` (a reverse postorder from the entry): each
-    node's children, in `order`, and pre/post numbers that answer `dominates` in constant time
-    (walking up the tree per question would make long programs quadratic)."""
+    """The dominator tree of the nodes of `order` (a reverse postorder from the entry, over nodes
+    0..size-1): each node's children, in `order`, and pre/post numbers that answer `dominates` in
+    constant time (walking up the tree per question would make long programs quadratic)."""
 
-    def __init__(self, order: Sequence[N], preds: Mapping[N, Sequence[N]]):
-        self.idom = immediate_dominators(order, preds)
-        self.children: dict[N, list[N]] = {node: [] for node in order}
+    def __init__(self, order: Sequence[int], preds: Sequence[Sequence[int]], size: int):
+        self.idom = immediate_dominators(order, preds, size)
+        self.children: list[list[int]] = [[] for _ in range(size)]
         for node in order:
-            parent = self.idom.get(node)
-            if parent is not None and parent != node:
+            parent = self.idom[node]
+            if parent != node:
                 self.children[parent].append(node)
-        self.pre: dict[N, int] = {}
-        self.post: dict[N, int] = {}
+        self.pre = [-1] * size
+        self.post = [-1] * size
         if order:
             self._number(order[0])
 
-    def _number(self, root: N) -> None:
+    def _number(self, root: int) -> None:
         counter = 0
-        self.pre[root] = counter
-        stack = [(root, iter(self.children.get(root, ())))]
+        pre, post, children = self.pre, self.post, self.children
+        pre[root] = counter
+        stack = [(root, iter(children[root]))]
         while stack:
             node, it = stack[-1]
             child = next(it, None)
             if child is None:
                 stack.pop()
                 counter += 1
-                self.post[node] = counter
+                post[node] = counter
             else:
                 counter += 1
-                self.pre[child] = counter
-                stack.append((child, iter(self.children[child])))
+                pre[child] = counter
+                stack.append((child, iter(children[child])))
 
-    def dominates(self, a: N, b: N) -> bool:
+    def dominates(self, a: int, b: int) -> bool:
         """a dominates b (every node dominates itself); False for a node not reached."""
         pre = self.pre
-        if a not in pre or b not in pre:
+        if pre[a] < 0 or pre[b] < 0:
             return False
         return pre[a] <= pre[b] and self.post[b] <= self.post[a]

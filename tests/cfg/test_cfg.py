@@ -12,15 +12,15 @@ from hypothesis import strategies as st
 from mcc.compiler import ir
 from mcc.compiler.cfg import dataflow, loops
 from mcc.compiler.cfg.dominators import DominatorTree
-from mcc.compiler.cfg.graph import all_paths_reach, depth_first, local_successors, predecessors
+from mcc.compiler.cfg.graph import BlockIndex, all_paths_reach, depth_first, predecessors
 
 # node i -> its successors (none, one, two; repeats allowed, as a branch with equal arms)
 graphs = st.integers(1, 12).flatmap(
     lambda n: st.lists(st.lists(st.integers(0, n - 1), max_size=2), min_size=n, max_size=n)
-).map(lambda edges: {i: list(targets) for i, targets in enumerate(edges)})
+).map(lambda edges: [list(targets) for targets in edges])
 
 
-def reached(succ: dict, entry: int, without: int | None = None) -> set:
+def reached(succ: list, entry: int, without: int | None = None) -> set:
     if entry == without:
         return set()
     seen = {entry}
@@ -33,10 +33,10 @@ def reached(succ: dict, entry: int, without: int | None = None) -> set:
     return seen
 
 
-def analysed(succ: dict):
+def analysed(succ: list):
     walk = depth_first(0, succ)
     order = walk.reverse_postorder
-    return walk, order, DominatorTree(order, predecessors(order, succ))
+    return walk, order, DominatorTree(order, predecessors(order, succ, len(succ)), len(succ))
 
 
 @settings(max_examples=300, deadline=None)
@@ -70,7 +70,7 @@ def test_dominators_are_the_nodes_every_path_passes(succ) -> None:
     assert tree.idom[0] == 0
 
 
-def reducible_by_reduction(succ: dict) -> bool:
+def reducible_by_reduction(succ: list) -> bool:
     """Hecht and Ullman's T1/T2: drop self-loops, merge a node with one predecessor into it;
     the graph is reducible when one node is left."""
     live = reached(succ, 0)
@@ -91,9 +91,9 @@ def reducible_by_reduction(succ: dict) -> bool:
     return len(edges) == 1
 
 
-def body_by_definition(succ: dict, header: int, sources: list) -> set:
+def body_by_definition(succ: list, header: int, sources: list) -> set:
     """The header and every node that reaches a latch with a path avoiding the header."""
-    preds = {n: [u for u in succ if n in succ[u]] for n in succ}
+    preds = [[u for u in range(len(succ)) if n in succ[u]] for n in range(len(succ))]
     body = {header}
     work = list(sources)
     while work:
@@ -114,7 +114,7 @@ def test_loops_back_edges_and_reducibility(succ) -> None:
     assert back == {(u, v) for u in order for v in succ[u] if tree.dominates(v, u)}
     assert loops.reducible(walk, tree) == reducible_by_reduction(succ)
     latches = loops.latches(order, succ, back)
-    preds = predecessors(order, succ)
+    preds = predecessors(order, succ, len(succ))
     for header, sources in latches.items():
         assert loops.natural_loop(header, sources, preds) == body_by_definition(succ, header, sources)
     if loops.reducible(walk, tree):
@@ -135,16 +135,17 @@ def test_loops_back_edges_and_reducibility(succ) -> None:
 def test_all_paths_reach_is_the_least_fixpoint(succ, sinks) -> None:
     """A node is in when it is a sink, or has successors all in (computed by scanning until
     nothing changes, the slow way it replaced)."""
-    sinks = {s for s in sinks if s in succ}
+    sinks = {s for s in sinks if s < len(succ)}
     expected = set(sinks)
     changed = True
     while changed:
         changed = False
-        for node in succ:
+        for node in range(len(succ)):
             if node not in expected and succ[node] and all(s in expected for s in succ[node]):
                 expected.add(node)
                 changed = True
-    assert all_paths_reach(succ, succ, sinks) == expected
+    preds = predecessors(range(len(succ)), succ, len(succ))
+    assert all_paths_reach(range(len(succ)), succ, preds, sinks) == expected
 
 
 @settings(max_examples=300, deadline=None)
@@ -153,7 +154,7 @@ def test_solver_forward_must_analysis_gives_the_strict_dominators(succ) -> None:
     """Forward, join = intersection, each node adding itself: at a node's start, the nodes on
     every path to it from the entry, i.e. its strict dominators."""
     _, order, tree = analysed(succ)
-    states = dataflow.solve(dataflow.Ordering.of(order), succ, {0: frozenset()},
+    states = dataflow.solve(dataflow.Ordering.of(order, len(succ)), succ, {0: frozenset()},
                             lambda node, state: state | {node}, frozenset.intersection)
     assert set(states) == set(order)
     for node in order:
@@ -166,11 +167,11 @@ def test_solver_backward_may_analysis_gives_the_nodes_on_some_path(succ, target)
     """Backward from `target` (predecessors as edges, postorder of the reversed graph's walk),
     join = union: at a node, the nodes some path from it (one step or more) to the target passes."""
     target = target % len(succ)
-    preds = {n: [u for u in succ for v in succ[u] if v == n] for n in succ}
-    ordering = dataflow.Ordering.of(depth_first(target, preds).reverse_postorder)
+    preds = [[u for u in range(len(succ)) for v in succ[u] if v == n] for n in range(len(succ))]
+    ordering = dataflow.Ordering.of(depth_first(target, preds).reverse_postorder, len(succ))
     states = dataflow.solve(ordering, preds, {target: frozenset()},
                             lambda node, state: state | {node}, frozenset.union)
-    for node in succ:
+    for node in range(len(succ)):
         after = set().union(*(reached(succ, s) for s in succ[node]))  # reached in one step or more
         expected = {m for m in after if target in reached(succ, m)}
         if node == target or target in after:
@@ -181,25 +182,28 @@ def test_solver_backward_may_analysis_gives_the_nodes_on_some_path(succ, target)
 
 def test_solver_refines_along_an_edge() -> None:
     """`edge` changes what one edge carries: here only the left arm of node 0's branch learns 'x'."""
-    succ = {0: [1, 2], 1: [3], 2: [3], 3: []}
-    states = dataflow.solve(dataflow.Ordering.of([0, 1, 2, 3]), succ, {0: frozenset()},
+    succ = [[1, 2], [3], [3], []]
+    states = dataflow.solve(dataflow.Ordering.of([0, 1, 2, 3], 4), succ, {0: frozenset()},
                             lambda node, state: state,
                             frozenset.intersection,
                             edge=lambda state, u, v: state | {"x"} if (u, v) == (0, 1) else state)
     assert states == {0: frozenset(), 1: frozenset({"x"}), 2: frozenset(), 3: frozenset()}
 
 
-def test_local_successors_keep_the_routine_inside() -> None:
-    """A jump to another routine's block is not an edge of this routine's graph."""
+def test_the_block_index_keeps_the_routine_inside() -> None:
+    """Blocks are numbered in routine order, and a jump to another routine's block is not an edge
+    of this routine's graph; a branch whose arms are the same block gives that edge twice."""
     blocks = [ir.Block("a", [], ir.Branch(ir.Truth(ir.Var("c")), "b", "elsewhere")),
-              ir.Block("b", [], ir.Jump("a")), ir.Block("c", [], ir.Return())]
-    assert local_successors(ir.Routine("main", ir.RoutineKind.MAIN, blocks)) == {"a": ["b"], "b": ["a"], "c": []}
+              ir.Block("b", [], ir.Branch(ir.Truth(ir.Var("c")), "a", "a")), ir.Block("c", [], ir.Return())]
+    index = BlockIndex.of_routine(ir.Routine("main", ir.RoutineKind.MAIN, blocks))
+    assert index.labels == ["a", "b", "c"] and index.number == {"a": 0, "b": 1, "c": 2}
+    assert index.succ == [[1], [0, 0], []]
 
 
 def test_a_deep_chain_needs_no_recursion() -> None:
     """20,000 nodes in a row with a loop around them: every walk uses explicit stacks."""
     n = 20000
-    succ = {i: [i + 1] for i in range(n - 1)} | {n - 1: [0]}
+    succ = [[i + 1] for i in range(n - 1)] + [[0]]
     walk, order, tree = analysed(succ)
     assert order == list(range(n)) and tree.dominates(0, n - 1)
     assert [loop.header for loop in loops.loop_forest(walk, succ)] == [0]
