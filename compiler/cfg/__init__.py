@@ -11,7 +11,8 @@ the walks fast and linear where dictionaries keyed by label strings were not (is
 - `dominators`: immediate dominators (Cooper, Harvey and Kennedy) and the dominator tree with a
   constant-time `dominates`;
 - `loops`: back edges, natural loops, reducibility and the loop-nesting forest (Havlak);
-- `dataflow`: one worklist solver to a fixed point, forward or backward, in the order given.
+- `dataflow`: one worklist solver to a fixed point, forward or backward, in the order given;
+- `components`: strongly connected components (Tarjan), over any hashable nodes (call graphs).
 
 Everything walks with explicit stacks and worklists (no Python recursion) and takes time linear in
 the graph (the dominator iteration and the solver: a few passes for the graphs programs have).
