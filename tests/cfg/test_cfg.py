@@ -159,6 +159,8 @@ def test_solver_forward_must_analysis_gives_the_strict_dominators(succ) -> None:
     assert set(states) == set(order)
     for node in order:
         assert states[node] == {a for a in order if a != node and tree.dominates(a, node)}
+    fifo = dataflow.solve(None, succ, {0: frozenset()}, lambda node, state: state | {node}, frozenset.intersection)
+    assert fifo == states  # a monotone problem: the same fixed point in first-in, first-out order
 
 
 @settings(max_examples=300, deadline=None)
