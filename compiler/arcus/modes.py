@@ -17,6 +17,7 @@ reported (A128) with what to add.
 from __future__ import annotations
 
 from mcc.compiler import ir
+from mcc.compiler.cfg import dataflow
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 
@@ -142,20 +143,23 @@ class _Flow:
         if not routine.blocks:
             return NONE
         plan = self.program.plan(routine)
-        relevant, successors = plan.relevant, plan.successors
-        states: list[State] = [NONE] * len(relevant)
-        states[0] = self.entry[routine.name]
-        work = [0]
-        returns = NONE
-        while work:
-            index = work.pop()
-            state = states[index]
+        relevant = plan.relevant
+        after = self.after
+
+        def through(index: int, state: State) -> State:
             for op in relevant[index]:
-                state = self.after(op, state, None)
-            for succ in successors[index]:
-                if not state <= states[succ]:
-                    states[succ] = states[succ] | state
-                    work.append(succ)
+                state = after(op, state, None)
+            return state
+
+        # the modes that may be in force at each block's start: a union over paths (the library's
+        # solver; first in, first out: a union of sets reaches the same fixed point in any order, and
+        # this one needs no depth-first walk of the routine first); a block no path reaches has
+        # none, nor does any block of a routine entered in none (a subroutine whose calls are not
+        # reached yet)
+        entry = self.entry[routine.name]
+        solved = dataflow.solve(None, plan.successors, {0: entry}, through, frozenset.union) if entry else {}
+        states: list[State] = [solved.get(index, NONE) for index in range(len(relevant))]
+        returns = NONE
         for index, returning in plan.finishing:
             state = states[index]
             for op in relevant[index]:
