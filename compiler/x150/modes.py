@@ -29,6 +29,8 @@ the `WaitMotion`, which the backend writes in MQ); assignments to
 from __future__ import annotations
 
 from mcc.compiler import ir
+from mcc.compiler.cfg import dataflow
+from mcc.compiler.cfg.graph import BlockIndex, predecessors
 from mcc.compiler.cancel import checkpoint
 from mcc.compiler.diagnostics import Diagnostics
 
@@ -524,8 +526,7 @@ class Resolver:
         """`relevant`: each block's `liveness_ops`, kept up to date when assignments are dropped."""
         if not any(type(op) is ir.Assign for b in routine.blocks for op in relevant[id(b)]):
             return
-        blocks = {b.label: b for b in routine.blocks}
-        live_in: dict[str, set[str] | frozenset[str]] = dict.fromkeys(blocks, NOTHING)  # replaced, never changed
+        live_in: dict[str, set[str] | frozenset[str]] = dict.fromkeys((b.label for b in routine.blocks), NOTHING)
         op_reads = self.op_reads
 
         def live_out(block) -> set[str] | frozenset[str]:
@@ -575,35 +576,31 @@ class Resolver:
             return kill, gen
 
         nothing = (NOTHING, NOTHING)  # the summary of a block without register operations
-        summaries = {id(block): summary(block) if relevant[id(block)] else nothing for block in routine.blocks}
-        # Each block as (label, kill, gen, the labels after it, what its exits read): `live_out`
-        # worked out once, so that a round of the fixed point is set operations only.
-        plan = []
-        for block in reversed(routine.blocks):
+        summaries = [summary(block) if relevant[id(block)] else nothing for block in routine.blocks]
+        # Backward liveness with the analysis library's solver: each block's state is what is live
+        # after it, `beyond` (what its exits out of the routine read) joined with what is live at
+        # the start of the blocks after it; a block's transfer is its summary. Every block starts
+        # (a block no path from the entry reaches keeps its registers too), last block first.
+        index = BlockIndex.of_routine(routine)
+        beyond: list = []
+        for block, targets in zip(routine.blocks, index.succ):
             term = block.terminator
             if isinstance(term, (ir.FallOff, ir.Return, ir.GotoRoutine, ir.End)) or term is None:
-                after: tuple[str, ...] = ()
-                beyond = NOTHING if isinstance(term, ir.End) else read
+                beyond.append(NOTHING if isinstance(term, ir.End) else read)
             else:
-                following = ir.successors(term)
-                after = tuple(succ for succ in following if succ in live_in)
-                beyond = read if len(after) < len(following) else NOTHING
-            plan.append((block.label, *summaries[id(block)], after, beyond))
-        changed = True
-        rounds = 0
-        while changed and rounds < 4 * len(blocks) + 4:
-            changed = False
-            rounds += 1
-            for label, kill, gen, after, beyond in plan:
-                out = beyond
-                for succ in after:
-                    out = out | live_in[succ]
-                new = (out - kill) | gen
-                if new != live_in[label]:
-                    live_in[label] = new
-                    changed = True
-        for block in routine.blocks:
-            if summaries[id(block)][0]:  # a block that assigns no %D keeps its operations
+                beyond.append(read if len(targets) < len(ir.successors(term)) else NOTHING)
+        preds = predecessors(range(len(index.succ)), index.succ, len(index.succ))
+
+        def transfer(node: int, live: set[str] | frozenset[str]) -> set[str] | frozenset[str]:
+            kill, gen = summaries[node]
+            return (live - kill) | gen
+
+        starts = {node: beyond[node] for node in reversed(range(len(index.succ)))}
+        live_after = dataflow.solve(None, preds, starts, transfer, lambda old, new: old | new)
+        for node, label in enumerate(index.labels):
+            live_in[label] = transfer(node, live_after[node])
+        for node, block in enumerate(routine.blocks):
+            if summaries[node][0]:  # a block that assigns no %D keeps its operations
                 through(block, live_out(block))
 
     def report(self, span, why: str) -> None:
