@@ -245,14 +245,6 @@ def forward(routine: ir.Routine, entry: State, transfer: Callable[[State, object
     return {labels[node]: state for node, state in states.items()}
 
 
-def reverse_postorder(entry: str, succ: dict[str, list[ir.Block]]) -> list[str]:
-    """Labels reachable from `entry` in reverse postorder of a depth-first walk (explicit stack)."""
-    labels = list(succ)
-    number = {label: i for i, label in enumerate(labels)}
-    numbered = [[number[b.label] for b in succ[label] if b.label in number] for label in labels]
-    return [labels[n] for n in graph.reverse_postorder(number[entry], numbered)]
-
-
 def replay(block: ir.Block, state: State, transfer: Callable[[State, object], State]) -> Iterator[tuple[object, State]]:
     """Each operation (then the terminator) of a block with the state just before it."""
     for item in [*block.ops, block.terminator]:
