@@ -3,7 +3,8 @@
 Targets without GOTO (Arcus; later, perhaps, X150) cannot write a CFG as it is: they need nested
 constructs. `structure(routine, ...)` turns a routine's blocks into a tree of those constructs that
 a backend's writer prints in its own spelling. Nothing here knows a target's syntax; it reads and
-builds `mcc.compiler.ir` only.
+builds `mcc.compiler.ir` only, and takes its orderings, dominators and loops from the analysis
+library (`mcc.compiler.cfg`).
 
 What it produces, a list of nodes executed in order (a sequence), each one of:
 
