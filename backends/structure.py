@@ -3,7 +3,8 @@
 Targets without GOTO (Arcus; later, perhaps, X150) cannot write a CFG as it is: they need nested
 constructs. `structure(routine, ...)` turns a routine's blocks into a tree of those constructs that
 a backend's writer prints in its own spelling. Nothing here knows a target's syntax; it reads and
-builds `mcc.compiler.ir` only.
+builds `mcc.compiler.ir` only, and takes its orderings, dominators and loops from the analysis
+library (`mcc.compiler.cfg`).
 
 What it produces, a list of nodes executed in order (a sequence), each one of:
 
@@ -54,6 +55,9 @@ from dataclasses import dataclass
 from typing import Callable, Union
 
 from mcc.compiler import ir
+from mcc.compiler.cfg.loops import back_edges, latches, natural_loop, reducible
+from mcc.compiler.cfg.dominators import DominatorTree
+from mcc.compiler.cfg.graph import BlockIndex, all_paths_reach, depth_first, predecessors
 from mcc.compiler.span import Span
 
 EXIT = "%exit"  # the virtual node every routine end leads to
@@ -172,7 +176,10 @@ def copy_block(block: ir.Block) -> ir.Block:
 
 
 class Graph:
-    """Reachability, dominators and loops of one routine's CFG (with a virtual exit node)."""
+    """Reachability, dominators and loops of one routine's CFG (with a virtual exit node), from
+    the analysis library (`mcc.compiler.cfg`): this class adds the structurer's view of a routine
+    (which terminators end it, the virtual EXIT) and answers by label. The library computes over
+    block numbers (`self.nodes`); the label-keyed answers the structurer asks for are built once."""
 
     def __init__(self, routine: ir.Routine, stops: tuple = (ir.End,)):
         self.stops = stops
@@ -180,151 +187,76 @@ class Graph:
         self.blocks = {b.label: b for b in routine.blocks}
         self.entry = routine.blocks[0].label if routine.blocks else EXIT
         self.succ: dict[str, list[str]] = {}
+        ending: list[str] = []  # the blocks whose terminator stops the program
         for label, block in self.blocks.items():
             term = block.terminator
             if (isinstance(term, (ir.Return, ir.FallOff)) and not isinstance(term, stops)) or term is None:
                 self.succ[label] = [EXIT]
             else:
                 self.succ[label] = [t for t in ir.successors(term) if t in self.blocks]
+                if isinstance(term, stops):
+                    ending.append(label)
         self.succ[EXIT] = []
-        self.order = self.reverse_postorder()
-        self.index = {label: i for i, label in enumerate(self.order)}
-        self.preds: dict[str, list[str]] = {label: [] for label in self.order}
-        for label in self.order:
-            for s in self.succ[label]:
-                self.preds[s].append(label)
-        self.idom = self.dominators()
-        self.children: dict[str, list[str]] = {label: [] for label in self.order}
-        for label in self.order:
-            parent = self.idom.get(label)
-            if parent is not None and parent != label:
-                self.children[parent].append(label)
-        self.number_dominator_tree()
-        self.back_edges = {(u, v) for u in self.order for v in self.succ[u] if self.dominates(v, u)}
-        self.headers = {v for _, v in self.back_edges}
-        # Each loop header's back-edge sources, in one pass: scanning every back edge for each
-        # header made the structurer quadratic in the number of loops (issue 26).
-        self.latches: dict[str, list[str]] = {}
-        for u in self.order:
-            for v in self.succ[u]:
-                if (u, v) in self.back_edges:
-                    self.latches.setdefault(v, []).append(u)
-        self.reducible = self.check_reducible()
+        nodes = self.nodes = BlockIndex.of(list(self.succ), self.succ.values())
+        labels, size = nodes.labels, len(nodes.labels)
+        walk = depth_first(nodes.number[self.entry], nodes.succ)
+        rpo = self._rpo = walk.reverse_postorder
+        self.order = [labels[n] for n in rpo]
+        self._rank = [-1] * size
+        for i, n in enumerate(rpo):
+            self._rank[n] = i
+        self._preds = predecessors(rpo, nodes.succ, size)
+        self._tree = DominatorTree(rpo, self._preds, size)
+        back = back_edges(rpo, nodes.succ, self._tree)
+        self.headers = {labels[v] for _, v in back}
+        self._latches = latches(rpo, nodes.succ, back)
+        # each block's predecessors along forward (not back) edges, which IF merges and elifs count
+        self._forward_in = [0] * size
+        for u in rpo:
+            for v in nodes.succ[u]:
+                if (u, v) not in back:
+                    self._forward_in[v] += 1
+        self.reducible = reducible(walk, self._tree)
+        self._ending = [nodes.number[label] for label in ending]
+        self._bodies: dict[str, set[str]] = {}
 
-    def reverse_postorder(self) -> list[str]:
-        """The blocks in reverse postorder of a depth-first walk from the entry. The walk also keeps
-        its retreating edges (to a block still on its stack) for `check_reducible`."""
-        seen = {self.entry}
-        on_stack = {self.entry}
-        post: list[str] = []
-        self.retreating: list[tuple[str, str]] = []
-        stack = [(self.entry, iter(self.succ[self.entry]))]
-        while stack:
-            label, it = stack[-1]
-            for s in it:
-                if s in on_stack:
-                    self.retreating.append((label, s))
-                if s not in seen:
-                    seen.add(s)
-                    on_stack.add(s)
-                    stack.append((s, iter(self.succ[s])))
-                    break
-            else:
-                stack.pop()
-                on_stack.discard(label)
-                post.append(label)
-        return post[::-1]
+    def rank(self, label: str) -> int:
+        """The block's place in the reverse postorder (`order`)."""
+        return self._rank[self.nodes.number[label]]
 
-    def dominators(self) -> dict[str, str]:
-        """Cooper, Harvey and Kennedy's iterative algorithm over the reverse postorder."""
-        idom = {self.entry: self.entry}
-        index = self.index
-        changed = True
-        while changed:
-            changed = False
-            for label in self.order[1:]:
-                new = None
-                for p in self.preds[label]:
-                    if p not in idom:
-                        continue
-                    if new is None:
-                        new = p
-                        continue
-                    a, b = p, new
-                    while a != b:
-                        while index[a] > index[b]:
-                            a = idom[a]
-                        while index[b] > index[a]:
-                            b = idom[b]
-                    new = a
-                if new is not None and idom.get(label) != new:
-                    idom[label] = new
-                    changed = True
-        return idom
-
-    def number_dominator_tree(self) -> None:
-        """Pre- and post-order numbers of the dominator tree: a dominates b when b's interval lies in
-        a's, a constant-time test (walking up the tree would make long programs quadratic)."""
-        self.pre: dict[str, int] = {}
-        self.post: dict[str, int] = {}
-        counter = 0
-        stack = [(self.entry, iter(self.children.get(self.entry, ())))]
-        self.pre[self.entry] = counter
-        while stack:
-            label, it = stack[-1]
-            child = next(it, None)
-            if child is None:
-                stack.pop()
-                counter += 1
-                self.post[label] = counter
-            else:
-                counter += 1
-                self.pre[child] = counter
-                stack.append((child, iter(self.children[child])))
-
-    def dominates(self, a: str, b: str) -> bool:
-        """a dominates b."""
-        if a not in self.pre or b not in self.pre:
-            return False
-        return self.pre[a] <= self.pre[b] and self.post[b] <= self.post[a]
-
-    def check_reducible(self) -> bool:
-        """Every retreating edge of the depth-first walk must be a back edge (target dominates source)."""
-        return all(self.dominates(target, source) for source, target in self.retreating)
+    def children(self, label: str) -> list[str]:
+        """The block's children in the dominator tree, in reverse postorder."""
+        labels = self.nodes.labels
+        return [labels[n] for n in self._tree.children[self.nodes.number[label]]]
 
     def forward_preds(self, label: str) -> int:
-        return sum(1 for p in self.preds.get(label, ()) if (p, label) not in self.back_edges)
+        number = self.nodes.number.get(label)
+        return self._forward_in[number] if number is not None else 0
 
     def loop_body(self, header: str) -> set[str]:
-        body = {header}
-        work = list(self.latches.get(header, ()))
-        while work:
-            label = work.pop()
-            if label in body:
-                continue
-            body.add(label)
-            work.extend(self.preds.get(label, ()))
+        """The natural loop of `header` (computed once per header: flag_loops and the structurer
+        both ask; callers only read it)."""
+        body = self._bodies.get(header)
+        if body is None:
+            number = self.nodes.number[header]
+            labels = self.nodes.labels
+            found = natural_loop(number, self._latches.get(number, ()), self._preds)
+            body = self._bodies[header] = {labels[n] for n in found}
         return body
+
+    def latches(self, header: str) -> list[str]:
+        """The sources of the back edges to `header`, in reverse postorder."""
+        labels = self.nodes.labels
+        return [labels[n] for n in self._latches.get(self.nodes.number[header], ())]
 
     def terminating(self) -> set[str]:
         """Blocks from which every path ends at an END (never falls through to anything after).
         Computed once per graph (a graph is not changed once built); callers only read the set."""
-        if self._terminating is not None:
-            return self._terminating
-        result: set[str] = set()
-        changed = True
-        while changed:
-            changed = False
-            for label in reversed(self.order):
-                if label in result or label == EXIT:
-                    continue
-                block = self.blocks[label]
-                succ = self.succ[label]
-                if isinstance(block.terminator, self.stops) or (succ and all(s in result for s in succ)):
-                    result.add(label)
-                    changed = True
-        self._terminating = result
-        return result
+        if self._terminating is None:
+            labels = self.nodes.labels
+            found = all_paths_reach(self._rpo, self.nodes.succ, self._preds, self._ending)
+            self._terminating = {labels[n] for n in found}
+        return self._terminating
 
     def exits(self, header: str, body: set[str], ends: set[str]) -> list[tuple[str, str]]:
         return [(u, v) for u in body for v in self.succ[u] if v not in body and v not in ends]
@@ -332,7 +264,7 @@ class Graph:
     def repeat_latch(self, header: str, body: set[str], ends: set[str]) -> str | None:
         """The block that ends a loop tested at its end: the one way back to `header`, a branch whose
         other arm is the loop's only exit (edges to blocks that END excepted); else None."""
-        latches = list(self.latches.get(header, ()))
+        latches = self.latches(header)
         if len(latches) != 1:
             return None
         latch = latches[0]
@@ -370,7 +302,7 @@ def flag_loops(routine: ir.Routine, flag: Callable[[int], ir.Var | None], max_co
             raise Unstructurable("the control-flow graph is irreducible (a loop is entered at two places)")
         ends = graph.terminating()
         loops = [(graph.loop_body(h), h) for h in graph.headers]
-        loops.sort(key=lambda item: (len(item[0]), graph.index[item[1]]))
+        loops.sort(key=lambda item: (len(item[0]), graph.rank(item[1])))
         target = None
         for body, header in loops:
             if header in done:
@@ -484,7 +416,7 @@ class Structurer:
                 and self.graph.forward_preds(label) == 1)
 
     def join(self, label: str, follow: str) -> str:
-        merges = [c for c in self.graph.children[label] if self.graph.forward_preds(c) >= 2]
+        merges = [c for c in self.graph.children(label) if self.graph.forward_preds(c) >= 2]
         if not merges:
             return follow
         if len(merges) > 1:

@@ -17,6 +17,7 @@ flow analyses quadratic and the structurer recurse.
 
 Run: .venv/bin/python bench/bench_lint.py [--files N] [--repeat R] [--sizes 1000,2000,...] [--skip-tree]
      .venv/bin/python bench/bench_lint.py --check-growth --sizes 2000,8000,32000 (check alone, its growth)
+     .venv/bin/python bench/bench_lint.py --check-growth --commands check,lint (per dialect and command)
 """
 
 from __future__ import annotations
@@ -173,22 +174,32 @@ must-home = true
 """ + "".join(f"[tool.mcc.axes.{axis}]\nmin = -1000000\nmax = 1000000\n" for axis in "XYZU")
 
 
-def check_growth_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
-    """`mcc check` alone on the growing programs, with the growth from the size a quarter as large
-    (issue 26: Arcus at most 4.4x from 8,000 to 32,000 lines; 4x is linear)."""
-    print("check growth on one program (CPU time, best of %d runs)" % repeat)
-    print(f"  {'dialect':8} {'lines':>6} {'check s':>8} {'ms/1k lines':>12} {'x from 1/4':>11}")
+def check_growth_table(sizes: list[int], repeat: int, dialects: list[str], commands: tuple[str, ...] = ("check",)) -> None:
+    """`mcc check` (and `mcc lint`, with `commands`) alone on the growing programs, with the growth
+    from the size a quarter as large (issue 26: Arcus check at most 4.4x from 8,000 to 32,000
+    lines; 4x is linear). One row per dialect, command and size; docs/PERFORMANCE.md keeps the
+    measured tables."""
+    print("growth on one program (CPU time, best of %d runs)" % repeat)
+    print(f"  {'dialect':8} {'command':7} {'lines':>6} {'seconds':>8} {'ms/1k lines':>12} {'x from 1/4':>11}")
+    settings = Settings()
     for dialect in dialects:
         path = f"bench{EXTENSION[dialect]}"
         driver.check_file(path, dialect, text=program(dialect, 200))  # imports, catalogs, parsers
-        times: dict[int, float] = {}
-        for size in sizes:
-            text = program(dialect, size)
-            times[size] = timed(repeat, lambda: driver.check_file(path, dialect, text=text))
-            quarter = times.get(size // 4)
-            growth = f"{times[size] / quarter:>10.2f}x" if quarter else f"{'':>11}"
-            print(f"  {dialect:8} {text.count(chr(10)):>6} {times[size]:>8.3f} "
-                  f"{times[size] * 1e6 / text.count(chr(10)):>12.1f} {growth}")
+        if "lint" in commands:
+            engine.lint_text(path, program(dialect, 200), settings, dialect)  # the rules' modules
+        for command in commands:
+            times: dict[int, float] = {}
+            for size in sizes:
+                text = program(dialect, size)
+                if command == "lint":
+                    work = lambda: engine.lint_text(path, text, settings, dialect)  # noqa: E731
+                else:
+                    work = lambda: driver.check_file(path, dialect, text=text)  # noqa: E731
+                times[size] = timed(repeat, work)
+                quarter = times.get(size // 4)
+                growth = f"{times[size] / quarter:>10.2f}x" if quarter else f"{'':>11}"
+                lines = text.count(chr(10))
+                print(f"  {dialect:8} {command:7} {lines:>6} {times[size]:>8.3f} {times[size] * 1e6 / lines:>12.1f} {growth}")
 
 
 def envelope_table(sizes: list[int], repeat: int, dialects: list[str]) -> None:
@@ -250,6 +261,7 @@ def main() -> None:
     args.add_argument("--envelope-only", action="store_true", help="only the envelope rules' table (issue 27)")
     args.add_argument("--check-growth", action="store_true",
                       help="only `mcc check`'s growth table (e.g. --sizes 8000,32000; issue 26)")
+    args.add_argument("--commands", default="check", help="the commands of --check-growth: check, lint or both")
     options = args.parse_args()
     dialects = [d for d in options.dialects.split(",") if d]
     args_sizes = [int(n) for n in options.sizes.split(",") if n]
@@ -257,7 +269,8 @@ def main() -> None:
         envelope_table(args_sizes, options.repeat, dialects)
         return
     if options.check_growth:
-        check_growth_table(args_sizes, options.repeat, dialects)
+        check_growth_table(args_sizes, options.repeat, dialects,
+                           tuple(c for c in options.commands.split(",") if c in ("check", "lint")))
         return
     growth_table(args_sizes, options.repeat, dialects)
     envelope_table(args_sizes, options.repeat, dialects)

@@ -34,10 +34,11 @@ the graphs programs have.
 
 from __future__ import annotations
 
-from collections import deque
 from typing import Iterator
 
 from mcc.compiler import dialects, ir
+from mcc.compiler.cfg import dataflow
+from mcc.compiler.cfg.graph import BlockIndex
 
 Key = tuple  # (param, axis), or (SETS, param), (WRITTEN, param, axis), (UNWRITTEN, param, axis)
 State = dict[Key, ir.Const]
@@ -642,36 +643,30 @@ class InForce:
         ends with where it runs off its end or returns are appended to it."""
         if not routine.blocks:
             return
-        blocks = {b.label: b for b in routine.blocks}
-        entry: dict[str, State | None] = {b.label: None for b in routine.blocks}
-        entry[routine.blocks[0].label] = dict(start)
-        queue = deque([routine.blocks[0].label])
-        queued = {routine.blocks[0].label}
-        while queue:
-            label = queue.popleft()
-            queued.discard(label)
-            block = blocks[label]
-            state = dict(entry[label] or {})
+        index = BlockIndex.of_routine(routine)
+        blocks = routine.blocks
+        sets, clobbers = self.sets, self.clobbers
+
+        def through(node: int, entry: State) -> State:
+            block = blocks[node]
+            state = dict(entry)
             for op in block.ops:
                 if isinstance(op, ir.Call):
-                    calls[op.routine] = meet(calls.get(op.routine), state, self.sets)
-                transfer(state, op, self.clobbers, self.sets)
+                    calls[op.routine] = meet(calls.get(op.routine), state, sets)
+                transfer(state, op, clobbers, sets)
             if exits is not None and isinstance(block.terminator, (ir.FallOff, ir.Return, type(None))):
                 exits.append(dict(state))
-            for succ in ir.successors(block.terminator):
-                if succ not in blocks:
-                    continue
-                old = entry[succ]
-                new = meet(old, state, self.sets)
-                if old is None or new != old:
-                    entry[succ] = new
-                    if succ not in queued:
-                        queue.append(succ)
-                        queued.add(succ)
-        for label, state in entry.items():
-            self.entry[label] = state or {}
+            return state
+
+        # first in, first out, as this analysis always ran: its meet is not a lattice's (a `*`
+        # setting is dropped where an axis's own was lost), so the order of visits is kept
+        states = dataflow.solve(None, index.succ, {0: dict(start)}, through,
+                                lambda old, new: meet(old, new, sets))
+        for number, block in enumerate(blocks):
+            state = states.get(number)
+            self.entry[block.label] = state or {}
             if state is not None:
-                self.reached.add(label)
+                self.reached.add(block.label)
 
 
 def _axes(module: ir.Module, kinds: tuple = (), keep_all: bool = False) -> set[str]:

@@ -17,6 +17,8 @@ reported (A128) with what to add.
 from __future__ import annotations
 
 from mcc.compiler import ir
+from mcc.compiler.cfg import dataflow
+from mcc.compiler.cfg.graph import BlockIndex
 from mcc.compiler.diagnostics import Diagnostics
 from mcc.compiler.profiles import Profile
 
@@ -55,18 +57,16 @@ def relevant_ops(block: ir.Block) -> list[ir.Op]:
 class _Plan:
     """One routine's blocks as positions, for the walks of `_Flow.routine` (each routine is walked
     in every round of both fixpoints of `resolve`): per block, the operations that matter and the
-    positions of its successors inside the routine; the blocks that call or return. Walking lists
-    by position instead of dictionaries by label, with the operations that matter found once,
+    positions of its successors inside the routine (the analysis library's block index); the blocks
+    that call or return. Walking lists by position instead of dictionaries by label, with the
+    operations that matter found once,
     made the pass grow with the program as the others do (it had grown 7x from 8,000 to 32,000
     lines, issue 26)."""
 
     def __init__(self, routine: ir.Routine):
         self.routine = routine
-        self.labels = [block.label for block in routine.blocks]
-        position = {label: index for index, label in enumerate(self.labels)}
         self.relevant = [relevant_ops(block) for block in routine.blocks]
-        self.successors = [[position[s] for s in ir.successors(block.terminator) if s in position]
-                           for block in routine.blocks]
+        self.successors = BlockIndex.of_routine(routine).succ
         # the blocks the final walk over the solved states looks at, in order: those that call a
         # routine (the states at the calls) and those that return (True: the state they return in)
         self.finishing = [(index, isinstance(block.terminator, (ir.Return, ir.FallOff)))
@@ -117,7 +117,9 @@ class _Flow:
             self.entry[routine.name] = boot if uncalled else NONE
         self.uncalled = {name for name, state in self.entry.items() if state}
         self.exit: dict[str, State] = {r.name: NONE for r in module.routines}
-        self.blocks: dict[str, State] = {}
+        # id(routine) -> the modes at the start of each of its blocks, by position (lists, not a
+        # dictionary of every block by label: the program's longest routine sets the cost)
+        self.states: dict[int, list[State]] = {}
         self.final = False  # set once the exits are known: see `after`
 
     def after(self, op: ir.Op, state: State, calls: dict[str, State] | None) -> State:
@@ -142,20 +144,23 @@ class _Flow:
         if not routine.blocks:
             return NONE
         plan = self.program.plan(routine)
-        relevant, successors = plan.relevant, plan.successors
-        states: list[State] = [NONE] * len(relevant)
-        states[0] = self.entry[routine.name]
-        work = [0]
-        returns = NONE
-        while work:
-            index = work.pop()
-            state = states[index]
+        relevant = plan.relevant
+        after = self.after
+
+        def through(index: int, state: State) -> State:
             for op in relevant[index]:
-                state = self.after(op, state, None)
-            for succ in successors[index]:
-                if not state <= states[succ]:
-                    states[succ] = states[succ] | state
-                    work.append(succ)
+                state = after(op, state, None)
+            return state
+
+        # the modes that may be in force at each block's start: a union over paths (the library's
+        # solver; first in, first out: a union of sets reaches the same fixed point in any order, and
+        # this one needs no depth-first walk of the routine first); a block no path reaches has
+        # none, nor does any block of a routine entered in none (a subroutine whose calls are not
+        # reached yet)
+        entry = self.entry[routine.name]
+        solved = dataflow.solve(None, plan.successors, {0: entry}, through, frozenset.union) if entry else {}
+        states: list[State] = [solved.get(index, NONE) for index in range(len(relevant))]
+        returns = NONE
         for index, returning in plan.finishing:
             state = states[index]
             for op in relevant[index]:
@@ -163,7 +168,7 @@ class _Flow:
             if returning:
                 returns |= state
         if self.final:  # the states of the last walk are the ones kept (each round walks every routine)
-            self.blocks.update(zip(plan.labels, states))
+            self.states[id(routine)] = states
         return returns
 
     def widen_entries(self, calls: dict[str, State]) -> bool:
@@ -210,8 +215,9 @@ def resolve(module: ir.Module, profile: Profile | None, diags: Diagnostics) -> d
     module.modes_stated = _stated(module, flow)
     arcs: dict[tuple[int, int], State] = {}
     for routine in module.routines:
-        for block in routine.blocks:
-            state = flow.blocks.get(block.label, NONE)
+        solved = flow.states.get(id(routine), ())
+        for position, block in enumerate(routine.blocks):
+            state = solved[position] if position < len(solved) else NONE
             kept: list[ir.Op] = []
             for op in block.ops:  # only ABS, INC and calls change the state (`_Flow.after`)
                 if isinstance(op, ir.Move):
@@ -241,8 +247,9 @@ def _stated(module: ir.Module, flow: _Flow) -> str:
         flow = _Flow(module, BOTH, flow.program)  # the same module, unchanged: the same plans
         flow.solve()
     for routine in module.routines:
-        for block in routine.blocks:
-            state = flow.blocks.get(block.label, NONE)
+        solved = flow.states.get(id(routine), ())
+        for position, block in enumerate(routine.blocks):
+            state = solved[position] if position < len(solved) else NONE
             for op in block.ops:
                 if isinstance(op, (ir.Move, ir.Arc)) and len(state) > 1:
                     if not isinstance(op, ir.Move) or op.mode is ir.MoveMode.MODAL:

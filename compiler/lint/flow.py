@@ -8,7 +8,6 @@ each routine is analysed from its own entry, and calls are summarised by the rul
 
 from __future__ import annotations
 
-import heapq
 import threading
 from collections import deque
 from contextlib import contextmanager
@@ -16,6 +15,10 @@ from dataclasses import dataclass, field
 from typing import Callable, Hashable, Iterable, Iterator, TypeVar
 
 from mcc.compiler import ir
+from mcc.compiler.cfg import dataflow, graph, loops
+from mcc.compiler.cfg.components import strongly_connected
+from mcc.compiler.cfg.dataflow import Ordering
+from mcc.compiler.cfg.graph import BlockIndex
 
 State = TypeVar("State", bound=Hashable)
 
@@ -85,46 +88,9 @@ def entry_points(routine: ir.Routine, used: Callable[[str], bool]) -> set[str]:
 
 
 def components(labels: Iterable[str], succ: Callable[[str], Iterable[str]]) -> list[list[str]]:
-    """The strongly connected components of a graph (Tarjan's algorithm with an explicit stack, so
-    a long chain of blocks or calls needs no Python recursion), callees before callers."""
-    number: dict[str, int] = {}
-    low: dict[str, int] = {}
-    stack: list[str] = []
-    on_stack: set[str] = set()
-    found: list[list[str]] = []
-    for root in labels:
-        if root in number:
-            continue
-        number[root] = low[root] = len(number)
-        stack.append(root)
-        on_stack.add(root)
-        work = [(root, iter(succ(root)))]
-        while work:
-            node, it = work[-1]
-            for nxt in it:
-                if nxt not in number:
-                    number[nxt] = low[nxt] = len(number)
-                    stack.append(nxt)
-                    on_stack.add(nxt)
-                    work.append((nxt, iter(succ(nxt))))
-                    break
-                if nxt in on_stack:
-                    low[node] = min(low[node], number[nxt])
-            else:
-                work.pop()
-                if work:
-                    parent = work[-1][0]
-                    low[parent] = min(low[parent], low[node])
-                if low[node] == number[node]:
-                    component = []
-                    while True:
-                        member = stack.pop()
-                        on_stack.discard(member)
-                        component.append(member)
-                        if member == node:
-                            break
-                    found.append(component)
-    return found
+    """The strongly connected components of a graph, callees before callers (the analysis
+    library's Tarjan, `mcc.compiler.cfg.components`)."""
+    return strongly_connected(labels, succ)
 
 
 def in_loops(routine: ir.Routine) -> set[str]:
@@ -200,12 +166,16 @@ def stream_entries(module: ir.Module, transfer: Callable[[State, object], State]
 @dataclass(frozen=True)
 class Shape:
     """A routine's graph as the forward walks need it: successors, the blocks by label, and the
-    reachable labels in reverse postorder from the entry with their ranks."""
+    reachable labels in reverse postorder from the entry with their ranks; `index` and `ordering`
+    are the same graph over block numbers, as the analysis library (`mcc.compiler.cfg`) takes it."""
 
     succ: dict[str, list[ir.Block]]
     blocks: dict[str, ir.Block]
     order: list[str]
     rank: dict[str, int]
+    index: BlockIndex
+    ordering: Ordering
+    numbered: list[ir.Block]  # node number -> its block
 
 
 _shared = threading.local()  # the shapes shared within `shared_shapes` (per thread: the editor's worker)
@@ -227,15 +197,20 @@ def shared_shapes() -> Iterator[None]:
 
 
 def shape_of(routine: ir.Routine, start: ir.Block) -> Shape:
+    """The routine's shape (`start` is its entry block), shared within `shared_shapes`."""
     cache = getattr(_shared, "shapes", None)
     if cache is not None:
         found = cache.get(id(routine))
         if found is not None and found[0] is routine:
             return found[1]
-    succ = successor_map(routine)
-    order = reverse_postorder(start.label, succ)
+    index = BlockIndex.of_routine(routine)
+    labels = index.labels
+    numbered = routine.blocks
+    succ = {block.label: [numbered[n] for n in targets] for block, targets in zip(routine.blocks, index.succ)}
+    rpo = graph.reverse_postorder(index.number[start.label], index.succ)
+    order = [labels[n] for n in rpo]
     shape = Shape(succ, {block.label: block for block in reversed(routine.blocks)}, order,
-                  {label: i for i, label in enumerate(order)})
+                  {label: i for i, label in enumerate(order)}, index, Ordering.of(rpo, len(labels)), numbered)
     if cache is not None:
         cache[id(routine)] = (routine, shape)  # the routine kept: its id is not reused meanwhile
     return shape
@@ -248,54 +223,26 @@ def forward(routine: ir.Routine, entry: State, transfer: Callable[[State, object
 
     `transfer(state, item)` is applied to each operation and then to the terminator; `edge` may
     refine the state along one edge (e.g. after a branch that polled a flag); `join` merges states
-    where paths meet. States must be hashable and the lattice finite (sets of facts are).
+    where paths meet. States must be hashable and the lattice finite (sets of facts are). The
+    analysis library's solver (`mcc.compiler.cfg.dataflow`) over the routine's blocks, in reverse
+    postorder.
     """
     start = routine.entry
     if start is None:
         return {}
     shape = shape_of(routine, start)
-    succ, rank, blocks, order = shape.succ, shape.rank, shape.blocks, shape.order
-    states: dict[str, State] = {start.label: entry}
-    # A worklist in reverse postorder: a block waits until its forward predecessors are done, so a
-    # loop nest settles in a few passes instead of one pass per queued change.
-    queue = [rank[start.label]]
-    queued = {start.label}
-    while queue:
-        label = order[heapq.heappop(queue)]
-        queued.discard(label)
-        block = blocks[label]
-        state = states[label]
+    numbered, labels = shape.numbered, shape.index.labels
+
+    def through(node: int, state: State) -> State:
+        block = numbered[node]
         for op in block.ops:
             state = transfer(state, op)
-        state = transfer(state, block.terminator)
-        for nxt in succ[label]:
-            out = edge(state, block, nxt) if edge is not None else state
-            old = states.get(nxt.label)
-            new = out if old is None else join(old, out)
-            if old is None or new != old:
-                states[nxt.label] = new
-                if nxt.label not in queued:
-                    queued.add(nxt.label)
-                    heapq.heappush(queue, rank[nxt.label])
-    return states
+        return transfer(state, block.terminator)
 
-
-def reverse_postorder(entry: str, succ: dict[str, list[ir.Block]]) -> list[str]:
-    """Labels reachable from `entry` in reverse postorder of a depth-first walk (explicit stack)."""
-    seen = {entry}
-    post: list[str] = []
-    stack = [(entry, iter(succ.get(entry, ())))]
-    while stack:
-        label, it = stack[-1]
-        for nxt in it:
-            if nxt.label not in seen:
-                seen.add(nxt.label)
-                stack.append((nxt.label, iter(succ.get(nxt.label, ()))))
-                break
-        else:
-            stack.pop()
-            post.append(label)
-    return post[::-1]
+    along = None if edge is None else (lambda state, u, v: edge(state, numbered[u], numbered[v]))
+    states = dataflow.solve(shape.ordering, shape.index.succ, {shape.index.number[start.label]: entry},
+                            through, join, along)
+    return {labels[node]: state for node, state in states.items()}
 
 
 def replay(block: ir.Block, state: State, transfer: Callable[[State, object], State]) -> Iterator[tuple[object, State]]:
@@ -328,71 +275,20 @@ def loop_forest(routine: ir.Routine) -> list[Loop]:
     walk reaches from it) jumps back to; its body is every block that reaches such a jump without
     passing through the header — the blocks of a WHILE, an MCode `BR` loop or an X150 `L..N`.
 
-    Havlak's algorithm: headers are taken in reverse depth-first order, and the body walk jumps over
-    an inner loop already found (union-find), so each block is visited about once and a nest of 500
-    loops costs what 500 loops in a row cost. Edges into a loop from outside the header's depth-
-    first subtree (an irreducible entry) are not followed.
+    The analysis library's Havlak loop-nesting forest (`mcc.compiler.cfg.loops`): each block is
+    visited about once, so a nest of 500 loops costs what 500 loops in a row cost. Edges into a
+    loop from outside the header's depth-first subtree (an irreducible entry) are not followed.
     """
-    entry = routine.entry
-    if entry is None:
+    if routine.entry is None:
         return []
-    succ = successor_map(routine)
-    blocks = {block.label: block for block in reversed(routine.blocks)}
-    number: dict[str, int] = {entry.label: 0}
-    order = [entry.label]
-    last: dict[str, int] = {}
-    stack = [(entry.label, iter(succ[entry.label]))]
-    while stack:
-        label, it = stack[-1]
-        for nxt in it:
-            if nxt.label not in number:
-                number[nxt.label] = len(order)
-                order.append(nxt.label)
-                stack.append((nxt.label, iter(succ[nxt.label])))
-                break
-        else:
-            stack.pop()
-            last[label] = len(order) - 1
-    preds: dict[str, list[str]] = {label: [] for label in order}
-    for label in order:
-        for nxt in succ[label]:
-            preds[nxt.label].append(label)
-    parent = {label: label for label in order}  # union-find: a block -> the header that absorbed it
-
-    def find(label: str) -> str:
-        root = label
-        while parent[root] != root:
-            root = parent[root]
-        while parent[label] != root:
-            parent[label], label = root, parent[label]
-        return root
-
-    loops: dict[str, Loop] = {}
+    index = BlockIndex.of_routine(routine)
+    numbered = routine.blocks
+    made: dict[int, Loop] = {}
     found: list[Loop] = []
-    for header in reversed(order):
-        low, high = number[header], last[header]
-        back = [p for p in preds[header] if low <= number[p] <= high]
-        if not back:
-            continue
-        loop = Loop(blocks[header], [blocks[header]])
-        members: set[str] = set()
-        work = [find(p) for p in back]
-        while work:
-            label = work.pop()
-            if label == header or label in members:
-                continue
-            members.add(label)
-            for pred in preds[label]:
-                if low <= number[pred] <= high:
-                    work.append(find(pred))
-        for label in sorted(members, key=number.__getitem__):
-            parent[label] = header
-            if label in loops:
-                loop.inner.append(loops[label])
-            else:
-                loop.blocks.append(blocks[label])
-        loops[header] = loop
-        found.append(loop)
+    for loop in loops.loop_forest(graph.depth_first(0, index.succ), index.succ):
+        made[loop.header] = Loop(numbered[loop.header], [numbered[n] for n in loop.nodes],
+                                 [made[inner.header] for inner in loop.inner])
+        found.append(made[loop.header])
     return found
 
 
