@@ -238,6 +238,10 @@ class Simulator:
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
         self.default_type = module.default_type or ir.VarType.FLOAT64
+        # a variable's type and whether a printed item reads a float, by name and by item: the
+        # module does not change while it runs, and a print loop asks millions of times (issue 26)
+        self.types: dict[str, ir.VarType] = {}
+        self.float_items: dict[int, bool] = {}
         self.vars: dict[str, values.Number] = {}
         self.trace = Trace(module.path, module.dialect, module.steps_per_rev)
         self.diags = Diagnostics(self.trace.diagnostics)
@@ -583,7 +587,7 @@ class Simulator:
                 op = ops[frame.index]
                 frame.index += 1
                 try:
-                    wait = self._op(op, frame)
+                    wait = OP_METHODS[type(op)](self, op)  # `_op`, without a call more per operation
                 except RuntimeFault as fault:
                     self._fault(fault, op)
                     wait = None
@@ -1038,8 +1042,11 @@ class Simulator:
 
 
     def _type(self, name: str) -> ir.VarType:
-        declared = self.module.type_of(name)  # the lowering declares variables and registers
-        return declared if declared is not None else self.default_type
+        found = self.types.get(name)
+        if found is None:
+            declared = self.module.type_of(name)  # the lowering declares variables and registers
+            found = self.types[name] = declared if declared is not None else self.default_type
+        return found
 
     def _axis(self, name: str) -> Axis:
         found = self.machine.axes.get(name)
@@ -1761,11 +1768,16 @@ class Simulator:
 
     def _reads_float(self, item) -> bool:
         """Whether a printed item reads a float64 variable or a float setting: then it prints in
-        the product's float format (MCode PF, lexium-mcode.txt L4744-L4777)."""
-        return any(isinstance(node, ir.Var) and self._type(node.name) is ir.VarType.FLOAT64
-                   or isinstance(node, ir.Status) and getattr(ir_names.SETTINGS.get(node.meaning), "value_type",
-                                                              "") == "float"
-                   for node in ir.walk_expr(item))
+        the product's float format (MCode PF, lexium-mcode.txt L4744-L4777). Asked once per item
+        (`float_items`: the item is the module's, alive as long as the run)."""
+        found = self.float_items.get(id(item))
+        if found is None:
+            found = self.float_items[id(item)] = any(
+                isinstance(node, ir.Var) and self._type(node.name) is ir.VarType.FLOAT64
+                or isinstance(node, ir.Status) and getattr(ir_names.SETTINGS.get(node.meaning), "value_type",
+                                                           "") == "float"
+                for node in ir.walk_expr(item))
+        return found
 
     def _float_format(self):
         """The float format in force: the `float_format` setting the run set, else the product's
