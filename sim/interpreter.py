@@ -560,8 +560,10 @@ class Simulator:
         threshold = POLL_RECHECK if polling else self.options.spin
         if not polling:
             self._quiet_begins()
-        while self.stack:
-            frame = self.stack[-1]
+        # read once: none of them is replaced while the program runs (a print loop makes 200,000 steps)
+        stack, trace, max_steps, skip_rounds = self.stack, self.trace, self.options.max_steps, self.options.skip_rounds
+        while stack:
+            frame = stack[-1]
             if frame.wait is not None:
                 if not self._wait_over(frame.wait):
                     return
@@ -573,14 +575,14 @@ class Simulator:
                 ops = frame.block.ops
                 self.observer("step", frame, ops[frame.index] if frame.index < len(ops) else frame.block.terminator)
             self.went_back = False
-            self.trace.steps += 1
-            if not self.trace.steps % CANCEL_EVERY:
+            trace.steps += 1
+            if not trace.steps % CANCEL_EVERY:
                 cancel.checkpoint()  # the editor's run of a stale version stops (lsp/cycles.py)
             if polling:
                 self.poll_steps += 1
-            if self.trace.steps - self.poll_steps > self.options.max_steps:
-                self.trace.steps -= 1
-                raise Stop("step-limit", f"the step limit of {self.options.max_steps} operations was reached "
+            if trace.steps - self.poll_steps > max_steps:
+                trace.steps -= 1
+                raise Stop("step-limit", f"the step limit of {max_steps} operations was reached "
                                          f"(at line {self._line_now()})")
             ops = frame.block.ops
             if frame.index < len(ops):
@@ -602,7 +604,7 @@ class Simulator:
                     self._terminator(frame)
                 except RuntimeFault as fault:
                     self._fault(fault, frame.block.terminator)
-                if self.went_back and self.options.skip_rounds and self.stack and self.stack[-1] is frame:
+                if self.went_back and skip_rounds and stack and stack[-1] is frame:
                     self._went_round(frame)
             if self.handlers:
                 self._check_when()
@@ -633,8 +635,8 @@ class Simulator:
                 # a polling loop pauses where it goes round (a jump back), never between two reads
                 # of one round: a translation that splits a condition over several statements
                 # then sees the inputs change at the same point of the loop as its source
-                if quiet >= threshold and self.stack and self._poll_point():
-                    self.stack[-1].wait = Wait("poll", line=self._line_now())
+                if quiet >= threshold and stack and self._poll_point():
+                    stack[-1].wait = Wait("poll", line=self._line_now())
                     self.polling, self.poll_changes = True, self.changes - self.var_changes
                     self.poll_vars = dict(self.vars)
                     return
