@@ -76,20 +76,32 @@ def pytest_runtest_makereport(item, call):
 # take longest go first (SLOW_FIRST), so that the last units handed out are short and no worker is
 # left running a long test while the other has nothing to do.
 
-SPREAD = frozenset({
+SPREAD = frozenset({  # paths relative to tests/
     "test_codegen_random.py",  # one random program per test; a print loop's (mcode seed 20) is most of it
     "test_cross.py",  # every sample and golden program to every other dialect, each validated
+    "link/test_device_sim.py",  # each sample on a virtual device over a socket: 20 tests of up to 23 s
 })
 # Test-id prefixes (relative to tests/), slowest first; the rest keep their collected order after
-# them. From docs/PERFORMANCE.md ("The suite's slowest tests"); refine it from a `--durations=0` run.
+# them. Measured (wall seconds of the unit, `--durations`, 2 workers, load 3-8, 2026-11-27 12:17):
+# refine it from a `--durations=0` run when a slow test is added.
 SLOW_FIRST = (
-    "editors/test_vscode_codeserver.py",  # a real VS Code in a browser, started once for the file
-    "lint/test_precommit.py",  # pre-commit builds the hook's environment (pip) once for the file
-    "test_codegen_random.py::test_random_programs_validate_or_refuse_at_a_line[mcode-20]",  # 48 runs of 200,000 steps
-    "editors/test_neovim_completion.py",
-    "test_cross.py::test_cross_compilation_is_right_or_refuses[x150-mcode-nesting",  # 65,536 moves, validated
-    "test_limits.py",
-    "lsp/",  # language-server sessions, one per file
+    "lint/test_precommit.py",  # 213 s: pre-commit builds the hook's environment (pip), once for the file
+    "x150/test_x150_generated.py",  # 187 s: 60 generated programs compiled twice, each validated
+    "arcus/test_structure.py",  # 134 s: random programs through the structurer, each validated
+    "editors/test_vscode_codeserver.py",  # a real VS Code in a browser, started once for the file (CI)
+    "test_codegen_random.py::test_random_programs_validate_or_refuse_at_a_line[mcode-20]",  # 69 s
+    "link/test_device_sim.py",  # 250 s in 20 tests (SPREAD)
+    "test_limits.py",  # 54 s
+    "test_no_cycles.py",  # 49 s
+    "lsp/test_formatting_equals_fmt.py",  # 48 s
+    "opt/test_levels.py",  # 46 s
+    "lsp/test_features.py",  # 42 s
+    "lsp/test_neovim.py",  # 40 s
+    "lsp/test_fuzz_features.py",  # 40 s
+    "ir/test_ir_read.py",  # 34 s
+    "test_cross.py::test_cross_compilation_is_right_or_refuses[x150-mcode-nesting",  # 14 s and 11 s
+    "editors/test_neovim_completion.py",  # 28 s
+    "opt/test_random.py",  # 27 s
 )
 
 
@@ -113,8 +125,8 @@ def pytest_collection_modifyitems(config, items) -> None:
 
 def work_unit(nodeid: str) -> str:
     """The unit of work a test belongs to: its file, or the test itself in a SPREAD file."""
-    path = nodeid.split("::", 1)[0]
-    return nodeid if Path(path).name in SPREAD else path
+    path = nodeid.split("::", 1)[0]  # relative to the root directory, where pyproject.toml is
+    return nodeid if path.removeprefix("tests/") in SPREAD else path
 
 
 def pytest_xdist_make_scheduler(config, log):

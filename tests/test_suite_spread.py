@@ -16,6 +16,7 @@ def test_a_spread_file_is_one_unit_per_test_and_any_other_file_one_unit() -> Non
         "tests/test_codegen_random.py::test_x[mcode-20]"
     assert conftest.work_unit("tests/lsp/test_features.py::test_hover") == "tests/lsp/test_features.py"
     assert conftest.work_unit("tests/lsp/test_features.py::Case::test_hover[a::b]") == "tests/lsp/test_features.py"
+    assert conftest.work_unit("tests/link/test_device_sim.py::test_x[a.prg]") == "tests/link/test_device_sim.py::test_x[a.prg]"
 
 
 def test_every_spread_file_and_slow_entry_exists() -> None:
