@@ -35,6 +35,9 @@ class FileResult:
     optimization: Any = None  # opt.OptStats of the compilation
     profile: Profile | None = None  # the profile the file was checked with (compiler/selection.py)
     profile_source: str = ""  # why that one: "command line", "directive", "per-file-profiles", ...
+    # the written program was validated against its source (`verify_translation` found no
+    # difference): a caller that would validate it again with the same arguments need not
+    validated: bool = False
 
     @property
     def has_errors(self) -> bool:
@@ -432,6 +435,7 @@ def verify_translation(result: FileResult, target_profile: Profile, diags: Diagn
     problem = check_translation(result.path, result.dialect, result.analysis.module, result.listing.text,
                                 result.target, target_profile, scenarios, source_profile)
     if not problem:
+        result.validated = True
         return
     found = re.match(r"line (\d+), ", problem)
     line = int(found.group(1)) if found else 1

@@ -238,6 +238,10 @@ class Simulator:
         for axis in (profile.axes if profile is not None else ()):
             self.machine.axis(axis)
         self.default_type = module.default_type or ir.VarType.FLOAT64
+        # a variable's type and whether a printed item reads a float, by name and by item: the
+        # module does not change while it runs, and a print loop asks millions of times (issue 26)
+        self.types: dict[str, ir.VarType] = {}
+        self.float_items: dict[int, bool] = {}
         self.vars: dict[str, values.Number] = {}
         self.trace = Trace(module.path, module.dialect, module.steps_per_rev)
         self.diags = Diagnostics(self.trace.diagnostics)
@@ -556,8 +560,10 @@ class Simulator:
         threshold = POLL_RECHECK if polling else self.options.spin
         if not polling:
             self._quiet_begins()
-        while self.stack:
-            frame = self.stack[-1]
+        # read once: none of them is replaced while the program runs (a print loop makes 200,000 steps)
+        stack, trace, max_steps, skip_rounds = self.stack, self.trace, self.options.max_steps, self.options.skip_rounds
+        while stack:
+            frame = stack[-1]
             if frame.wait is not None:
                 if not self._wait_over(frame.wait):
                     return
@@ -569,21 +575,21 @@ class Simulator:
                 ops = frame.block.ops
                 self.observer("step", frame, ops[frame.index] if frame.index < len(ops) else frame.block.terminator)
             self.went_back = False
-            self.trace.steps += 1
-            if not self.trace.steps % CANCEL_EVERY:
+            trace.steps += 1
+            if not trace.steps % CANCEL_EVERY:
                 cancel.checkpoint()  # the editor's run of a stale version stops (lsp/cycles.py)
             if polling:
                 self.poll_steps += 1
-            if self.trace.steps - self.poll_steps > self.options.max_steps:
-                self.trace.steps -= 1
-                raise Stop("step-limit", f"the step limit of {self.options.max_steps} operations was reached "
+            if trace.steps - self.poll_steps > max_steps:
+                trace.steps -= 1
+                raise Stop("step-limit", f"the step limit of {max_steps} operations was reached "
                                          f"(at line {self._line_now()})")
             ops = frame.block.ops
             if frame.index < len(ops):
                 op = ops[frame.index]
                 frame.index += 1
                 try:
-                    wait = self._op(op, frame)
+                    wait = OP_METHODS[type(op)](self, op)  # `_op`, without a call more per operation
                 except RuntimeFault as fault:
                     self._fault(fault, op)
                     wait = None
@@ -598,7 +604,7 @@ class Simulator:
                     self._terminator(frame)
                 except RuntimeFault as fault:
                     self._fault(fault, frame.block.terminator)
-                if self.went_back and self.options.skip_rounds and self.stack and self.stack[-1] is frame:
+                if self.went_back and skip_rounds and stack and stack[-1] is frame:
                     self._went_round(frame)
             if self.handlers:
                 self._check_when()
@@ -629,8 +635,8 @@ class Simulator:
                 # a polling loop pauses where it goes round (a jump back), never between two reads
                 # of one round: a translation that splits a condition over several statements
                 # then sees the inputs change at the same point of the loop as its source
-                if quiet >= threshold and self.stack and self._poll_point():
-                    self.stack[-1].wait = Wait("poll", line=self._line_now())
+                if quiet >= threshold and stack and self._poll_point():
+                    stack[-1].wait = Wait("poll", line=self._line_now())
                     self.polling, self.poll_changes = True, self.changes - self.var_changes
                     self.poll_vars = dict(self.vars)
                     return
@@ -1038,8 +1044,11 @@ class Simulator:
 
 
     def _type(self, name: str) -> ir.VarType:
-        declared = self.module.type_of(name)  # the lowering declares variables and registers
-        return declared if declared is not None else self.default_type
+        found = self.types.get(name)
+        if found is None:
+            declared = self.module.type_of(name)  # the lowering declares variables and registers
+            found = self.types[name] = declared if declared is not None else self.default_type
+        return found
 
     def _axis(self, name: str) -> Axis:
         found = self.machine.axes.get(name)
@@ -1761,11 +1770,16 @@ class Simulator:
 
     def _reads_float(self, item) -> bool:
         """Whether a printed item reads a float64 variable or a float setting: then it prints in
-        the product's float format (MCode PF, lexium-mcode.txt L4744-L4777)."""
-        return any(isinstance(node, ir.Var) and self._type(node.name) is ir.VarType.FLOAT64
-                   or isinstance(node, ir.Status) and getattr(ir_names.SETTINGS.get(node.meaning), "value_type",
-                                                              "") == "float"
-                   for node in ir.walk_expr(item))
+        the product's float format (MCode PF, lexium-mcode.txt L4744-L4777). Asked once per item
+        (`float_items`: the item is the module's, alive as long as the run)."""
+        found = self.float_items.get(id(item))
+        if found is None:
+            found = self.float_items[id(item)] = any(
+                isinstance(node, ir.Var) and self._type(node.name) is ir.VarType.FLOAT64
+                or isinstance(node, ir.Status) and getattr(ir_names.SETTINGS.get(node.meaning), "value_type",
+                                                           "") == "float"
+                for node in ir.walk_expr(item))
+        return found
 
     def _float_format(self):
         """The float format in force: the `float_format` setting the run set, else the product's

@@ -647,6 +647,8 @@ def _axis_map(a: Trace, b: Trace) -> dict[str, str]:
             if event.kind == "drive":
                 continue  # an enable (Arcus EO2) of an axis a one-axis target leaves out does not pair it
             data = event.data
+            if "to" not in data and "axis" not in data and "axes" not in data:
+                continue  # names no axis (a print, an output): a print loop makes 200,000 of them
             names = list(data.get("to", ())) + ([data["axis"]] if "axis" in data else []) + list(data.get("axes", ()))
             seen += [n for n in names if n not in seen]
         return seen + [n for n in trace.axes if n not in seen]
