@@ -38,6 +38,10 @@ local ok, err = pcall(function()
     -- Format the buffer as `:lua vim.lsp.buf.formatting_sync()` does (the server answers from its
     -- first finished analysis: ask until the edits come), apply the edits and write the file.
     local client = vim.lsp.get_client_by_id(client_id)
+    -- a request sent before the server has answered `initialize` waits out its whole timeout: ask
+    -- once the client is up, as a user formatting an open file does
+    assert(vim.wait(60000, function() return client.initialized end, 20),
+           "the mcc language server did not initialise within 60 s")
     local params = { textDocument = { uri = vim.uri_from_bufnr(bufnr) },
                      options = { tabSize = 4, insertSpaces = true } }
     local edits = nil
