@@ -79,7 +79,9 @@ def pytest_runtest_makereport(item, call):
 SPREAD = frozenset({  # paths relative to tests/
     "test_codegen_random.py",  # one random program per test; a print loop's (mcode seed 20) is most of it
     "test_cross.py",  # every sample and golden program to every other dialect, each validated
-    "link/test_device_sim.py",  # each sample on a virtual device over a socket: 20 tests of up to 23 s
+    "link/test_device_sim.py",  # each sample on a virtual device over a socket: 20 tests of up to 7 s
+    "x150/test_x150_generated.py",  # 60 generated programs in 3 shards, each compiled twice and validated
+    "arcus/test_structure.py",  # 200 random programs in 4 shards through the structurer, each validated
 })
 # Test-id prefixes (relative to tests/), slowest first; the rest keep their collected order after
 # them. Measured (wall seconds of the unit, `--durations`, 2 workers, load 3-8, 2026-11-27 12:17):
