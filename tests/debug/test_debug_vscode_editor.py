@@ -114,11 +114,16 @@ def run_session(page, url: str, workspace: Path) -> None:
     box.fill("loop.mxt")
     page.locator(".quick-input-list .monaco-list-row", has_text="loop.mxt").first.click(timeout=WAIT)
     page.locator(".tab.active", has_text="loop.mxt").wait_for(timeout=WAIT)
+    # the quick open must have closed, or the go-to-line text goes into it as it closes
+    box.wait_for(state="hidden", timeout=WAIT)
     page.keyboard.press("Control+G")
     box.wait_for(state="visible", timeout=WAIT)
     box.fill(":10:1")
     page.keyboard.press("Enter")
-    page.locator(".monaco-editor .cursor").first.wait_for(timeout=WAIT)
+    # the status bar shows where the cursor went; the cursor itself blinks (hidden half the time)
+    # and stays hidden while another part of the window has the focus, so the editor is given it
+    page.locator(".statusbar-item", has_text="Ln 10, Col 1").first.wait_for(timeout=WAIT)
+    page.locator(".monaco-editor textarea.inputarea").first.focus()
     page.keyboard.press("F9")  # a breakpoint on the loop's line
     page.locator(".codicon-debug-breakpoint").first.wait_for(timeout=WAIT)
     page.keyboard.press("F5")
