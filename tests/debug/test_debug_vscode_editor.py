@@ -119,6 +119,8 @@ def run_session(page, url: str, workspace: Path) -> None:
     page.keyboard.press("Control+G")
     box.wait_for(state="visible", timeout=WAIT)
     box.fill(":10:1")
+    # Enter only once the widget has read the text (it offers to go to line 10), or it goes nowhere
+    page.locator(".quick-input-widget", has_text="line 10").first.wait_for(timeout=WAIT)
     page.keyboard.press("Enter")
     # the status bar shows where the cursor went; the cursor itself blinks (hidden half the time)
     # and stays hidden while another part of the window has the focus, so the editor is given it

@@ -129,12 +129,18 @@ class Editor:
 
     def goto(self, line: int, column: int) -> None:
         self.page.keyboard.press("Escape")
-        self.page.keyboard.press("Control+G")
         box = self.page.locator(".quick-input-widget input")
+        # a quick input still closing would take the line text (seen under load)
+        box.wait_for(state="hidden", timeout=WAIT)
+        self.page.keyboard.press("Control+G")
         box.wait_for(state="visible", timeout=WAIT)
         box.fill(f":{line}:{column}")
+        # Enter only once the widget has read the text (it offers to go to the line), or it goes nowhere
+        self.page.locator(".quick-input-widget", has_text=f"line {line}").first.wait_for(timeout=WAIT)
         self.page.keyboard.press("Enter")
-        self.page.locator(".monaco-editor .cursor").first.wait_for(timeout=WAIT)
+        # the status bar shows where the cursor went (the cursor itself blinks: hidden half the time)
+        self.page.locator(".statusbar-item", has_text=f"Ln {line}, Col {column}").first.wait_for(timeout=WAIT)
+        self.page.locator(".monaco-editor textarea.inputarea").first.focus()
 
     def problems(self, code: str, line: int) -> str:
         """The Problems panel's row for CODE on LINE, waited for (the server analyses on open)."""
