@@ -59,17 +59,25 @@ def solve(ordering: Ordering | None, succ: Succ, starts: Mapping[int, S],
     reaches a node by several paths. States are compared with `!=`, so they must be values
     (frozensets, dictionaries of constants) and the lattice of finite height. Every node reached
     must be in `ordering` (None: first in, first out)."""
-    if ordering is None:
-        return _solve_fifo(succ, starts, transfer, join, edge)
-    rank, nodes = ordering.rank, ordering.nodes
     states: dict[int, S] = dict(starts)
     get = states.get
-    queue = [rank[node] for node in starts]
-    heapq.heapify(queue)
     queued = set(starts)
-    push, pop, discard, add = heapq.heappush, heapq.heappop, queued.discard, queued.add
-    while queue:
-        node = nodes[pop(queue)]
+    discard, add = queued.discard, queued.add
+    if ordering is None:  # first in, first out
+        fifo = deque(starts)
+        put, take = fifo.append, fifo.popleft
+    else:  # the lowest rank first: a node after the nodes before it in the ordering
+        rank, nodes = ordering.rank, ordering.nodes
+        heap = [rank[node] for node in starts]
+        heapq.heapify(heap)
+
+        def put(node: int) -> None:
+            heapq.heappush(heap, rank[node])
+
+        def take() -> int:
+            return nodes[heapq.heappop(heap)]
+    while queued:
+        node = take()
         discard(node)
         state = transfer(node, states[node])
         for nxt in succ[node]:
@@ -82,31 +90,5 @@ def solve(ordering: Ordering | None, succ: Succ, starts: Mapping[int, S],
             states[nxt] = out
             if nxt not in queued:
                 add(nxt)
-                push(queue, rank[nxt])
-    return states
-
-
-def _solve_fifo(succ: Succ, starts: Mapping[int, S], transfer: Callable[[int, S], S], join: Callable[[S, S], S],
-                edge: Callable[[S, int, int], S] | None) -> dict[int, S]:
-    """`solve` with a first-in, first-out worklist."""
-    states: dict[int, S] = dict(starts)
-    get = states.get
-    queue = deque(starts)
-    queued = set(starts)
-    append, popleft, discard, add = queue.append, queue.popleft, queued.discard, queued.add
-    while queue:
-        node = popleft()
-        discard(node)
-        state = transfer(node, states[node])
-        for nxt in succ[node]:
-            out = edge(state, node, nxt) if edge is not None else state
-            old = get(nxt)
-            if old is not None:
-                out = join(old, out)
-                if out == old:
-                    continue
-            states[nxt] = out
-            if nxt not in queued:
-                add(nxt)
-                append(nxt)
+                put(nxt)
     return states
