@@ -4,36 +4,26 @@ stays refused names its line and what to do."""
 
 from __future__ import annotations
 
+import conversion
 from mcc.compiler import driver, profiles
 from mcc.sim.interpreter import simulate
 from mcc.sim.scenario import Scenario
 from mcc.sim.verify import check_translation
 
-EXT = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}
+body = conversion.body
 
 
 def convert(text: str, target: str, source: str = "arcus"):
-    result = driver.compile_file(f"fixture{EXT[source]}", source, target, text=text)
-    errors = [(d.code, d.span.line if d.span else None, d.message) for d in result.diagnostics
-              if d.severity.value == "error"]
-    return result, errors
-
-
-def body(text: str, target: str) -> list[str]:
-    comment = ";" if target in ("x150", "arcus") else "'"
-    return [line for line in text.splitlines() if line.strip() and not line.startswith(comment)]
+    return conversion.convert(text, source, target)
 
 
 def written(text: str, target: str, source: str = "arcus") -> list[str]:
-    result, errors = convert(text, target, source)
-    assert not errors, errors
-    again = driver.compile_file(f"out{EXT[target]}", target, text=result.listing.text)
-    assert not again.has_errors, [d.message for d in again.diagnostics if d.severity.value == "error"]
-    return body(result.listing.text, target)
+    """The statements written (conversion.body of the checked output)."""
+    return body(conversion.written(text, source, target), target)
 
 
 def outputs_set(text: str, dialect: str, profile: str) -> dict[int, int]:
-    module = driver.check_file(f"o{EXT[dialect]}", dialect, None, text).analysis.module
+    module = driver.check_file(f"o{conversion.extension(dialect)}", dialect, None, text).analysis.module
     trace = simulate(module, Scenario(), None, profiles.load(profile))
     return {e.data["output"]: e.data["value"] for e in trace.events if e.kind == "output"}
 

@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import pytest
 
+import conversion
+
 from mcc.backends import drive_setup
-from mcc.compiler import config, driver
+from mcc.compiler import config, dialects, driver
 from mcc.compiler.ir_names import SETTINGS
 
-EXT = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}
-COMMENT = {"mcode": "'", "x150": ";", "arcus": ";"}
 
 # RC=75 and HC=10 as in lexium-mcode.txt L5147 (RC=75) and L3077-L3090 (HC 0-100 %); VI=400 so
 # that X150, which starts moves from standstill, ends them within 1 ms of the source (X216, L662-L666)
@@ -41,12 +41,12 @@ def test_currents_are_left_out_with_a_warning_and_listed(target: str) -> None:
     assert by_code(result, "G051") == [1, 2]
     assert all(d.severity.value == "warning" for d in result.diagnostics if d.code == "G051")
     text = result.listing.text
-    assert f"{COMMENT[target]}   line 1: run_current" in text
-    assert f"{COMMENT[target]}   line 2: hold_current" in text
-    statements = [line for line in text.splitlines() if not line.startswith(COMMENT[target])]
+    assert f"{dialects.get(target).comment}   line 1: run_current" in text
+    assert f"{dialects.get(target).comment}   line 2: hold_current" in text
+    statements = [line for line in text.splitlines() if not line.startswith(dialects.get(target).comment)]
     assert not any("75" in line or "RC" in line for line in statements), statements
     # the output checks clean in its own dialect
-    again = driver.compile_file(f"out{EXT[target]}", target, text=text)
+    again = driver.compile_file(f"out{conversion.extension(target)}", target, text=text)
     assert not again.has_errors, [d.message for d in again.diagnostics]
 
 

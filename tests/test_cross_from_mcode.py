@@ -4,31 +4,17 @@ verifies by default), so a program written behaves like its source."""
 
 from __future__ import annotations
 
-from mcc.compiler import driver
+import conversion
 
-EXT = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}
-COMMENT = {"mcode": "'", "x150": ";", "arcus": ";"}
+body = conversion.body
 
 
 def convert(text: str, target: str, source: str = "mcode"):
-    result = driver.compile_file(f"fixture{EXT[source]}", source, target, text=text)
-    errors = [(d.code, d.span.line if d.span else None, d.message) for d in result.diagnostics
-              if d.severity.value == "error"]
-    return result, errors
+    return conversion.convert(text, source, target)
 
 
 def written(text: str, target: str, source: str = "mcode") -> str:
-    result, errors = convert(text, target, source)
-    assert not errors, errors
-    out = result.listing.text
-    again = driver.compile_file(f"out{EXT[target]}", target, text=out)
-    assert not again.has_errors, [d.message for d in again.diagnostics if d.severity.value == "error"]
-    return out
-
-
-def body(text: str, target: str) -> list[str]:
-    """The statements written, without the conversion header's comments."""
-    return [line for line in text.splitlines() if line.strip() and not line.startswith(COMMENT[target])]
+    return conversion.written(text, source, target)
 
 
 # -- a slew at a velocity into Arcus ----------------------------------------------------------------

@@ -6,31 +6,10 @@ program written is one that behaves like its source."""
 
 from __future__ import annotations
 
+import conversion
 from mcc.compiler import driver
 
-EXT = {"mcode": ".mxt", "x150": ".x150", "arcus": ".prg"}
-
-
-def convert(text: str, source: str, target: str):
-    result = driver.compile_file(f"fixture{EXT[source]}", source, target, text=text)
-    errors = [(d.code, d.span.line if d.span else None, d.message) for d in result.diagnostics
-              if d.severity.value == "error"]
-    return result, errors
-
-
-def written(text: str, source: str, target: str) -> str:
-    result, errors = convert(text, source, target)
-    assert not errors, errors
-    out = result.listing.text
-    again = driver.compile_file(f"out{EXT[target]}", target, text=out)
-    assert not again.has_errors, [d.message for d in again.diagnostics if d.severity.value == "error"]
-    return out
-
-
-def body(text: str, target: str) -> list[str]:
-    """The statements written, without the conversion header's comments."""
-    comment = ";" if target in ("x150", "arcus") else "'"
-    return [line for line in text.splitlines() if line.strip() and not line.startswith(comment)]
+convert, written, body = conversion.convert, conversion.written, conversion.body
 
 
 # -- MCode IS set-up on targets with inputs of their own ---------------------------------------------
