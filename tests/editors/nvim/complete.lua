@@ -64,6 +64,13 @@ local ok, err = pcall(function()
                                            root_dir = vim.fn.getcwd() })
   assert(client_id, "the mcc language server did not start")
   vim.lsp.buf_attach_client(bufnr, client_id)
+  -- a request sent before the server has answered `initialize` is refused at once ("not
+  -- supported"), and buf_request_sync then waits out its whole timeout: wait for the handshake
+  local started = vim.wait(60000, function()
+    local client = vim.lsp.get_client_by_id(client_id)
+    return client ~= nil and client.initialized == true
+  end, 20)
+  assert(started, "the mcc language server did not answer initialize within 60 s")
   -- completion answers from the server's latest finished analysis: wait until it has one
   local params = { uri = vim.uri_from_bufnr(bufnr) }
   local ready = false
