@@ -8,6 +8,9 @@ fix), the IR's text (`mcc ir`) and a full dump of the module (every node and eve
 offsets, so a constant kept from another command shows), and the compile at O0 and at the default
 level (O1): its diagnostics and the listing with its source map. The compile is not validated in
 the simulator (`verify=False`): the verdict depends only on the IR and the listing, dumped here.
+It also checks, for each input, that the syntax tree built with the copies of earlier readings
+(`CommandReader.read_again`) equals, node for node and span for span, the one built by reading
+every token afresh, with the same diagnostics and no node shared between two commands.
 
 Inputs: the benchmark's generated text at several sizes and seeds, every `.x150` file of the
 repository, the programs of tests/x150/test_x150_generated.py's `Program` (addressed "1", "12" and
@@ -30,6 +33,9 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from bench_x150 import generate  # noqa: E402
 from mcc.compiler import driver, ir_print  # noqa: E402
+from mcc.compiler.diagnostics import Diagnostics  # noqa: E402
+from mcc.compiler.span import SourceFile  # noqa: E402
+from mcc.compiler.x150 import parser, tokens  # noqa: E402
 
 MUTATIONS = ["1MPA", "1MPI", "1MN", "1MC", "MPA", "MPI", "1D4000", "D-200", "1D(VAR2)", "1H", "1H+", "H-",
              "1G", "G", "1XR1", "1XR2", "1XG3", "1V3", "1A7", "1MQ", "1GH5", "2MPA", "2G", "1XRT"]
@@ -93,6 +99,30 @@ def outputs(name: str, text: str, out: list[str]) -> None:
             out.append(compiled.listing.render())
 
 
+def same_readings(name: str, text: str) -> None:
+    """The tree with copied readings is the tree read afresh (see the module's docstring)."""
+    diags = Diagnostics()
+    copied = parser.parse(SourceFile(name, text), diags)
+    again = tokens.CommandReader.read_again
+    tokens.CommandReader.read_again = lambda self, token, base, spans, readings: self.read_token(token, base, spans)
+    try:
+        fresh_diags = Diagnostics()
+        fresh = parser.parse(SourceFile(name, text), fresh_diags)
+    finally:
+        tokens.CommandReader.read_again = again
+    if copied.lines != fresh.lines:
+        raise SystemExit(f"{name}: the copied readings differ from a fresh reading")
+    if [(d.code, d.span, d.message) for d in diags.items] != [(d.code, d.span, d.message) for d in fresh_diags.items]:
+        raise SystemExit(f"{name}: the diagnostics of the copied readings differ")
+    seen: set[int] = set()
+    for command in copied.commands():
+        nodes = [command, command.span, command.arg] + ([command.arg.span] if command.arg is not None else [])
+        for node in nodes:
+            if node is not None and id(node) in seen:
+                raise SystemExit(f"{name}: two commands share a node ({node!r})")
+        seen.update(id(node) for node in nodes if node is not None)
+
+
 def mutate(text: str, rng: random.Random) -> str:
     lines = text.splitlines()
     for _ in range(rng.randint(1, 6)):
@@ -132,6 +162,7 @@ def main() -> None:
     out: list[str] = []
     count = 0
     for name, text in inputs(opts.seeds):
+        same_readings(name, text)
         outputs(name, text, out)
         count += 1
     pathlib.Path(opts.out).write_text("\n".join(out) + "\n", encoding="utf-8")
