@@ -167,6 +167,7 @@ def parse(original: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
     # One LineSpans for every line, moved to each in turn: what is read from a line keeps its own
     # spans, not this object (making one per line cost about 2 % of a check).
     spans = LineSpans(path, 0, 0)
+    readings: dict = {}  # token text -> its first reading, copied for the next ones (`read_again`)
     for number, tokens, comment in raw_lines:
         if isinstance(tokens, st.Line):  # a line that failed, already built
             lines.append(tokens)
@@ -174,7 +175,7 @@ def parse(original: SourceFile, diags: Diagnostics) -> st.SyntaxTree:
         if tokens or comment is not None:
             spans.line = number
             spans.line_start = starts[number - 1]
-            line = st.Line(number, read_commands(reader, spans, tokens, diags) if tokens else [])
+            line = st.Line(number, read_commands(reader, spans, tokens, diags, readings) if tokens else [])
             if comment is not None:
                 line.comment = st.Comment(comment[0], spans.at(comment[1], comment[2]))
         else:
@@ -228,16 +229,17 @@ def _bad_line(source: SourceFile, reader: CommandReader, number: int, text: str,
         if match.group().startswith(";"):
             break
         pieces.append((match.group(), line_start + match.start()))
-    line.commands = read_commands(reader, spans, pieces, diags)
+    line.commands = read_commands(reader, spans, pieces, diags, {})
     return line
 
 
 def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[str, int]],
-                  diags: Diagnostics) -> list[st.Command]:
-    """Read the command tokens of one line, re-joining an argument written after a space."""
+                  diags: Diagnostics, readings: dict) -> list[st.Command]:
+    """Read the command tokens of one line, re-joining an argument written after a space.
+    `readings`: the tokens read so far in the file (`CommandReader.read_again`)."""
     count = len(pieces)
     if count == 1:  # most lines: one command, which takes no next word
-        command = reader.read_token(pieces[0][0], pieces[0][1], spans)
+        command = reader.read_again(pieces[0][0], pieces[0][1], spans, readings)
         for problem in command.problems:
             diags.add(problem.code, problem.span, problem.message)
         return [command]
@@ -245,11 +247,11 @@ def read_commands(reader: CommandReader, spans: LineSpans, pieces: list[tuple[st
     index = 0
     while index < count:
         text, start = pieces[index]
-        command = reader.read_token(text, start, spans)
+        command = reader.read_again(text, start, spans, readings)
         # A command with a value (most: `arg` set, and not a bare VARn) takes no next word.
         if index + 1 < count and (command.arg is None or type(command.arg) is st.VarStatement) \
                 and _may_take_next(command):
-            following = reader.read_token(*pieces[index + 1], spans)
+            following = reader.read_again(*pieces[index + 1], spans, readings)
             joined = _rejoin(reader, spans, command, following, pieces[index], pieces[index + 1])
             if joined is not None:
                 gap = spans.at(start + len(text), pieces[index + 1][1])

@@ -168,6 +168,37 @@ class CommandReader:
         return self.read_command(st.Command(text, Span(path, line, column, line, column + size, base, base + size)),
                                  text, sub, True)
 
+    def read_again(self, text: str, base: int, spans: LineSpans, readings: dict) -> st.Command:
+        """`read_token`, for a text read before in the same file: a copy of the first reading
+        with its spans moved to this place (`Reading`). A program repeats its commands (`1G`,
+        `1D4000`): the catalog match, the number and the argument's structure are worked out once
+        per distinct text, and each further occurrence costs only its new nodes and spans. The
+        result is the one `read_token` gives, field for field: a token's reading depends on its
+        text only, its spans on where it stands (all on one line: a token does not cross a line
+        end). Not for a token with problems, or one that is host data (their spans are given,
+        not lazy): those are read each time, as are texts seen once."""
+        found = readings.get(text)
+        if found is None:
+            cmd = self.read_token(text, base, spans)
+            readings[text] = Reading.of(cmd, base) or False
+            return cmd
+        if found is False:
+            return self.read_token(text, base, spans)
+        first = found.cmd
+        path = spans.path
+        line = spans.line
+        column = base - spans.line_start + 1
+        size = len(text)
+        cmd = st.Command(text, Span(path, line, column, line, column + size, base, base + size), first.address,
+                         first.address_chars, None, first.buffered, first.mnemonic, first.written,
+                         first.mnemonic_from, first.mnemonic_to, None, first.info)
+        arg = first.arg
+        if arg is not None:
+            arg = MOVERS[type(arg)](arg, path, line, column - found.column, base - found.base)
+            cmd.arg = arg
+            cmd.arg_span = arg.span
+        return cmd
+
     def read_command(self, cmd: st.Command, text: str, sub, lazy: bool) -> st.Command:
         first = text[0]
         if first == "!":
@@ -553,6 +584,103 @@ class CommandReader:
             end = number.end()
         return st.Comparison(left, rel.group(), right, sub(pos, end)), end
 
+
+class Reading:
+    """A token's first reading, kept to be copied for each later occurrence of the same text
+    (`CommandReader.read_again`): the command and where it was read (its first column and offset)."""
+
+    __slots__ = ("cmd", "column", "base")
+
+    def __init__(self, cmd: st.Command, column: int, base: int):
+        self.cmd = cmd
+        self.column = column
+        self.base = base
+
+    @staticmethod
+    def of(cmd: st.Command, base: int) -> "Reading | None":
+        """The reading to keep, or None when `cmd` is not copied but read again each time: it has
+        problems (reported with each occurrence), or spans that are not the token's lazy ones."""
+        if cmd.problems or cmd.host or cmd.given_address_span is not None or cmd.given_mnemonic_span is not None \
+                or (cmd.arg is not None and type(cmd.arg) not in MOVERS):
+            return None
+        return Reading(cmd, cmd.span.column, base)
+
+
+# Copies of an argument node with its spans moved by `chars` columns and `offset` characters to
+# `line` of `path` (a token's spans are all on its line). Lists are copied; the values in them are
+# numbers and strings, shared.
+def _moved(span: Span, path: str, line: int, chars: int, offset: int) -> Span:
+    return Span(path, line, span.column + chars, line, span.end_column + chars, span.start + offset, span.end + offset)
+
+
+def _move_number(arg: st.Number, path: str, line: int, chars: int, offset: int) -> st.Number:
+    span = arg.span
+    return st.Number(arg.text, arg.value, Span(path, line, span.column + chars, line, span.end_column + chars,
+                                                span.start + offset, span.end + offset))
+
+
+def _move_var(arg: st.VarRef, path: str, line: int, chars: int, offset: int) -> st.VarRef:
+    return st.VarRef(arg.number, _moved(arg.span, path, line, chars, offset))
+
+
+def _move_source(arg: st.Source, path: str, line: int, chars: int, offset: int) -> st.Source:
+    return st.Source(arg.name, _moved(arg.span, path, line, chars, offset))
+
+
+def _move_pattern(arg: st.Pattern, path: str, line: int, chars: int, offset: int) -> st.Pattern:
+    return st.Pattern(arg.bits, _moved(arg.span, path, line, chars, offset))
+
+
+def _move_io(arg: st.IoFunction, path: str, line: int, chars: int, offset: int) -> st.IoFunction:
+    return st.IoFunction(arg.index, arg.function, _moved(arg.span, path, line, chars, offset))
+
+
+def _move_text(arg: st.Text, path: str, line: int, chars: int, offset: int) -> st.Text:
+    return st.Text(arg.text, _moved(arg.span, path, line, chars, offset))
+
+
+def _move_fields(arg: st.Fields, path: str, line: int, chars: int, offset: int) -> st.Fields:
+    return st.Fields(list(arg.values), [_moved(span, path, line, chars, offset) for span in arg.spans], arg.tail,
+                     _moved(arg.span, path, line, chars, offset))
+
+
+def _move_chain(arg: st.Chain, path: str, line: int, chars: int, offset: int) -> st.Chain:
+    first = arg.first
+    return st.Chain(MOVERS[type(first)](first, path, line, chars, offset),
+                    [(op, MOVERS[type(operand)](operand, path, line, chars, offset)) for op, operand in arg.rest],
+                    _moved(arg.span, path, line, chars, offset))
+
+
+def _move_statement(arg: st.VarStatement, path: str, line: int, chars: int, offset: int) -> st.VarStatement:
+    value = arg.value
+    return st.VarStatement(_move_var(arg.var, path, line, chars, offset),
+                           None if value is None else _move_chain(value, path, line, chars, offset),
+                           _moved(arg.span, path, line, chars, offset))
+
+
+def _move_comparison(arg: st.Comparison, path: str, line: int, chars: int, offset: int) -> st.Comparison:
+    left, right = arg.left, arg.right
+    return st.Comparison(MOVERS[type(left)](left, path, line, chars, offset), arg.op,
+                         MOVERS[type(right)](right, path, line, chars, offset),
+                         _moved(arg.span, path, line, chars, offset))
+
+
+def _move_input(arg: st.InputTerm, path: str, line: int, chars: int, offset: int) -> st.InputTerm:
+    return st.InputTerm(_move_pattern(arg.pattern, path, line, chars, offset), arg.underscore,
+                        _moved(arg.span, path, line, chars, offset))
+
+
+def _move_condition(arg: st.Condition, path: str, line: int, chars: int, offset: int) -> st.Condition:
+    return st.Condition([MOVERS[type(term)](term, path, line, chars, offset) for term in arg.terms],
+                        list(arg.joins), _moved(arg.span, path, line, chars, offset))
+
+
+MOVERS: dict[type, Callable] = {
+    st.Number: _move_number, st.VarRef: _move_var, st.Source: _move_source, st.Pattern: _move_pattern,
+    st.IoFunction: _move_io, st.Text: _move_text, st.Fields: _move_fields, st.Chain: _move_chain,
+    st.VarStatement: _move_statement, st.Comparison: _move_comparison, st.InputTerm: _move_input,
+    st.Condition: _move_condition,
+}
 
 # The reader of each argument class (catalog `arg`); a class not listed takes no value. Plain
 # functions, not bound methods kept by the reader (a reference cycle: tests/test_no_cycles.py).
