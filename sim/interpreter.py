@@ -28,6 +28,7 @@ from mcc.sim import values
 from mcc.sim.machine import Axis, Machine, defaults
 from mcc.sim.motion import (INF, Limits, Motion, Path, plan, plan_brake, plan_creep, plan_seek, plan_slew,
                              plan_stop)
+from mcc.sim.repeats import Repeats
 from mcc.sim.scenario import Scenario
 from mcc.sim.trace import Event, Trace
 
@@ -562,6 +563,10 @@ class Simulator:
             self._quiet_begins()
         # read once: none of them is replaced while the program runs (a print loop makes 200,000 steps)
         stack, trace, max_steps, skip_rounds = self.stack, self.trace, self.options.max_steps, self.options.skip_rounds
+        # rounds that repeat at this instant are appended rather than run (sim/repeats.py), from
+        # `repeats_at` steps on; never under a debugger or single-stepping
+        repeats = Repeats(self) if skip_rounds and self.observer is None and self.options.commands is None else None
+        repeats_at = repeats.next_at if repeats is not None else INF
         while stack:
             frame = stack[-1]
             if frame.wait is not None:
@@ -640,6 +645,11 @@ class Simulator:
                     self.polling, self.poll_changes = True, self.changes - self.var_changes
                     self.poll_vars = dict(self.vars)
                     return
+            if self.went_back and trace.steps >= repeats_at:
+                moved_changes, moved_vars = repeats.at_jump_back(quiet, last_changes, vars_seen, round_states,
+                                                                 polling, threshold)
+                last_changes, vars_seen = last_changes + moved_changes, vars_seen + moved_vars
+                repeats_at = repeats.next_at
         self.polling = False
 
     def _quiet_begins(self) -> None:

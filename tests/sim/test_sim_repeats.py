@@ -1,0 +1,169 @@
+"""Rounds that repeat at one instant are appended to the trace instead of run, with the same result.
+
+A loop that prints (or homes on an active switch) over and over without waiting runs into the step
+limit: 200,000 operations of every validation run. Within one stretch of the run time does not pass,
+so when a jump back finds the simulator in exactly the state of an earlier one, every later round
+repeats the rounds between them (sim/repeats.py, docs/SIMULATOR.md "Time"). These tests hold the
+replay to the trace that running every round gives, field for field, on hand-written loops, on
+random loops (hypothesis) and on generated programs of every dialect; and to running far fewer
+operations. The delay-paced rounds that `_went_round` jumps over have their own tests
+(test_sim_polling_rounds.py); here that jump is turned off in both runs, so that the two runs
+differ only by the replay.
+"""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from mcc.compiler import driver, ir
+from mcc.sim import Options, verify
+from mcc.sim.interpreter import Simulator
+from mcc.sim.scenario import Scenario
+from sim_helpers import c, eq, inp, module, sub
+from sim_strategy import VARS, conds, exprs
+
+STEPS = 20_000
+
+
+@pytest.fixture(autouse=True)
+def every_delay_round_runs(monkeypatch):
+    monkeypatch.setattr(Simulator, "_went_round", lambda self, frame: None)
+
+
+def run(mod: ir.Module, scenario: Scenario | None, skip: bool, **options) -> Simulator:
+    options.setdefault("max_steps", STEPS)
+    sim = Simulator(mod, scenario or Scenario(), Options(skip_rounds=skip, **options))
+    sim.run()
+    return sim
+
+
+def seen(sim: Simulator) -> tuple:
+    """Everything a run leaves in its trace."""
+    t = sim.trace
+    return (t.stopped, t.reason, t.time, t.steps, t.variables, t.outputs, t.axes, t.prints, t.repeats_from,
+            t.cycle_marks, [(e.t, e.kind, e.line, e.data) for e in t.events],
+            [(d.code, d.message, d.span) for d in t.diagnostics], len(t.motion_log), t.points)
+
+
+def both(mod: ir.Module, scenario: Scenario | None = None, **options) -> Simulator:
+    fast, slow = run(mod, scenario, True, **options), run(mod, scenario, False, **options)
+    assert seen(fast) == seen(slow)
+    return fast
+
+
+def counter_loop() -> ir.Module:
+    """Print V1, count it 0, 1, 2, 0, ... in a subroutine, for ever, at time 0 (as the print loop
+    of tests/codegen_programs.py seed 20 does, whose counter the subroutine resets)."""
+    count = ir.Assign(ir.Var("V1"), ir.BinOp("+", ir.Var("V1"), c(1)))
+    return module(
+        ("loop", [ir.Print((ir.Text("v="), ir.Var("V1"))), ir.Call("S")],
+         ir.Branch(ir.Compare("<", ir.Var("V1"), c(3)), "loop", "reset")),
+        ("reset", [ir.Assign(ir.Var("V1"), c(0)), ir.SetOutput(1, c(1))], ir.Jump("loop")),
+        routines=[sub("S", [count])], variables={"V1": ir.VarType.INT32})
+
+
+def test_a_print_loop_at_one_instant_is_replayed_with_the_trace_of_running_it():
+    fast = both(counter_loop())
+    assert fast.trace.stopped == "step-limit" and fast.trace.time == 0.0
+    assert len(fast.trace.prints) > 2000
+    assert fast.trace.steps - fast.skipped < 6000  # the stretch before the first look, and the last rounds
+
+
+def test_the_step_limit_stops_a_replayed_run_at_the_same_operation():
+    """Whatever the limit, the last rounds run: the same operation stops the run, with its line."""
+    for limit in (4100, 4107, 9999, 50_001):
+        fast = both(counter_loop(), max_steps=limit)
+        assert fast.trace.steps == limit
+
+
+def test_a_loop_whose_counter_never_comes_back_is_run():
+    """`%L1 = %L1 - 1` until it is 0, from 0 (X150's `L` without a count): no state repeats, so
+    every round runs; the trace is the same either way."""
+    mod = module(
+        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
+         ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "done")),
+        ("done", [], ir.End()),
+        variables={"L": ir.VarType.INT32})
+    fast = both(mod)
+    assert fast.skipped == 0
+
+
+def test_rounds_that_wait_are_not_replayed():
+    """Time passes in each round (a delay): the state is never the same at one instant."""
+    mod = module(("loop", [ir.SetOutput(1, c(1)), ir.Delay(c(0.001, ir.Unit.S)), ir.SetOutput(1, c(0))],
+                  ir.Jump("loop")))
+    fast = both(mod, until=5.0)
+    assert fast.skipped == 0
+
+
+def test_an_input_read_each_round_at_one_instant_repeats():
+    """An input does not change while time stands still: a loop printing it repeats."""
+    mod = module(("loop", [ir.Print((ir.Text("i="), inp(1)))], ir.Branch(eq(inp(1), 5), "done", "loop")),
+                 ("done", [], ir.End()))
+    fast = both(mod, Scenario(inputs={1: 1}))
+    assert fast.skipped > 0
+
+
+def test_no_replay_under_a_debugger():
+    """A debugger's observer sees every operation run."""
+    sim = Simulator(counter_loop(), Scenario(), Options(max_steps=STEPS))
+    steps = []
+    sim.observer = lambda kind, frame, item, *rest: steps.append(kind)
+    sim.run()
+    assert sim.skipped == 0 and steps.count("step") == STEPS + 1  # (and the one the limit refuses)
+
+
+@st.composite
+def loops(draw):
+    """A main loop at one instant: random assignments, prints, outputs and calls of a subroutine
+    that changes the variables too, going round on a random condition or through a second block
+    that brings a variable back into a range (so that some states come back and some never do)."""
+    def body(size: int) -> list:
+        made = []
+        for _ in range(draw(st.integers(0, size))):
+            kind = draw(st.sampled_from(["assign", "assign", "print", "output", "call"]))
+            if kind == "assign":
+                made.append(ir.Assign(ir.Var(draw(st.sampled_from(VARS))), draw(exprs(depth=1))))
+            elif kind == "print":
+                made.append(ir.Print((ir.Text("v="), ir.Var(draw(st.sampled_from(VARS))))))
+            elif kind == "output":
+                made.append(ir.SetOutput(draw(st.integers(1, 3)), ir.BinOp("&", ir.Var(draw(st.sampled_from(VARS))),
+                                                                            c(1))))
+            else:
+                made.append(ir.Call("S"))
+        return made
+    var = draw(st.sampled_from(VARS))
+    wrap = ir.Assign(ir.Var(var), ir.BinOp("%", ir.Var(var), c(draw(st.integers(2, 7)))))
+    return module(
+        ("loop", body(5), ir.Branch(draw(conds()), "loop", "wrap")),
+        ("wrap", [wrap, *body(2)], ir.Jump("loop")),
+        routines=[sub("S", body(3))], variables={v: ir.VarType.INT32 for v in VARS})
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(loops())
+def test_random_loops_give_the_trace_of_running_every_round(mod):
+    both(mod, max_steps=12_000)
+
+
+EXTENSIONS = {"mcode": "mxt", "x150": "x150", "arcus": "prg"}
+
+
+@pytest.mark.parametrize("dialect, seed", [("mcode", 20), ("mcode", 3), ("arcus", 20), ("x150", 20)])
+def test_generated_programs_give_the_trace_of_running_every_round(dialect, seed):
+    """The random programs of tests/codegen_programs.py under every scenario validation runs them
+    in (mcode seed 20 is a print loop that never waits: replayed)."""
+    from codegen_programs import generate
+    from test_codegen_random import enabled
+
+    text = generate(dialect, seed, enabled(dialect)).text
+    result = driver.compile_file(f"g.{EXTENSIONS[dialect]}", dialect, text=text, opt_level="O0")
+    mod = result.analysis.module
+    replayed = 0
+    for scenario in verify.default_scenarios(mod):
+        options = verify.default_options(scenario)
+        fast = both(mod, scenario, until=options.until, max_steps=options.max_steps, samples=False)
+        replayed += fast.skipped > 0
+    assert replayed or (dialect, seed) != ("mcode", 20)
