@@ -277,23 +277,24 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
     shared = shared_outputs(source_profile, output_profile)
     known: dict[int, Trace] = {}
+    source_runs, output_runs = Runs(source, source_profile), Runs(output, output_profile)
     idle = sorted(set(inputs_seen(source)) | set(inputs_seen(output)))  # stated at the source's idle level
     if scenarios is None:
         lows = with_idle_levels(Scenario(inputs={n: 0 for n in inputs_read(source)}, name="inputs low"), source,
                                 source_profile, idle)
-        known[id(lows)] = simulate(source, lows, _copy(options or default_options(lows)), source_profile, checked=True)
+        known[id(lows)] = source_runs.run(lows, options or default_options(lows))
         scenarios = [lows] + default_scenarios(source, source_profile, known[id(lows)])[1:]
         scenarios += _analog_scenarios(source, source_profile, output_profile)
     for scenario in scenarios:
         if id(scenario) not in known:
             scenario = with_idle_levels(scenario, source, source_profile, idle)
         opts = options or default_options(scenario)
-        a = known.get(id(scenario)) or simulate(source, scenario, _copy(opts), source_profile, checked=True)
+        a = known.get(id(scenario)) or source_runs.run(scenario, opts)
         scenario_out = _analog_scaled(scenario, source_profile, output_profile)
-        b = simulate(output, scenario_out, _copy(opts), output_profile, checked=True)
+        b = output_runs.run(scenario_out, opts)
         moved = _translated(scenario_out, _axis_map(a, b), ratio)
         if moved is not scenario_out:  # the switches and positions of the output's axes, in its steps
-            b = simulate(output, moved, _copy(opts), output_profile, checked=True)
+            b = output_runs.run(moved, opts)
         runs = [_Run(source, scenario, source_profile, a, opts.max_steps),
                 _Run(output, moved, output_profile, b, opts.max_steps)]
         horizon = _same_horizon(runs, opts, tol, kinds)
@@ -466,6 +467,46 @@ def _stated_steps(module: ir.Module, other: ir.Module) -> ir.Module:
     if module.steps_per_rev or not other.steps_per_rev:
         return module
     return dataclasses.replace(module, steps_per_rev=other.steps_per_rev)
+
+
+class Runs:
+    """The runs of one module in one comparison, so that a scenario that cannot differ from an
+    earlier one before that run stopped is not simulated again.
+
+    A run is a deterministic function of the module and of what the scenario does up to the time
+    the run stopped: inputs, analog values, switches and incidents at the start, and its events and
+    incidents up to then (an input change at 5 s cannot matter to a run that stopped at 0.3 s). The
+    scenarios of a validation share their start and differ later (all inputs low, and each input
+    toggling after the program's first wait), so a program that stops, or loops at one instant up to
+    the step limit, before the first toggle has one run for all of them. A run that stopped
+    `waiting` is not reused: a later input change would have woken it."""
+
+    REUSED_STOPS = ("end", "error", "step-limit", "time-limit")
+
+    def __init__(self, module: ir.Module, profile) -> None:
+        self.module, self.profile = module, profile
+        self.done: list[tuple[Scenario, Options, Trace]] = []
+
+    def run(self, scenario: Scenario, options: Options) -> Trace:
+        for earlier, opts, trace in self.done:
+            if opts == options and trace.stopped in self.REUSED_STOPS and same_until(earlier, scenario, trace.time):
+                return trace
+        trace = simulate(self.module, scenario, _copy(options), self.profile, checked=True)
+        self.done.append((scenario, options, trace))
+        return trace
+
+
+def same_until(a: Scenario, b: Scenario, t: float) -> bool:
+    """Whether two scenarios do the same up to time `t` (inclusive): the same start, the same
+    events and incidents up to `t`, and none of either's others before it. Position-triggered
+    events (no time) count as early ones."""
+    if (a.inputs, a.analog, a.axes, a.until, a.capture) != (b.inputs, b.analog, b.axes, b.until, b.capture):
+        return False
+
+    def early(items) -> list:
+        return [item for item in items if item.at is None or item.at <= t]
+
+    return early(a.events) == early(b.events) and early(a.incidents) == early(b.incidents)
 
 
 def _copy(options: Options) -> Options:
