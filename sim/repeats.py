@@ -63,13 +63,27 @@ class Mark:
     vars_seen: int
 
 
-class _StatePickler(pickle.Pickler):
-    """Pickles the IR (operations, blocks, routines, conditions) by identity: the run never changes it."""
+def _ir_object(ident: int) -> None:
+    """Stands for an IR object in a pickled state (never called: the state is only compared)."""
 
-    def persistent_id(self, obj):
-        if type(obj).__module__ == IR_MODULE:
-            return id(obj)
-        return None
+
+def _by_identity(obj) -> tuple:
+    return _ir_object, (id(obj),)
+
+
+class _StatePickler(pickle.Pickler):
+    """Pickles the IR (operations, blocks, routines, conditions, its enums) by identity: the run
+    never changes it. Through the dispatch table, so that the other objects cost no Python call."""
+
+    dispatch_table = {}
+
+    @classmethod
+    def know_ir(cls) -> None:
+        if not cls.dispatch_table:
+            from mcc.compiler import ir
+
+            cls.dispatch_table = {kind: _by_identity for kind in vars(ir).values()
+                                  if isinstance(kind, type) and kind.__module__ == IR_MODULE}
 
 
 class Repeats:
@@ -77,7 +91,9 @@ class Repeats:
 
     def __init__(self, sim) -> None:
         self.sim = sim
-        self.seen: dict[bytes, Mark] = {}
+        # where each loop went round (its frames and variables, a cheap necessary condition of the
+        # same state): None the first time, then the whole state the second time, compared the third
+        self.places: dict[tuple, tuple[bytes, Mark] | None] = {}
         self.gap = AFTER
         self.next_at = sim.trace.steps + AFTER  # `_execute` calls `at_jump_back` from this step on
 
@@ -86,23 +102,27 @@ class Repeats:
         """Called where a loop went round, with `_execute`'s locals as the next step sees them.
         Answers how far `last_changes` and `vars_seen` move (0, 0 when nothing was replayed)."""
         sim = self.sim
+        place = (tuple((id(frame.block), frame.index) for frame in sim.stack), tuple(sim.vars.items()))
+        if place not in self.places:
+            if len(self.places) >= MARKS:  # a loop whose variables keep changing: look again later
+                self.places.clear()
+                self.gap *= 2
+                self.next_at = sim.trace.steps + self.gap
+            self.places[place] = None
+            return 0, 0
         key = self._state(quiet, last_changes, vars_seen, round_states, polling, threshold)
         if key is None:  # something in the state does not pickle: no replay in this stretch
             self.next_at = float("inf")
             return 0, 0
         mark = Mark(sim.trace.steps, tuple(getattr(sim, name) for name in COUNTERS),
                     tuple(len(getattr(sim.trace, name)) for name in TRACE_LISTS), last_changes, vars_seen)
-        earlier = self.seen.get(key)
-        if earlier is None:
-            if len(self.seen) >= MARKS:
-                self.seen.clear()
-                self.gap *= 2
-                self.next_at = sim.trace.steps + self.gap
-            self.seen[key] = mark
+        earlier = self.places[place]
+        if earlier is None or earlier[0] != key:
+            self.places[place] = (key, mark)
             return 0, 0
-        self.seen.clear()
+        self.places.clear()
         self.next_at = float("inf")  # the rounds left run normally, up to the step limit
-        return self._replay(earlier, mark)
+        return self._replay(earlier[1], mark)
 
     def _state(self, quiet, last_changes, vars_seen, round_states, polling, threshold) -> bytes | None:
         sim = self.sim
@@ -118,6 +138,7 @@ class Repeats:
                     sim.event_step - steps, quiet, last_changes - base, vars_seen - sim.var_changes, round_states,
                     polling, threshold)
         out = io.BytesIO()
+        _StatePickler.know_ir()
         try:
             _StatePickler(out, protocol=pickle.HIGHEST_PROTOCOL).dump((state, relative))
         except (pickle.PicklingError, TypeError, AttributeError, RecursionError):
