@@ -1187,13 +1187,15 @@ class Simulator:
         switch = self.scenario.switches(name).home
         self._event(op, "home", axis=name, method=op.method)
         limits = axis.limits(self.machine.shared)
+        # (Limits built field by field: dataclasses.replace costs a tenth of a homing loop's run)
         if op.speed is not None:  # a homing speed of its own, not the max speed
-            limits = dataclasses.replace(limits, maximum=abs(float(self._eval(op.speed))))
+            limits = Limits(limits.initial, abs(float(self._eval(op.speed))), limits.accel, limits.decel,
+                            limits.smooth)
         ramp = axis.home_accel  # the program's homing acceleration, else the operation's (0: at once)
         if ramp is None and op.accel is not None:
             ramp = abs(float(self._eval(op.accel)))
         if ramp is not None:
-            limits = dataclasses.replace(limits, accel=ramp, decel=ramp)
+            limits = Limits(limits.initial, limits.maximum, ramp, ramp, limits.smooth)
         creep = 0.0
         if op.creep:
             if op.creep_speed is not None:  # the product's final speed, unless the program set its own
