@@ -142,3 +142,23 @@ def pytest_xdist_make_scheduler(config, log):
             return work_unit(nodeid)
 
     return FileOrTestScheduling(config, log)
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _no_reconnect_pause_on_socket_ports():
+    """pyserial's socket:// port sleeps 0.3 s when it closes ("in case of quick reconnects, give
+    the server some time"), for network serial servers slow to accept again. The virtual devices
+    the link tests talk to (tests/link/linkhelpers.py, in this process) accept at once, and a test
+    of a download closes its port up to twenty times: 6 s of sleep in one test. The pause is skipped
+    here; mcc itself keeps pyserial's behaviour with real servers."""
+    try:
+        from serial.urlhandler import protocol_socket
+    except ImportError:
+        yield
+        return
+    original = protocol_socket.time
+    protocol_socket.time = type("NoPause", (), {"sleep": staticmethod(lambda seconds: None)})
+    try:
+        yield
+    finally:
+        protocol_socket.time = original
