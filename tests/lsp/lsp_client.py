@@ -49,7 +49,9 @@ async def client(lsp_client: LanguageClient):
     await lsp_client.initialize_session(t.InitializeParams(
         capabilities=client_capabilities("visual-studio-code"),
         root_uri=FIXTURES.as_uri(),
-        initialization_options={"debounce": 20}))
+        # the program memory and cycle time at once, not after a pause in the typing (memoryDelay,
+        # 200 ms by default): `settled` waits for them, and the tests edit in steps, not keystrokes
+        initialization_options={"debounce": 20, "memoryDelay": 0}))
     yield
     await lsp_client.shutdown_session()
 
