@@ -63,3 +63,12 @@ def test_the_collector_is_back_on_after_a_check() -> None:
     assert gc.isenabled()
     driver.check_file(str(SAMPLES[0]), text=SAMPLES[0].read_text(encoding="utf-8"))
     assert gc.isenabled()
+
+
+def test_a_cycle_left_by_the_work_is_counted() -> None:
+    """The measure is not vacuous: a list that holds itself, made by the work, is found."""
+    def work() -> None:
+        loop: list = []
+        loop.append(loop)
+
+    assert cyclic_garbage(work) == 1
