@@ -28,6 +28,7 @@ from mcc.sim import values
 from mcc.sim.machine import Axis, Machine, defaults
 from mcc.sim.motion import (INF, Limits, Motion, Path, plan, plan_brake, plan_creep, plan_seek, plan_slew,
                              plan_stop)
+from mcc.sim.repeats import AFTER as REPEATS_AFTER
 from mcc.sim.repeats import Repeats
 from mcc.sim.scenario import Scenario
 from mcc.sim.trace import Event, Trace
@@ -119,7 +120,7 @@ class Options:
     travel: tuple[tuple[str, float | None, float | None], ...] = ()
 
 
-@dataclass
+@dataclass(slots=True)
 class Wait:
     kind: str  # delay | motion | input | busy | poll
     until: float = 0.0
@@ -129,7 +130,7 @@ class Wait:
     line: int | None = None  # the source line of the operation that waits
 
 
-@dataclass
+@dataclass(slots=True)
 class Frame:
     routine: ir.Routine
     block: ir.Block
@@ -565,8 +566,9 @@ class Simulator:
         stack, trace, max_steps, skip_rounds = self.stack, self.trace, self.options.max_steps, self.options.skip_rounds
         # rounds that repeat at this instant are appended rather than run (sim/repeats.py), from
         # `repeats_at` steps on; never under a debugger or single-stepping
-        repeats = Repeats(self) if skip_rounds and self.observer is None and self.options.commands is None else None
-        repeats_at = repeats.next_at if repeats is not None else INF
+        repeats = None  # made when the stretch reaches `repeats_at`
+        repeats_at = trace.steps + REPEATS_AFTER \
+            if skip_rounds and self.observer is None and self.options.commands is None else INF
         while stack:
             frame = stack[-1]
             if frame.wait is not None:
@@ -646,6 +648,8 @@ class Simulator:
                     self.poll_vars = dict(self.vars)
                     return
             if self.went_back and trace.steps >= repeats_at:
+                if repeats is None:
+                    repeats = Repeats(self)
                 moved_changes, moved_vars = repeats.at_jump_back(quiet, last_changes, vars_seen, round_states,
                                                                  polling, threshold)
                 last_changes, vars_seen = last_changes + moved_changes, vars_seen + moved_vars
@@ -742,16 +746,15 @@ class Simulator:
 
     def _terminator(self, frame: Frame) -> None:
         term = frame.block.terminator
-        here = self.block_index.get(frame.block.label, 0)
-        if isinstance(term, ir.Jump):
-            frame.block, frame.index = self.block_of[term.target], 0
-            self.went_back = self.block_index.get(term.target, 0) <= here
-            if term.target in self.cycle_headers and len(self.stack) == 1:
-                self.trace.cycle_marks.append((term.target, self.now))
-        elif isinstance(term, ir.Branch):
-            target = term.then if self._cond(term.cond) else term.otherwise
+        kind = type(term)  # (the IR's terminators have no subclasses: `is` instead of isinstance)
+        if kind is ir.Branch or kind is ir.Jump:
+            if kind is ir.Jump:
+                target = term.target
+            else:
+                target = term.then if self._cond(term.cond) else term.otherwise
+            block_index = self.block_index
+            self.went_back = block_index.get(target, 0) <= block_index.get(frame.block.label, 0)
             frame.block, frame.index = self.block_of[target], 0
-            self.went_back = self.block_index.get(target, 0) <= here
             if target in self.cycle_headers and len(self.stack) == 1:
                 self.trace.cycle_marks.append((target, self.now))
         elif isinstance(term, ir.Return) or (isinstance(term, ir.FallOff) and len(self.stack) > 1):

@@ -95,7 +95,9 @@ class Repeats:
         # same state): None the first time, then the whole state the second time, compared the third
         self.places: dict[tuple, tuple[bytes, Mark] | None] = {}
         self.gap = AFTER
-        self.next_at = sim.trace.steps + AFTER  # `_execute` calls `at_jump_back` from this step on
+        # `_execute` makes this object AFTER steps into a stretch, and calls `at_jump_back` from
+        # `next_at` on: at once, then later each time the places fill up
+        self.next_at = sim.trace.steps
 
     def at_jump_back(self, quiet: int, last_changes: int, vars_seen: int, round_states: set, polling: bool,
                      threshold: int) -> tuple[int, int]:
