@@ -165,6 +165,7 @@ class RoundMark:
     events: int
     prints: int
     steps: int
+    marks: int  # passes of the main loop's headers recorded (Trace.cycle_marks)
 
 
 class Stop(Exception):
@@ -692,8 +693,10 @@ class Simulator:
         change at the same round as when every round runs; a polling round costs the same whatever its
         period (docs/SIMULATOR.md, "Time").
         """
+        marks = self.trace.cycle_marks
         mark = RoundMark(frame, frame.block.label, len(self.stack), self.now, self.changes - self.wakes,
-                         self.round_delays, len(self.trace.events), len(self.trace.prints), self.trace.steps)
+                         self.round_delays, len(self.trace.events), len(self.trace.prints), self.trace.steps,
+                         len(marks))
         last, self.round = self.round, mark
         reads, self.round_reads, self.round_delays = self.round_reads, set(), []
         if (last is None or last.frame is not frame or last.label != mark.label or last.depth != mark.depth
@@ -709,11 +712,22 @@ class Simulator:
         rounds = min(rounds, budget // steps - 1)  # a run that would hit the step limit still does
         if rounds < 1:
             return
+        # the passes of the main loop the round recorded, each after the delays that came before it
+        passes = _passes(marks[last.marks:mark.marks], last.now, mark.delays)
+        if passes is None:
+            return
         now = self.now
         for _ in range(rounds):  # the same additions as round by round: the same times to the last bit
+            started = now
             for seconds in mark.delays:
                 now += seconds
+            if passes:
+                times = [started]
+                for seconds in mark.delays:
+                    times.append(times[-1] + seconds)
+                marks.extend((label, times[after]) for label, after in passes)
         self.now = now
+        mark.marks = len(marks)
         self.trace.steps += rounds * steps
         self.skipped += rounds * steps
         mark.now, mark.steps = self.now, self.trace.steps
@@ -1823,6 +1837,24 @@ class Simulator:
         self.trace.variables = {name: values.plain(v) for name, v in self.vars.items()}
         self.trace.events.append(Event(self.now, "stopped", None, {"stopped": self.trace.stopped,
                                                                      "reason": self.trace.reason}))
+
+
+def _passes(made: list[tuple[str, float]], start: float, delays: list[float]) -> list[tuple[str, int]] | None:
+    """The passes of the main loop a round recorded (`made`, with their times), each as its header
+    and the number of the round's delays before it: the round started at `start` and its time
+    advanced by `delays`, in order. None when a time is not one of those sums (the round cannot be
+    repeated by adding its delays)."""
+    times = [start]
+    for seconds in delays:
+        times.append(times[-1] + seconds)
+    out, after = [], 0
+    for label, t in made:
+        while after < len(times) and times[after] != t:
+            after += 1
+        if after == len(times):
+            return None
+        out.append((label, after))
+    return out
 
 
 def loop_headers(routine: ir.Routine | None) -> dict[str, int]:

@@ -134,7 +134,8 @@ class Repeats:
         mark = sim.round
         if mark is not None:
             state["round"] = (mark.frame, mark.label, mark.depth, mark.now, mark.quiet_changes - (sim.changes - sim.wakes),
-                              mark.delays, mark.events - events, mark.prints - prints, mark.steps - steps)
+                              mark.delays, mark.events - events, mark.prints - prints, mark.steps - steps,
+                              mark.marks - len(trace.cycle_marks))
         # (the changes when polling began count only while it polls: `_execute` compares them then)
         relative = (sim.poll_changes - base if sim.polling else None, sim.quiet_events - events, sim.quiet_step - steps,
                     sim.event_step - steps, quiet, last_changes - base, vars_seen - sim.var_changes, round_states,
@@ -174,8 +175,10 @@ class Repeats:
             events = now.lengths[TRACE_LISTS.index("events")] - earlier.lengths[TRACE_LISTS.index("events")]
             prints = now.lengths[TRACE_LISTS.index("prints")] - earlier.lengths[TRACE_LISTS.index("prints")]
             quiet = (now.counters[0] - earlier.counters[0]) - (now.counters[2] - earlier.counters[2])
+            passes = now.lengths[TRACE_LISTS.index("cycle_marks")] - earlier.lengths[TRACE_LISTS.index("cycle_marks")]
             mark.events += rounds * events
             mark.prints += rounds * prints
+            mark.marks += rounds * passes
             mark.steps += steps
             mark.quiet_changes += rounds * quiet
         cancel.checkpoint()  # the editor's run of a stale version still stops (lsp/cycles.py)

@@ -51,6 +51,7 @@ def same(a: Simulator, b: Simulator) -> None:
     assert (ta.stopped, ta.time, ta.steps, ta.variables, ta.prints) == (tb.stopped, tb.time, tb.steps, tb.variables,
                                                                           tb.prints)
     assert [(e.t, e.kind, e.line, e.data) for e in ta.events] == [(e.t, e.kind, e.line, e.data) for e in tb.events]
+    assert ta.cycle_marks == tb.cycle_marks  # the passes of the main loop (`mcc sim`'s cycle time)
 
 
 @pytest.mark.parametrize("period", [0.005, 0.01, 0.05, 0.003])
@@ -133,3 +134,16 @@ def test_a_loop_cycling_through_the_same_states_is_polling():
     assert sim.trace.stopped == "end", sim.trace.reason
     outputs = [e for e in sim.trace.events if e.kind == "output"]
     assert [(e.t, e.data["value"]) for e in outputs] == [(5.0, 1)]
+
+
+def test_the_passes_of_a_polled_main_loop_are_counted_through_the_jump():
+    """The main loop polls with a delay: each round is a pass of its header (sim/cycles.py), also
+    the rounds jumped over, at the times running them gives; the cycle time says 5 ms per pass,
+    not one long pass for the whole jump."""
+    from mcc.sim import cycles
+
+    scenario = pulses(7.3, 30.0)
+    fast, slow = run(poller(0.005), scenario, True, until=30.0), run(poller(0.005), scenario, False, until=30.0)
+    same(fast, slow)
+    assert fast.skipped > 0
+    assert max(cycles.timing(fast.trace).cycles) < 0.5
