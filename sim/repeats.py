@@ -26,11 +26,13 @@ generated programs); a debugger's observer and single-stepping (`Options.command
 
 from __future__ import annotations
 
+import dataclasses
 import io
 import pickle
 from dataclasses import dataclass
 
-from mcc.compiler import cancel
+from mcc.compiler import cancel, ir
+from mcc.sim import values
 from mcc.sim.trace import Event
 
 # The simulator's fields that a run never changes (the module and its indexes, the scenario, the
@@ -61,6 +63,217 @@ class Mark:
     lengths: tuple[int, ...]
     last_changes: int
     vars_seen: int
+    values: tuple  # the counters' values (`Counter`), in the order of `Repeats.counters`
+    hits: int  # the times going round found a state `_execute` had seen (`Repeats.hits`)
+    states: frozenset | None  # `_execute`'s `round_states` when the module has counters
+    frames: tuple  # the frames themselves (a frame called again is a new one)
+
+
+INT32 = (-2**31, 2**31 - 1)
+
+
+@dataclass
+class Counter:
+    """An int32 variable that only counts: every assignment is a constant (a reset) or itself plus
+    or minus a whole constant (a step), and every reading is a comparison with a constant. Its
+    value reaches nothing but those comparisons and itself, so rounds that differ only by it do
+    the same thing while no comparison changes its outcome."""
+
+    steps: set[int]  # the constants its steps add
+    resets: list[int]  # the ids of the blocks that assign it a constant
+    compared: list  # the constants it is compared with
+
+
+def _step(name: str, value) -> int | None:
+    """The whole constant `value` adds to variable `name` (`V + k`, `k + V`, `V - k`), else None."""
+    if not isinstance(value, ir.BinOp) or value.op not in ("+", "-"):
+        return None
+    left, right = value.left, value.right
+    if value.op == "+" and isinstance(left, ir.Const):
+        left, right = right, left
+    if isinstance(left, ir.Var) and left.name == name and isinstance(right, ir.Const) \
+            and type(right.value) is int:
+        return right.value if value.op == "+" else -right.value
+    return None
+
+
+def _readings(node, found: dict, spoiled: set) -> None:
+    """Every variable `node` reads: a bare variable compared with a constant adds the constant to
+    `found`; any other reading spoils it (a print, arithmetic, an argument)."""
+    stack = [node]
+    while stack:
+        node = stack.pop()
+        if isinstance(node, ir.Compare):
+            pair = (node.left, node.right) if isinstance(node.left, ir.Var) else (node.right, node.left)
+            if isinstance(pair[0], ir.Var) and isinstance(pair[1], ir.Const):
+                found.setdefault(pair[0].name, []).append(pair[1].value)
+                continue
+        if isinstance(node, ir.Var):
+            spoiled.add(node.name)
+        elif isinstance(node, (list, tuple)):
+            stack.extend(node)
+        elif dataclasses.is_dataclass(node) and not isinstance(node, (ir.Block, ir.Routine, type)):
+            stack.extend(getattr(node, f.name) for f in dataclasses.fields(node) if f.name != "span")
+
+
+def counters_of(module: ir.Module, type_of) -> dict[str, Counter]:
+    """The module's counters (`Counter`), by name; `type_of` gives a variable's type as the run
+    stores it. Every field of every operation and terminator is looked at, not only the
+    expressions the IR says an operation reads, so that no reading is missed."""
+    steps: dict[str, set[int]] = {}
+    resets: dict[str, list[int]] = {}
+    compared: dict[str, list] = {}
+    spoiled: set[str] = set()
+    for routine in module.routines:
+        for block in routine.blocks:
+            for op in block.ops:
+                if isinstance(op, ir.Assign):
+                    name = op.target.name
+                    step = _step(name, op.value)
+                    if step is not None:
+                        steps.setdefault(name, set()).add(step)
+                        continue
+                    if isinstance(op.value, ir.Const):
+                        resets.setdefault(name, []).append(id(block))
+                        continue
+                    spoiled.add(name)
+                    _readings(op.value, compared, spoiled)
+                else:
+                    _readings(op, compared, spoiled)
+            _readings(block.terminator, compared, spoiled)
+    names = (set(steps) | set(resets)) - spoiled
+    return {name: Counter(steps.get(name, set()), resets.get(name, []), compared.get(name, []))
+            for name in sorted(names) if type_of(name) is ir.VarType.INT32}
+
+
+def _settled(cond, ranges: dict[str, tuple[int, int]]) -> bool | None:
+    """The outcome of `cond` when it compares a counter of `ranges` with a constant outside the
+    range of values the counter can take (then every one of them gives that outcome); else None."""
+    if not isinstance(cond, ir.Compare):
+        return None
+    left, right = cond.left, cond.right
+    var, const = (left, right) if isinstance(left, ir.Var) else (right, left)
+    if not isinstance(var, ir.Var) or not isinstance(const, ir.Const) or var.name not in ranges:
+        return None
+    (low, high), bound = ranges[var.name], const.value
+    try:
+        if low <= bound <= high:
+            return None
+        return values.compare(cond.op, *((low, bound) if var is left else (bound, low)))
+    except (TypeError, ArithmeticError, values.ArithmeticFault):
+        return None
+
+
+def round_blocks(module: ir.Module, starts: list[int], ranges: dict[str, tuple[int, int]]) -> set[int]:
+    """The blocks (by id) that a round can run in before it first resets one of the counters of
+    `ranges`, which until then stay within their ranges: a superset.
+
+    The round starts in the blocks `starts` of the frames that run in it (the lowest frame that
+    runs is never popped; those above it finish and are called again). A branch on a comparison
+    of a counter with a constant outside its range goes one way only. Routines called from the
+    blocks reached run whole, and any handler's routine may interrupt."""
+    block_of = {b.label: b for r in module.routines for b in r.blocks}
+    entries = {r.name: id(r.entry) for r in module.routines if r.entry is not None}
+    succ: dict[int, list[int]] = {}
+    calls: dict[int, list[int]] = {}
+    handlers: list[int] = []
+    for routine in module.routines:
+        for block in routine.blocks:
+            term = block.terminator
+            targets: list[str] = []
+            if isinstance(term, ir.Jump):
+                targets = [term.target]
+            elif isinstance(term, ir.Branch):
+                outcome = _settled(term.cond, ranges)
+                targets = [term.then, term.otherwise] if outcome is None else [term.then if outcome else term.otherwise]
+            succ[id(block)] = [id(block_of[t]) for t in targets if t in block_of]
+            if isinstance(term, ir.GotoRoutine) and term.routine in entries:
+                succ[id(block)].append(entries[term.routine])
+            calls[id(block)] = [entries[op.routine] for op in block.ops
+                                if isinstance(op, ir.Call) and op.routine in entries]
+            handlers += [entries[op.routine] for op in block.ops
+                         if isinstance(op, ir.SetHandler) and op.routine in entries]
+    blocks: set[int] = set()
+    todo = [*starts, *handlers]
+    while todo:
+        block = todo.pop()
+        if block not in blocks:
+            blocks.add(block)
+            todo += succ.get(block, ())
+            todo += calls.get(block, ())
+    return blocks
+
+
+def _short_of(bound, value: int, delta: int) -> int | float:
+    """How many rounds moving `value` by `delta` leave it short of `bound` (infinity when it moves
+    away from it or the bound is no number that it could meet)."""
+    try:
+        if delta > 0 and bound > value:
+            return int((bound - value - 1) // delta)
+        if delta < 0 and bound < value:
+            return int((value - bound - 1) // -delta)
+    except (TypeError, ValueError, OverflowError, ArithmeticError):  # an infinite or NaN bound
+        pass
+    return float("inf")
+
+
+def _shifted(state: tuple, moved: dict[str, int], times: int) -> tuple:
+    """A state of `round_states` with the moved counters `times` rounds further on."""
+    label, items = state
+    return label, tuple((name, value + times * moved[name]) if name in moved else (name, value)
+                        for name, value in items)
+
+
+def _states(earlier: Mark, now: Mark, moved: dict[str, int]) -> tuple[bool, list] | None:
+    """How the rounds change `_execute`'s `round_states`, when every later round changes it as the
+    round between the two marks did with the counters further on: (True, []) when the round
+    left the same states with the counters moved on, (False, added) when it added the states
+    `added` (in the order it added them) and every later round adds them, moved on, as new
+    states; else None.
+
+    `_execute` looks up the state (the block, every variable) where a loop goes round with
+    variables changed and adds it when it is new, and empties the states at any change other
+    than a variable's, and when they are full. When the round turned the states into themselves
+    with the counters moved on, the next round, whose every state is the same with the counters
+    moved on, finds in them what the first found and leaves them the same way again. Otherwise:
+    the round found no state it had seen (`hits`) and emptied none (the earlier states are all
+    still there), so it added the difference. One moved counter then tells every state apart:
+    its values in the added states are all different, ahead of those of the states before, and
+    closer together than it moves in a round; the states of the next rounds are the same states
+    with it further on, so they are new too, and added in the order it reaches them."""
+    if {_shifted(state, moved, 1) for state in earlier.states} == now.states:
+        return True, []
+    if now.hits != earlier.hits or not earlier.states <= now.states:
+        return None
+    added = now.states - earlier.states
+    if not added:  # no state looked up: none in the next rounds either
+        return False, []
+    for name, delta in moved.items():
+        sign = 1 if delta > 0 else -1
+        values = [dict(items).get(name) for _, items in added]
+        if None in values or len(set(values)) != len(values) or sign * (max(values) - min(values)) >= abs(delta):
+            continue
+        first = min(values) if sign > 0 else max(values)
+        if all(sign * (first - value) > 0 for value in (dict(items).get(name) for _, items in earlier.states)
+               if value is not None):
+            return False, sorted(added, key=lambda state: sign * dict(state[1])[name])
+    return None
+
+
+def _add_states(round_states: set, added: list, moved: dict[str, int], rounds: int) -> None:
+    """Make `round_states` what the `rounds` replayed rounds leave in it: each adds `added` with
+    the moved counters further on, and `_execute` empties it when it is full before an addition."""
+    from mcc.sim.interpreter import ROUND_STATES
+
+    total = rounds * len(added)
+    first = 1  # the first addition still there at the end
+    free = ROUND_STATES - len(round_states)
+    if total > free:
+        round_states.clear()
+        first = free + 1 + (total - free - 1) // ROUND_STATES * ROUND_STATES
+    for n in range(first, total + 1):
+        round_, index = divmod(n - 1, len(added))
+        round_states.add(_shifted(added[index], moved, round_ + 1))
 
 
 def _ir_object(ident: int) -> None:
@@ -98,18 +311,31 @@ class Repeats:
         # `_execute` makes this object AFTER steps into a stretch, and calls `at_jump_back` from
         # `next_at` on: at once, then later each time the places fill up
         self.next_at = sim.trace.steps
+        self.counters = counters_of(sim.module, sim._type)
+        self.names = frozenset(self.counters)
+        self.pickled = 0  # states pickled since the places were last emptied
+        self.exact: dict[tuple, tuple[bytes, Mark]] = {}  # the states by place and counters
+        # the times `_execute` found the state it went round in among its `round_states` (it
+        # looks them up at a jump back where variables changed; found, it counts a quiet step)
+        self.hits = 0
+        self.seen: int | None = None  # `vars_seen` at the last call
 
     def at_jump_back(self, quiet: int, last_changes: int, vars_seen: int, round_states: set, polling: bool,
                      threshold: int) -> tuple[int, int]:
         """Called where a loop went round, with `_execute`'s locals as the next step sees them.
         Answers how far `last_changes` and `vars_seen` move (0, 0 when nothing was replayed)."""
         sim = self.sim
-        place = (tuple((id(frame.block), frame.index) for frame in sim.stack), tuple(sim.vars.items()))
+        if self.seen is not None and vars_seen != self.seen and quiet > 0:
+            self.hits += 1
+        self.seen = vars_seen
+        frames = tuple((id(frame.block), frame.index) for frame in sim.stack)
+        names = self.names
+        # (a counter's value is left out: rounds that differ only by their counters repeat)
+        place = (frames, tuple(item for item in sim.vars.items() if item[0] not in names) if names
+                 else tuple(sim.vars.items()))
         if place not in self.places:
             if len(self.places) >= MARKS:  # a loop whose variables keep changing: look again later
-                self.places.clear()
-                self.gap *= 2
-                self.next_at = sim.trace.steps + self.gap
+                self._later()
             self.places[place] = None
             return 0, 0
         key = self._state(quiet, last_changes, vars_seen, round_states, polling, threshold)
@@ -117,20 +343,51 @@ class Repeats:
             self.next_at = float("inf")
             return 0, 0
         mark = Mark(sim.trace.steps, tuple(getattr(sim, name) for name in COUNTERS),
-                    tuple(len(getattr(sim.trace, name)) for name in TRACE_LISTS), last_changes, vars_seen)
-        earlier = self.places[place]
-        if earlier is None or earlier[0] != key:
-            self.places[place] = (key, mark)
-            return 0, 0
+                    tuple(len(getattr(sim.trace, name)) for name in TRACE_LISTS), last_changes, vars_seen,
+                    tuple(sim.vars.get(name) for name in self.counters), self.hits,
+                    frozenset(round_states) if names else None, tuple(sim.stack) if names else ())
+        # the last state at this point with the same counters (a loop that cycles through
+        # them, as an outer loop around a counted inner one), then the last with any
+        exact = (place, mark.values)
+        same, last = self.exact.get(exact), self.places[place]
+        for earlier in (same, last) if same is not last else (same,):
+            if earlier is None or earlier[0] != key:
+                continue
+            moved = self._replay(earlier[1], mark, round_states)
+            if moved is None:  # the counters forbid it: look on
+                continue
+            self.places.clear()
+            self.exact.clear()
+            self.pickled = 0
+            if self.next_at <= sim.trace.steps:  # the rounds left run normally, up to the step limit
+                self.next_at = float("inf")
+            self.seen = vars_seen + moved[1]
+            return moved
+        self.places[place] = self.exact[exact] = (key, mark)
+        self.pickled += 1
+        if self.pickled >= MARKS:  # a place that comes back in another state each time
+            self._later()
+        return 0, 0
+
+    def _later(self) -> None:
+        """Forget the places and look again twice as far away: the cost of looking stays a small
+        part of the run."""
         self.places.clear()
-        self.next_at = float("inf")  # the rounds left run normally, up to the step limit
-        return self._replay(earlier[1], mark)
+        self.exact.clear()
+        self.pickled = 0
+        self.gap *= 2
+        self.next_at = self.sim.trace.steps + self.gap
 
     def _state(self, quiet, last_changes, vars_seen, round_states, polling, threshold) -> bytes | None:
         sim = self.sim
         trace = sim.trace
         base, steps, events, prints = sim.changes - sim.var_changes, trace.steps, len(trace.events), len(trace.prints)
         state = {name: value for name, value in sim.__dict__.items() if name not in FIXED and name not in COUNTERS}
+        names = self.names
+        if names:
+            state["vars"] = {name: value for name, value in sim.vars.items() if name not in names}
+            # (the states the loop went round in hold the counters: `_counted` compares them)
+            round_states = None
         mark = sim.round
         if mark is not None:
             state["round"] = (mark.frame, mark.label, mark.depth, mark.now, mark.quiet_changes - (sim.changes - sim.wakes),
@@ -138,7 +395,8 @@ class Repeats:
                               mark.marks - len(trace.cycle_marks))
         # (the changes when polling began count only while it polls: `_execute` compares them then)
         relative = (sim.poll_changes - base if sim.polling else None, sim.quiet_events - events, sim.quiet_step - steps,
-                    sim.event_step - steps, quiet, last_changes - base, vars_seen - sim.var_changes, round_states,
+                    # (the last event's step counts only once quiet began: `_note_repeats`)
+                    sim.event_step - steps if sim.event_step >= sim.quiet_step else None, quiet, last_changes - base, vars_seen - sim.var_changes, round_states,
                     polling, threshold)
         out = io.BytesIO()
         _StatePickler.know_ir()
@@ -148,7 +406,54 @@ class Repeats:
             return None
         return out.getvalue()
 
-    def _replay(self, earlier: Mark, now: Mark) -> tuple[int, int]:
+    def _counted(self, earlier: Mark, now: Mark, rounds: int) -> tuple[int, dict[str, int], tuple | None]:
+        """How many of `rounds` can be replayed given the counters, how far each counter that
+        moved between the two marks moves in a round, and the states a round adds to
+        `_execute`'s `round_states` (`_states`).
+
+        Only steps of one sign move a counter in these rounds: none of its resets can run in them
+        (`round_blocks`), and its steps go the way it moved. So over the rounds it moves one way,
+        the values of each round between the values the round starts and ends with; while it
+        meets none of the constants it is compared with, and stays an int32, every comparison
+        has the outcome it had in the rounds that ran, and the rounds do the same thing, only
+        with the counter further on (`_states` for `round_states`)."""
+        ends = {name: (before, after) for name, before, after in zip(self.counters, earlier.values, now.values)
+                if before != after}
+        moved: dict[str, int] = {}
+        if not ends:  # the counters are as they were: so must be the states `_execute` saw
+            return (rounds if earlier.states == now.states else 0), moved, None
+        for name, (before, after) in ends.items():
+            if type(before) is not int or type(after) is not int:
+                return 0, {}, None
+            moved[name] = after - before
+        signs = {name: 1 if delta > 0 else -1 for name, delta in moved.items()}
+        # the frames that ran in the round: from the one below the lowest frame made anew (a
+        # frame called again is a new object; one never popped is the same)
+        same = [old is new for old, new in zip(earlier.frames, now.frames)] + [False]
+        lowest = max(same.index(False) - 1, 0)
+        # until a reset, a counter moves from its start one way, at most its largest step at each
+        # of the round's operations
+        ranges = {}
+        for name, (before, _) in ends.items():
+            reach = (now.steps - earlier.steps) * max((abs(step) for step in self.counters[name].steps), default=0)
+            ranges[name] = (before, before + reach) if signs[name] > 0 else (before - reach, before)
+        blocks = round_blocks(self.sim.module, [id(frame.block) for frame in now.frames[lowest:]], ranges)
+        for name, (before, after) in ends.items():
+            counter, delta = self.counters[name], moved[name]
+            if any(step * signs[name] < 0 for step in counter.steps) or any(block in blocks for block in counter.resets):
+                return 0, moved, None
+            low, high = min(before, after), max(before, after)
+            for bound in (*counter.compared, INT32[0] - 1, INT32[1] + 1):
+                if low <= bound <= high:
+                    return 0, moved, None
+                rounds = min(rounds, _short_of(bound, after, delta))
+        states = _states(earlier, now, moved)
+        return (rounds if states is not None else 0), moved, states
+
+    def _replay(self, earlier: Mark, now: Mark, round_states: set) -> tuple[int, int] | None:
+        """Replays the rounds between two marks of the same state (the counters aside); answers
+        how far `last_changes` and `vars_seen` move, or None when the counters forbid it. Sets
+        `next_at` when a counter stopped it short of a constant."""
         sim = self.sim
         trace = sim.trace
         poll_at = COUNTERS.index("poll_steps")
@@ -158,6 +463,21 @@ class Repeats:
         rounds = (sim.options.max_steps - (trace.steps - sim.poll_steps)) // counted - 1
         if rounds < 1:
             return 0, 0
+        fit = rounds
+        rounds, moved, added = self._counted(earlier, now, rounds)
+        if rounds < 1:
+            return None
+        self.next_at = float("inf")
+        if rounds < fit:  # a counter would meet a constant it is compared with: look again after it
+            self.next_at = trace.steps
+        for name, delta in moved.items():
+            sim.vars[name] += rounds * delta
+        if added is not None and added[0]:  # the states the loop went round in, moved on
+            shifted = {_shifted(state, moved, rounds) for state in round_states}
+            round_states.clear()
+            round_states.update(shifted)
+        elif added is not None and added[1]:
+            _add_states(round_states, added[1], moved, rounds)
         for name, start, end in zip(TRACE_LISTS, earlier.lengths, now.lengths):
             items = getattr(trace, name)
             piece = items[start:end]
@@ -165,8 +485,11 @@ class Repeats:
                 items.extend(Event(e.t, e.kind, e.line, dict(e.data)) for _ in range(rounds) for e in piece)
             else:
                 items.extend(piece * rounds)
+        # (an event before quiet began stays before it, which is all `_note_repeats` asks)
+        before_quiet = sim.event_step < sim.quiet_step
         for name, before, after in zip(COUNTERS, earlier.counters, now.counters):
-            setattr(sim, name, getattr(sim, name) + rounds * (after - before))
+            if name != "event_step" or not before_quiet:
+                setattr(sim, name, getattr(sim, name) + rounds * (after - before))
         steps = rounds * (now.steps - earlier.steps)
         trace.steps += steps
         sim.skipped += steps  # (never run; the counter's own growth over a round is 0 here)

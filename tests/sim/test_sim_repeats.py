@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from mcc.compiler import driver, ir
-from mcc.sim import Options, verify
+from mcc.sim import Options, repeats, verify
 from mcc.sim.interpreter import Simulator
 from mcc.sim.scenario import Scenario
 from sim_helpers import c, eq, inp, module, sub
@@ -78,16 +78,114 @@ def test_the_step_limit_stops_a_replayed_run_at_the_same_operation():
         assert fast.trace.steps == limit
 
 
-def test_a_loop_whose_counter_never_comes_back_is_run():
-    """`%L1 = %L1 - 1` until it is 0, from 0 (X150's `L` without a count): no state repeats, so
-    every round runs; the trace is the same either way."""
+def countdown(start: int | None, until: int = 0, step: int = 1, body=None) -> ir.Module:
+    """`L = start` (none when None), then print and `L = L - step` while `L != until`: X150's `L`
+    loop (lowered as a hidden counter, compiler/x150/lower.py; parker-x150.md L2328, `L` or `L0`
+    loops for ever), or a loop of `start` rounds."""
+    set_ = [ir.Assign(ir.Var("L"), c(start))] if start is not None else []
+    count = ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(step)))
+    return module(
+        ("init", set_, ir.Jump("loop")),
+        ("loop", [*(body or [ir.Print((ir.Text("x"),))]), count],
+         ir.Branch(ir.Compare("!=", ir.Var("L"), c(until)), "loop", "done")),
+        ("done", [ir.Print((ir.Text("done"),))], ir.End()),
+        variables={"L": ir.VarType.INT32})
+
+
+def test_a_loop_whose_only_change_is_a_counter_is_replayed():
+    """`%L1 = %L1 - 1` until it is 0, from 0 (X150's `L` without a count, parker-x150.md L2328):
+    no state repeats, but the rounds differ only by the counter, which is compared with 0 only
+    and never comes back to it: replayed, with the counter where running every round leaves it."""
+    fast = both(countdown(None))
+    assert fast.skipped > 0 and fast.trace.steps - fast.skipped < 6000
+    assert fast.trace.variables["L"] == -(STEPS - 2) // 3  # 3 operations a round, after the first 2
+
+
+def test_a_counter_replayed_in_a_loop_that_adds_a_state_each_round():
+    """No print, only the counter changes: `_execute` adds the loop's state to its round states
+    each round (parker-x150.md L2328, `L` ... `N` with an idle body): the replay leaves them as
+    running every round does, emptied when full, and the run then goes on the same."""
+    for limit in (STEPS, 4100 + 256 * 3, 33_333):
+        fast = both(countdown(None, body=[ir.Assign(ir.Var("V1"), c(7))]), max_steps=limit)
+        assert fast.skipped > 0
+
+
+def test_a_counter_stops_being_replayed_before_the_constant_it_is_compared_with():
+    """A count of 100 rounds (parker-x150.md L2328, `L100`), and of 4,000 by steps of 3 from
+    12,000: the replay stops short of the loop's exit, which comes at the step that running every
+    round gives, and the program goes on after it."""
+    for start, step in ((100, 1), (4000, 1), (12_000, 3)):
+        fast = both(countdown(start, step=step))
+        assert fast.trace.stopped == "end" and fast.trace.prints[-1] == (0.0, "done\n")
+        assert len(fast.trace.prints) == start // step + 1
+    assert both(countdown(4000)).skipped > 0
+
+
+def test_a_counter_compared_where_the_replay_would_cross_it_is_not_skipped_over():
+    """`L != -5000` from 0: replayed up to it, run across it, and the loop leaves there."""
+    fast = both(countdown(None, until=-5000))
+    assert fast.trace.prints.count((0.0, "x\n")) == 5000 and fast.trace.prints[-1] == (0.0, "done\n")
+
+
+def test_a_counter_read_otherwise_is_no_counter():
+    """Printed, or used in arithmetic, the counter's value reaches the trace: not replayed (no
+    state repeats), the same trace either way."""
+    printed = countdown(None, body=[ir.Print((ir.Text("L="), ir.Var("L")))])
+    summed = countdown(None, body=[ir.Assign(ir.Var("V1"), ir.BinOp("+", ir.Var("L"), c(1)))])
+    scaled = module(
+        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("*", ir.Var("L"), c(1))),
+                  ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
+         ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "loop")),
+        variables={"L": ir.VarType.INT32})
+    for mod in (printed, summed, scaled):
+        assert not repeats.counters_of(mod, lambda name: ir.VarType.INT32)
+        assert both(mod).skipped == 0
+
+
+def test_a_counter_reset_in_the_round_is_not_replayed():
+    """A loop that resets its counter each round (`L = 0` on the way back): the counter is not
+    moved on by the replay; the rounds repeat as whole states instead."""
     mod = module(
-        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
-         ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "done")),
+        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), c(0)),
+                  ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
+         ir.Branch(ir.Compare("!=", ir.Var("L"), c(5)), "loop", "done")),
         ("done", [], ir.End()),
         variables={"L": ir.VarType.INT32})
     fast = both(mod)
-    assert fast.skipped == 0
+    assert fast.skipped > 0 and fast.trace.variables["L"] == -1
+
+
+def test_a_counter_whose_steps_go_both_ways_is_not_moved_on():
+    """`L = L - 2` then `L = L + 1`: a round moves it by -1 but passes values beyond its ends;
+    the replay leaves it alone (the trace is the same either way)."""
+    mod = countdown(None, body=[ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("+", ir.Var("L"), c(1))),
+                                ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))])
+    assert both(mod).skipped == 0
+
+
+def test_a_counter_in_an_outer_loop_that_resets_it():
+    """X150 `REPEAT ... L ... N ... UNTIL` (parker-x150.md L2328): the reset `L = 0` is in the outer
+    loop, which the inner endless loop never leaves (its exit needs the counter at 0): replayed."""
+    mod = module(
+        ("outer", [ir.Assign(ir.Var("L"), c(0))], ir.Jump("loop")),
+        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
+         ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "after")),
+        ("after", [ir.Print((ir.Text("after"),))], ir.Jump("outer")),
+        variables={"L": ir.VarType.INT32})
+    assert both(mod).skipped > 0
+
+
+def test_an_outer_loop_through_a_counted_inner_loop():
+    """An inner loop of 3 rounds (`L3`) in an endless outer loop: the counter is reset each outer
+    round and ends each at 0, so the outer rounds repeat as whole states."""
+    mod = module(
+        ("outer", [ir.Assign(ir.Var("L"), c(3))], ir.Jump("loop")),
+        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
+         ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "after")),
+        ("after", [ir.Print((ir.Text("after"),))], ir.Jump("outer")),
+        variables={"L": ir.VarType.INT32})
+    fast = both(mod)
+    assert fast.skipped > 0
 
 
 def test_rounds_that_wait_are_not_replayed():
@@ -119,27 +217,37 @@ def test_no_replay_under_a_debugger():
 def loops(draw):
     """A main loop at one instant: random assignments, prints, outputs and calls of a subroutine
     that changes the variables too, going round on a random condition or through a second block
-    that brings a variable back into a range (so that some states come back and some never do)."""
+    that brings a variable back into a range (so that some states come back and some never do).
+    With a counter `L` too (X150's `L` loops, parker-x150.md L2328): stepped by a whole constant,
+    mostly down, compared with constants in the loop's condition, sometimes reset in the second
+    block, now and then printed (then it is no counter)."""
     def body(size: int) -> list:
         made = []
         for _ in range(draw(st.integers(0, size))):
-            kind = draw(st.sampled_from(["assign", "assign", "print", "output", "call"]))
+            kind = draw(st.sampled_from(["assign", "assign", "print", "output", "call", "count", "count"]))
             if kind == "assign":
                 made.append(ir.Assign(ir.Var(draw(st.sampled_from(VARS))), draw(exprs(depth=1))))
             elif kind == "print":
-                made.append(ir.Print((ir.Text("v="), ir.Var(draw(st.sampled_from(VARS))))))
+                made.append(ir.Print((ir.Text("v="), ir.Var(draw(st.sampled_from((*VARS, "L")))))))
             elif kind == "output":
                 made.append(ir.SetOutput(draw(st.integers(1, 3)), ir.BinOp("&", ir.Var(draw(st.sampled_from(VARS))),
                                                                             c(1))))
+            elif kind == "count":
+                made.append(ir.Assign(ir.Var("L"), ir.BinOp(draw(st.sampled_from(["-", "-", "+"])), ir.Var("L"),
+                                                             c(draw(st.integers(0, 3))))))
             else:
                 made.append(ir.Call("S"))
         return made
     var = draw(st.sampled_from(VARS))
     wrap = ir.Assign(ir.Var(var), ir.BinOp("%", ir.Var(var), c(draw(st.integers(2, 7)))))
+    reset = [ir.Assign(ir.Var("L"), c(draw(st.integers(-20, 20))))] if draw(st.booleans()) else []
+    counted = ir.Compare(draw(st.sampled_from(["=", "!=", "<", ">=", ">"])), ir.Var("L"),
+                         c(draw(st.integers(-3000, 20))))
+    cond = draw(st.sampled_from([draw(conds()), counted, ir.Logic("and", counted, draw(conds()))]))
     return module(
-        ("loop", body(5), ir.Branch(draw(conds()), "loop", "wrap")),
-        ("wrap", [wrap, *body(2)], ir.Jump("loop")),
-        routines=[sub("S", body(3))], variables={v: ir.VarType.INT32 for v in VARS})
+        ("loop", body(5), ir.Branch(cond, "loop", "wrap")),
+        ("wrap", [wrap, *reset, *body(2)], ir.Jump("loop")),
+        routines=[sub("S", body(3))], variables={v: ir.VarType.INT32 for v in (*VARS, "L")})
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -168,3 +276,16 @@ def test_generated_programs_give_the_trace_of_running_every_round(dialect, seed)
         fast = both(mod, scenario, until=options.until, max_steps=options.max_steps // 4, samples=False)
         replayed += fast.skipped > 0
     assert replayed or (dialect, seed) != ("mcode", 20)
+
+
+def test_the_states_a_replayed_counter_loop_went_round_in_are_those_of_running_it():
+    """After the replay the loop leaves (`L` reaches -3000) and goes round again from -2990
+    through states it went round in before: running every round, `_execute` finds them among the
+    states it keeps and takes the loop for a quiet one (a poll); the replay leaves those states as
+    running every round does, so the poll comes at the same step (parker-x150.md L2328, `L` ... `N`
+    in a loop that sets the counter back)."""
+    for start, limit in ((None, STEPS), (None, 30_001), (-1000, STEPS)):
+        mod = countdown(start, until=-3000, body=[ir.Assign(ir.Var("V1"), c(7))])
+        mod.routines[0].blocks[2] = ir.Block("done", [ir.Assign(ir.Var("L"), c(-2990))], ir.Jump("loop"))
+        fast = both(mod, max_steps=limit, until=1.0)
+        assert fast.skipped > 0 and "polls in a loop" in fast.trace.reason
