@@ -289,3 +289,93 @@ def test_the_states_a_replayed_counter_loop_went_round_in_are_those_of_running_i
         mod.routines[0].blocks[2] = ir.Block("done", [ir.Assign(ir.Var("L"), c(-2990))], ir.Jump("loop"))
         fast = both(mod, max_steps=limit, until=1.0)
         assert fast.skipped > 0 and "polls in a loop" in fast.trace.reason
+
+
+# An idle homing in an endless `L ... N` (parker-x150.md L2328: `L` with no number repeats for
+# ever), as tests/golden/x150/policy-ok writes it: `1G` with no distance, at one instant.
+X150_IDLE_LOOP = """1CUR800
+1SIM5
+1XE1
+1XD1
+1BCUR800
+1BCPE2000
+1PZ
+1L
+1G
+1BY
+1N
+1XT
+1SV
+"""
+# A generated program (tests/x150/test_x150_generated.py, `Program(random.Random(254), "")`):
+# an endless `L N` inside a sequence, and one that calls another sequence (`XR53`) in its body,
+# both inside the loops of an outer REPEAT that resets their counters.
+X150_GENERATED = """A10
+MC
+VAR4=VAR1-VAR2*VAR3
+D4000
+IF(VAR1>5 AND VAR1=VAR2)
+ELSE
+WHILE(IN_1 OR VAR2<3)
+VAR3=VAR1+2
+VAR4=VAR1-VAR2*VAR3
+REPEAT
+L
+DCLR0
+GH-2
+VAR4=VAR1-VAR2*VAR3
+N
+D(VAR3)
+T0.2
+UNTIL(VAR2<3)
+T(VAR1)
+NWHILE
+WHILE(IN_X01)
+NWHILE
+MN
+NIF
+XE33
+XD33
+L
+N
+L
+VAR3=VAR1+2
+DTXT"HELLO WORLD"
+XR53
+BY
+N
+XG53
+DPC208
+XT
+A0.5
+A0.5
+WHILE(IN_1 AND VAR1=VAR2)
+O1X
+OUT3B
+IF(VAR1=VAR2 OR VAR1>5)
+NIF
+REPEAT
+T0.2
+UNTIL(IN_X01)
+TRIP
+NWHILE
+XE53
+XD53
+XT
+XR33
+1SV
+"""
+
+
+@pytest.mark.parametrize("text", [X150_IDLE_LOOP, X150_GENERATED], ids=["idle-homing", "generated-254"])
+def test_x150_endless_loops_are_replayed_with_the_trace_of_running_every_round(text):
+    """X150 `L` without a count (parker-x150.md L2328) counts its hidden `%Lk` down for ever: under
+    every scenario validation runs (with a quarter of its step limit, as above), the replay gives
+    the trace of running every round, and replays most of it."""
+    result = driver.compile_file("g.x150", "x150", text=text, opt_level="O0")
+    mod = result.analysis.module
+    for scenario in verify.default_scenarios(mod):
+        options = verify.default_options(scenario)
+        limit = options.max_steps // 4
+        fast = both(mod, scenario, until=options.until, max_steps=limit, samples=False)
+        assert fast.skipped > limit * 0.8
