@@ -22,6 +22,15 @@ events, prints and marks) and counted in the steps and the counters, instead of 
 run normally, so the run stops at the same operation, with the same reason, as when every round
 runs. `Options.skip_rounds` off runs every round (tests/sim/test_sim_repeats.py compares the two on
 generated programs); a debugger's observer and single-stepping (`Options.commands`) turn it off too.
+
+Counters (`Counter`: X150's hidden `%Lk`, which `L` without a count decrements for ever) make every
+state new, so they are left out of the compared state and their values kept in the marks; two marks
+that differ only by them are replayed when the rounds cannot tell the difference (`_counted`): each
+moved counter moved the way all its steps go, no reset of it is reachable in a round
+(`round_blocks`), none of the constants it is compared with lies within the values it takes, and
+`_execute`'s `round_states` end as running every round leaves them (`_states`). The replay then
+moves each counter on by `rounds * (after - before)`, stopping short of the first constant it
+would meet (the rounds from there run, and it looks again after them).
 """
 
 from __future__ import annotations

@@ -379,3 +379,27 @@ def test_x150_endless_loops_are_replayed_with_the_trace_of_running_every_round(t
         limit = options.max_steps // 4
         fast = both(mod, scenario, until=options.until, max_steps=limit, samples=False)
         assert fast.skipped > limit * 0.8
+
+
+@pytest.mark.parametrize("kept, added, rounds", [(0, 1, 5), (10, 1, 246), (10, 1, 247), (10, 1, 1000),
+                                                 (255, 3, 1), (40, 3, 300), (256, 2, 128), (256, 2, 129)])
+def test_the_replayed_round_states_are_those_adding_them_one_by_one_leaves(kept, added, rounds):
+    """`_add_states` leaves `_execute`'s round states as the replayed rounds would, each adding its
+    states with the counter moved on and emptying them when full before an addition
+    (sim/interpreter.py `_execute`; X150 `L` loops, parker-x150.md L2328, add one a round)."""
+    from mcc.sim.interpreter import ROUND_STATES
+
+    def state(value: int, n: int) -> tuple:
+        return ("loop", (("V1", n), ("L", value)))
+
+    states = {state(-k, 0) for k in range(kept)}
+    new = [state(-kept - n, n) for n in range(added)]
+    expected = set(states)
+    for round_ in range(1, rounds + 1):
+        for label, items in new:
+            if len(expected) >= ROUND_STATES:
+                expected.clear()
+            expected.add((label, tuple((name, value - round_ * added) if name == "L" else (name, value)
+                                       for name, value in items)))
+    repeats._add_states(states, new, {"L": -added}, rounds)
+    assert states == expected
