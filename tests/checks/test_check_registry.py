@@ -29,8 +29,9 @@ MODULES = codes.rule_modules(codes.CHECKS_DIR)
 CHECKS = checks.load_all()
 # the product's Python: not the tests, benchmarks or editor packages (whose node_modules hold
 # third-party Python once the extension's tests are installed), nor a virtual environment
+# (build/ and dist/: what `pip install .` leaves, copies of the product, not the product)
 SOURCES = [p for p in sorted(ROOT.rglob("*.py"))
-           if p.relative_to(ROOT).parts[0] not in ("tests", "bench", "editors", ".venv")
+           if p.relative_to(ROOT).parts[0] not in ("tests", "bench", "editors", ".venv", "build", "dist")
            and not {".venv", "node_modules"} & set(p.parts)]
 
 
