@@ -163,29 +163,27 @@ def test_a_counter_whose_steps_go_both_ways_is_not_moved_on():
     assert both(mod).skipped == 0
 
 
-def test_a_counter_in_an_outer_loop_that_resets_it():
-    """X150 `REPEAT ... L ... N ... UNTIL` (parker-x150.md L2328): the reset `L = 0` is in the outer
-    loop, which the inner endless loop never leaves (its exit needs the counter at 0): replayed."""
-    mod = module(
-        ("outer", [ir.Assign(ir.Var("L"), c(0))], ir.Jump("loop")),
+def outer_loop(start: int) -> ir.Module:
+    """An endless outer loop that sets the counter L to `start`, then an inner loop that prints and
+    counts it down until it is 0."""
+    return module(
+        ("outer", [ir.Assign(ir.Var("L"), c(start))], ir.Jump("loop")),
         ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
          ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "after")),
         ("after", [ir.Print((ir.Text("after"),))], ir.Jump("outer")),
         variables={"L": ir.VarType.INT32})
-    assert both(mod).skipped > 0
+
+
+def test_a_counter_in_an_outer_loop_that_resets_it():
+    """X150 `REPEAT ... L ... N ... UNTIL` (parker-x150.md L2328): the reset `L = 0` is in the outer
+    loop, which the inner endless loop never leaves (its exit needs the counter at 0): replayed."""
+    assert both(outer_loop(0)).skipped > 0
 
 
 def test_an_outer_loop_through_a_counted_inner_loop():
     """An inner loop of 3 rounds (`L3`) in an endless outer loop: the counter is reset each outer
     round and ends each at 0, so the outer rounds repeat as whole states."""
-    mod = module(
-        ("outer", [ir.Assign(ir.Var("L"), c(3))], ir.Jump("loop")),
-        ("loop", [ir.Print((ir.Text("x"),)), ir.Assign(ir.Var("L"), ir.BinOp("-", ir.Var("L"), c(1)))],
-         ir.Branch(ir.Compare("!=", ir.Var("L"), c(0)), "loop", "after")),
-        ("after", [ir.Print((ir.Text("after"),))], ir.Jump("outer")),
-        variables={"L": ir.VarType.INT32})
-    fast = both(mod)
-    assert fast.skipped > 0
+    assert both(outer_loop(3)).skipped > 0
 
 
 def test_rounds_that_wait_are_not_replayed():
