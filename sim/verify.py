@@ -260,8 +260,12 @@ def toggle_times(low: Trace) -> list[float]:
 def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | None = None,
             options: Options | None = None, source_profile=None, output_profile=None,
             kinds: tuple[str, ...] = OBSERVABLE, by_count: bool = False,
-            within: Tolerance | None = None) -> Divergence | None:
+            within: Tolerance | None = None, source_runs: "Runs | None" = None) -> Divergence | None:
     """The first divergence between `source` and `output` on the scenarios, or None.
+
+    `source_runs`: the runs of `source` made by earlier comparisons with other outputs (`Runs`),
+    used when they are runs of this very module and profile, so that one source compared with
+    many outputs (every optimization level) is simulated once per scenario.
 
     Both runs of a scenario go to the same horizon (its `until`, else `VERIFY_UNTIL`, and the same
     step limit); a run stopped by the step limit before the other stopped is run again with a
@@ -277,7 +281,9 @@ def compare(source: ir.Module, output: ir.Module, scenarios: list[Scenario] | No
     ratio = units.ratio(source.steps_per_rev, output.steps_per_rev)
     shared = shared_outputs(source_profile, output_profile)
     known: dict[int, Trace] = {}
-    source_runs, output_runs = Runs(source, source_profile), Runs(output, output_profile)
+    if source_runs is None or source_runs.module is not source or source_runs.profile is not source_profile:
+        source_runs = Runs(source, source_profile)
+    output_runs = Runs(output, output_profile)
     idle = sorted(set(inputs_seen(source)) | set(inputs_seen(output)))  # stated at the source's idle level
     if scenarios is None:
         lows = with_idle_levels(Scenario(inputs={n: 0 for n in inputs_read(source)}, name="inputs low"), source,
@@ -479,7 +485,8 @@ class Runs:
     scenarios of a validation share their start and differ later (all inputs low, and each input
     toggling after the program's first wait), so a program that stops, or loops at one instant up to
     the step limit, before the first toggle has one run for all of them. A run that stopped
-    `waiting` is not reused: a later input change would have woken it."""
+    `waiting` is reused only for the same scenario: a later input change would have woken it. The
+    traces are never changed by the comparison (it replaces them when it runs again)."""
 
     REUSED_STOPS = ("end", "error", "step-limit", "time-limit")
 
@@ -489,7 +496,8 @@ class Runs:
 
     def run(self, scenario: Scenario, options: Options) -> Trace:
         for earlier, opts, trace in self.done:
-            if opts == options and trace.stopped in self.REUSED_STOPS and same_until(earlier, scenario, trace.time):
+            if opts == options and (earlier == scenario or trace.stopped in self.REUSED_STOPS
+                                    and same_until(earlier, scenario, trace.time)):
                 return trace
         trace = simulate(self.module, scenario, _copy(options), self.profile, checked=True)
         self.done.append((scenario, options, trace))

@@ -14,18 +14,40 @@ is compared on the events both made.
 
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 from mcc.compiler import ir
 from mcc.sim import Options
-from mcc.sim.verify import STRICT, compare, default_scenarios
+from mcc.sim.verify import STRICT, Runs, compare, default_scenarios
 
 MAX_SCENARIOS = 4
 OPTIONS = Options(until=60, max_steps=20_000, samples=False)
 
 
-def same_behaviour(before: ir.Module, after: ir.Module, scenarios=None, options: Options | None = None) -> None:
+@dataclass
+class Baseline:
+    """What `same_behaviour` works out about one `before` module, kept by a test that compares it
+    with many modules (every level and pass): its scenarios and its runs (verify.Runs), so that
+    it is simulated once per scenario, not once per comparison. Only for a module that does not
+    change meanwhile (the tests optimize copies)."""
+
+    module: ir.Module
+    scenarios: list = field(default_factory=list)
+    runs: Runs | None = None
+
+
+def same_behaviour(before: ir.Module, after: ir.Module, scenarios=None, options: Options | None = None,
+                   baseline: Baseline | None = None) -> None:
     """Assert that `after` (optimized, compiled, read back) behaves as `before` does."""
-    chosen = scenarios if scenarios is not None else default_scenarios(before, options=options or OPTIONS)[:MAX_SCENARIOS]
-    found = compare(before, after, chosen, options or OPTIONS, kinds=STRICT, by_count=True)
+    if baseline is not None and (baseline.module is not before or scenarios is not None or options is not None):
+        raise ValueError("a Baseline is for its own module with the default scenarios and options")
+    if baseline is not None and not baseline.scenarios:
+        baseline.scenarios = default_scenarios(before, options=OPTIONS)[:MAX_SCENARIOS]
+        baseline.runs = Runs(before, None)
+    chosen = baseline.scenarios if baseline is not None else scenarios if scenarios is not None else \
+        default_scenarios(before, options=options or OPTIONS)[:MAX_SCENARIOS]
+    found = compare(before, after, chosen, options or OPTIONS, kinds=STRICT, by_count=True,
+                    source_runs=baseline.runs if baseline is not None else None)
     if found is not None:
         from mcc.compiler.ir_print import to_text
 

@@ -12,7 +12,7 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "ir"))
 
 from ir_programs import lowered, program_files  # noqa: E402
-from sim_behaviour import same_behaviour  # noqa: E402
+from sim_behaviour import Baseline, same_behaviour  # noqa: E402
 from mcc.compiler import ir, profiles  # noqa: E402
 from mcc.compiler.ir_verify import verify  # noqa: E402
 from mcc.compiler.opt import LEVELS, PASSES, optimize  # noqa: E402
@@ -34,11 +34,12 @@ def test_every_level_and_pass_keeps_contract_and_behaviour(dialect, path):
         pytest.skip("the program has errors: it never reaches the optimizer")
     meaning_kept = not verify(module)
     choices = [(level, None) for level in LEVELS] + [("Os", name) for name in PASSES]
+    baseline = Baseline(module)  # the source simulated once per scenario for all the choices
     for level, passes in choices:
         optimized = run(module, dialect, level, passes)
         if meaning_kept:
             assert verify(optimized) == [], (level, passes)
-        same_behaviour(module, optimized)
+        same_behaviour(module, optimized, baseline=baseline)
 
 
 def test_the_programs_exist():

@@ -69,3 +69,30 @@ def test_a_difference_after_the_program_ended_is_not_there(stop_at):
     scenarios = verify.default_scenarios(program)
     each = [verify.compare(program, program, [s]) for s in scenarios]
     assert reused is None and each == [None] * len(scenarios)
+
+
+def test_one_source_against_many_outputs_is_simulated_once_per_scenario(monkeypatch):
+    """`compare(..., source_runs=)`: the optimizer's tests compare one source with every level's
+    output. The source's runs are shared, and an output that differs is still found."""
+    source = module([ir.WaitInput(eq(inp(1), 1)), ir.SetOutput(1, c(1))])
+    same = module([ir.WaitInput(eq(inp(1), 1)), ir.SetOutput(1, c(1))])
+    wrong = module([ir.WaitInput(eq(inp(1), 1)), ir.SetOutput(2, c(1))])
+    scenarios = verify.default_scenarios(source)
+    runs = verify.Runs(source, None)
+    assert verify.compare(source, same, scenarios, source_runs=runs) is None
+    calls = counted(monkeypatch)
+    assert verify.compare(source, wrong, scenarios, source_runs=runs) is not None
+    assert calls and all(name in {s.name for s in scenarios} for name in calls)
+    sources = len(calls)
+    calls.clear()
+    assert verify.compare(source, same, scenarios, source_runs=runs) is None
+    assert len(calls) == len(scenarios) and sources >= 1  # only the output's runs: the source's are kept
+
+
+def test_runs_of_another_module_are_not_used():
+    """A `Runs` made for another module (or profile) is ignored: its traces are not this source's."""
+    source = module([ir.SetOutput(1, c(1))])
+    other = module([ir.SetOutput(2, c(1))])
+    runs = verify.Runs(other, None)
+    assert verify.compare(other, other, source_runs=runs) is None
+    assert verify.compare(source, other, source_runs=runs) is not None
