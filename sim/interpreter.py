@@ -305,6 +305,7 @@ class Simulator:
         self.ended = False  # `advance` has seen the program end (its moves may still run)
         self.end_time = 0.0  # when `advance` saw the program stop
         self.adopted: set[int] = set()  # the moves of other runs this one lets end (`adopt`)
+        self.repeat_counters = None  # the module's round counters (sim/repeats.py), when first needed
 
     # -- public ----------------------------------------------------------------------------------
 

@@ -50,6 +50,7 @@ FIXED = frozenset({
     "module", "scenario", "options", "routines", "block_of", "block_index", "product", "division", "motion_floor",
     "float_format", "float_pad", "active_high_default", "idle_level", "input_count", "output_count",
     "countdown_marks", "default_type", "cycle_headers", "travel", "nesting", "observer", "trace",
+    "repeat_counters",
 })
 # Counters the simulator compares only with each other (or with a value taken from themselves):
 # left out of the state, their differences in it, and moved on by the replayed rounds.
@@ -320,7 +321,9 @@ class Repeats:
         # `_execute` makes this object AFTER steps into a stretch, and calls `at_jump_back` from
         # `next_at` on: at once, then later each time the places fill up
         self.next_at = sim.trace.steps
-        self.counters = counters_of(sim.module, sim._type)
+        if sim.repeat_counters is None:  # the module's, worked out once per run (a run has many stretches)
+            sim.repeat_counters = counters_of(sim.module, sim._type)
+        self.counters = sim.repeat_counters
         self.names = frozenset(self.counters)
         self.pickled = 0  # states pickled since the places were last emptied
         self.exact: dict[tuple, tuple[bytes, Mark]] = {}  # the states by place and counters
