@@ -21,6 +21,7 @@ from mcc.compiler import driver, ir
 from mcc.sim import Options, repeats, verify
 from mcc.sim.interpreter import Simulator
 from mcc.sim.scenario import Scenario
+from conversion import extension
 from sim_helpers import c, eq, inp, module, sub
 from sim_strategy import VARS, conds, exprs
 
@@ -254,9 +255,6 @@ def test_random_loops_give_the_trace_of_running_every_round(mod):
     both(mod, max_steps=12_000)
 
 
-EXTENSIONS = {"mcode": "mxt", "x150": "x150", "arcus": "prg"}
-
-
 @pytest.mark.parametrize("dialect, seed", [("mcode", 20), ("mcode", 3), ("arcus", 20), ("x150", 20)])
 def test_generated_programs_give_the_trace_of_running_every_round(dialect, seed):
     """The random programs of tests/codegen_programs.py under every scenario validation runs them
@@ -265,7 +263,7 @@ def test_generated_programs_give_the_trace_of_running_every_round(dialect, seed)
     from test_codegen_random import enabled
 
     text = generate(dialect, seed, enabled(dialect)).text
-    result = driver.compile_file(f"g.{EXTENSIONS[dialect]}", dialect, text=text, opt_level="O0")
+    result = driver.compile_file(f"g{extension(dialect)}", dialect, text=text, opt_level="O0")
     mod = result.analysis.module
     replayed = 0
     for scenario in verify.default_scenarios(mod):
